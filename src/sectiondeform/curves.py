@@ -1,0 +1,538 @@
+"""Planar curves as the case file gives them: polyline, B-spline, arc, chain.
+
+Every curve answers three questions, all in the case's length ``units``:
+
+- ``at_fractions(s)``: the points at normalised arc length ``s`` in [0, 1]
+  (how a point of the lower curve finds its place on the target);
+- ``discretise(tol)``: an adaptive polyline within chordal error ``tol``
+  (short steps where the curve bends, long ones where it is straight), with
+  the arc-length fraction of each vertex;
+- ``characteristic_points(tol)``: the points the deformation maps (a
+  polyline's own vertices, all of them; the discretisation for other kinds).
+
+Curves are immutable; ``curve_from_json`` and ``Curve.to_json`` convert to
+and from the CURVE objects of the case format.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+from scipy.interpolate import BSpline as _SciPyBSpline
+
+from .errors import CaseError
+
+__all__ = [
+    "Curve",
+    "Polyline",
+    "BSpline",
+    "Arc",
+    "Chain",
+    "curve_from_json",
+    "as_points",
+]
+
+# Gauss-Legendre nodes for arc-length quadrature on each sub-interval.
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(5)
+
+
+def as_points(value, field: str, min_count: int = 1) -> np.ndarray:
+    """Convert a list of ``[x, y]`` pairs to a checked ``(N, 2)`` float64 array.
+
+    Parameters
+    ----------
+    value : array_like
+        Nested sequence of ``[x, y]`` pairs.
+    field : str
+        Name of the input for error messages, e.g. ``"lower.polyline"``.
+    min_count : int
+        Smallest acceptable number of points.
+
+    Returns
+    -------
+    (N, 2) float64 ndarray
+        A new array (never a view of the input).
+
+    Raises
+    ------
+    CaseError
+        If the value is not a list of pairs of finite numbers, or too short.
+
+    Examples
+    --------
+    >>> as_points([[0, 0], [1, 2]], "lower.polyline").shape
+    (2, 2)
+    """
+    if isinstance(value, (str, bytes, dict)) or value is None:
+        raise CaseError(field, f"expected a list of [x, y] pairs, got {type(value).__name__}")
+    try:
+        arr = np.array(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise CaseError(field, "expected a list of [x, y] pairs of numbers") from None
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise CaseError(field, f"expected a list of [x, y] pairs, got an array of shape {arr.shape}")
+    if len(arr) < min_count:
+        raise CaseError(field, f"needs at least {min_count} points, got {len(arr)}")
+    bad = ~np.isfinite(arr).all(axis=1)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise CaseError(f"{field}[{i}]", f"coordinates must be finite numbers, got {arr[i].tolist()}")
+    return arr
+
+
+def _cumulative_length(points: np.ndarray) -> np.ndarray:
+    """Cumulative chord length along an ``(N, 2)`` polyline, ``(N,)``, starting at 0."""
+    seg = np.hypot(*np.diff(points, axis=0).T)
+    return np.concatenate(([0.0], np.cumsum(seg)))
+
+
+class Curve:
+    """Base class of the curve kinds; subclasses are frozen dataclasses."""
+
+    kind: str = ""
+
+    @property
+    def length(self) -> float:  # pragma: no cover - abstract
+        """Arc length of the curve, in case units."""
+        raise NotImplementedError
+
+    @property
+    def start(self) -> np.ndarray:
+        """First point, ``(2,)``."""
+        return self.at_fractions(np.array([0.0]))[0]
+
+    @property
+    def end(self) -> np.ndarray:
+        """Last point, ``(2,)``."""
+        return self.at_fractions(np.array([1.0]))[0]
+
+    def at_fractions(self, s: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
+        """Points at normalised arc lengths ``s`` (``(K,)`` in [0, 1]); returns ``(K, 2)``."""
+        raise NotImplementedError
+
+    def discretise(self, tol: float) -> tuple[np.ndarray, np.ndarray]:  # pragma: no cover
+        """Adaptive polyline within chordal error ``tol``: ``(N, 2)`` points, ``(N,)`` fractions."""
+        raise NotImplementedError
+
+    def characteristic_points(self, tol: float) -> np.ndarray:
+        """Points that the deformation maps, ``(N, 2)``: the discretisation by default."""
+        return self.discretise(tol)[0]
+
+    def to_json(self) -> dict:  # pragma: no cover - abstract
+        """The CURVE object of the case format."""
+        raise NotImplementedError
+
+
+@dataclass(frozen=True, eq=False)
+class Polyline(Curve):
+    """A polyline through ``vertices``, ``(N, 2)`` float64, N >= 2.
+
+    Examples
+    --------
+    >>> p = Polyline(np.array([[0.0, 0.0], [3.0, 0.0], [3.0, 4.0]]))
+    >>> p.length
+    7.0
+    >>> p.at_fractions(np.array([0.5])).tolist()
+    [[3.0, 0.5]]
+    """
+
+    vertices: np.ndarray
+    kind = "polyline"
+
+    def __post_init__(self):
+        v = np.array(self.vertices, dtype=np.float64)
+        v.setflags(write=False)
+        object.__setattr__(self, "vertices", v)
+
+    @cached_property
+    def _cum(self) -> np.ndarray:
+        return _cumulative_length(self.vertices)
+
+    @property
+    def length(self) -> float:
+        return float(self._cum[-1])
+
+    def at_fractions(self, s):
+        s = np.asarray(s, dtype=np.float64)
+        cum = self._cum
+        d = np.clip(s, 0.0, 1.0) * cum[-1]
+        # Skip zero-length segments so that np.interp sees increasing abscissae.
+        keep = np.concatenate(([True], np.diff(cum) > 0))
+        c, v = cum[keep], self.vertices[keep]
+        return np.column_stack((np.interp(d, c, v[:, 0]), np.interp(d, c, v[:, 1])))
+
+    def discretise(self, tol):
+        keep = _douglas_peucker(self.vertices, tol)
+        return self.vertices[keep].copy(), self._cum[keep] / self._cum[-1]
+
+    def characteristic_points(self, tol):
+        return self.vertices.copy()
+
+    def to_json(self):
+        return {"polyline": self.vertices.tolist()}
+
+
+def _douglas_peucker(points: np.ndarray, tol: float) -> np.ndarray:
+    """Indices of the vertices kept by Douglas-Peucker within ``tol`` (ends always kept).
+
+    Zero-length segments are dropped first. Returns a sorted ``(K,)`` int array.
+    """
+    n = len(points)
+    moved = np.concatenate(([True], np.hypot(*np.diff(points, axis=0).T) > 0))
+    idx = np.flatnonzero(moved)
+    if idx[-1] != n - 1:
+        idx[-1] = n - 1
+    keep = np.zeros(n, dtype=bool)
+    keep[idx[0]] = keep[idx[-1]] = True
+    stack = [(0, len(idx) - 1)]
+    while stack:
+        a, b = stack.pop()
+        if b - a < 2:
+            continue
+        pa, pb = points[idx[a]], points[idx[b]]
+        mid = points[idx[a + 1 : b]]
+        d = pb - pa
+        norm = math.hypot(*d)
+        if norm == 0.0:
+            dist = np.hypot(*(mid - pa).T)
+        else:
+            dist = np.abs(d[0] * (mid[:, 1] - pa[1]) - d[1] * (mid[:, 0] - pa[0])) / norm
+        k = int(np.argmax(dist))
+        if dist[k] > tol:
+            m = a + 1 + k
+            keep[idx[m]] = True
+            stack.extend(((a, m), (m, b)))
+    return np.flatnonzero(keep)
+
+
+@dataclass(frozen=True, eq=False)
+class Arc(Curve):
+    """A circular arc, counter-clockwise when ``end_deg > start_deg``.
+
+    Examples
+    --------
+    >>> a = Arc(np.array([0.0, 0.0]), 1.0, 0.0, 90.0)
+    >>> round(a.length, 12) == round(math.pi / 2, 12)
+    True
+    >>> np.round(a.at_fractions(np.array([1.0])), 12).tolist()
+    [[0.0, 1.0]]
+    """
+
+    center: np.ndarray
+    radius: float
+    start_deg: float
+    end_deg: float
+    kind = "arc"
+
+    def __post_init__(self):
+        c = np.array(self.center, dtype=np.float64)
+        c.setflags(write=False)
+        object.__setattr__(self, "center", c)
+
+    @property
+    def _sweep(self) -> float:
+        return math.radians(self.end_deg - self.start_deg)
+
+    @property
+    def length(self):
+        return abs(self._sweep) * self.radius
+
+    def at_fractions(self, s):
+        th = math.radians(self.start_deg) + np.clip(np.asarray(s, dtype=np.float64), 0, 1) * self._sweep
+        return self.center + self.radius * np.column_stack((np.cos(th), np.sin(th)))
+
+    def discretise(self, tol):
+        ratio = 1.0 - tol / self.radius
+        step = 2.0 * math.acos(ratio) if ratio > 0 else math.pi / 2
+        n = max(1, math.ceil(abs(self._sweep) / min(step, math.pi / 2) - 1e-9))
+        s = np.linspace(0.0, 1.0, n + 1)
+        return self.at_fractions(s), s
+
+    def to_json(self):
+        return {
+            "arc": {
+                "center": self.center.tolist(),
+                "radius": float(self.radius),
+                "start_deg": float(self.start_deg),
+                "end_deg": float(self.end_deg),
+            }
+        }
+
+
+@dataclass(frozen=True, eq=False)
+class BSpline(Curve):
+    """A clamped B-spline of ``degree`` with ``(n, 2)`` control points and ``knots``.
+
+    ``knots`` has ``n + degree + 1`` non-decreasing entries, the first and the
+    last ``degree + 1`` equal (clamped). Arc-length fractions are computed by
+    Gauss-Legendre quadrature of the speed on a fine parameter table.
+
+    Examples
+    --------
+    >>> b = BSpline(1, np.array([[0.0, 0.0], [2.0, 0.0]]), None)
+    >>> b.length
+    2.0
+    """
+
+    degree: int
+    control_points: np.ndarray
+    knots: np.ndarray | None = None
+    kind = "bspline"
+    _spline: object = field(init=False, repr=False, default=None)
+
+    def __post_init__(self):
+        c = np.array(self.control_points, dtype=np.float64)
+        c.setflags(write=False)
+        object.__setattr__(self, "control_points", c)
+        p, n = self.degree, len(c)
+        if self.knots is None:
+            inner = np.linspace(0.0, 1.0, n - p + 1)[1:-1]
+            t = np.concatenate((np.zeros(p + 1), inner, np.ones(p + 1)))
+        else:
+            t = np.array(self.knots, dtype=np.float64)
+        t.setflags(write=False)
+        object.__setattr__(self, "knots", t)
+        object.__setattr__(self, "_spline", _SciPyBSpline(t, c, p))
+
+    @cached_property
+    def _table(self) -> tuple[np.ndarray, np.ndarray]:
+        """Parameter samples ``u`` and cumulative arc length at them, both ``(K,)``."""
+        p, t = self.degree, self.knots
+        breaks = np.unique(t[p : len(t) - p])
+        u = np.concatenate(
+            [np.linspace(a, b, 65)[:-1] for a, b in zip(breaks[:-1], breaks[1:])] + [breaks[-1:]]
+        )
+        a, b = u[:-1], u[1:]
+        half = 0.5 * (b - a)
+        q = (0.5 * (a + b))[:, None] + half[:, None] * _GL_X[None, :]
+        d = self._spline.derivative()(q.ravel()).reshape(q.shape + (2,))
+        speed = np.hypot(d[..., 0], d[..., 1])
+        seg = half * (speed @ _GL_W)
+        return u, np.concatenate(([0.0], np.cumsum(seg)))
+
+    @property
+    def length(self):
+        return float(self._table[1][-1])
+
+    def _u_of_fraction(self, s):
+        u, cum = self._table
+        return np.interp(np.clip(s, 0, 1) * cum[-1], cum, u)
+
+    def at_fractions(self, s):
+        return self._spline(self._u_of_fraction(np.asarray(s, dtype=np.float64)))
+
+    def discretise(self, tol):
+        p, t = self.degree, self.knots
+        breaks = np.unique(t[p : len(t) - p])
+        u = np.unique(np.concatenate([np.linspace(a, b, 5) for a, b in zip(breaks[:-1], breaks[1:])]))
+        for _ in range(40):
+            a, b = u[:-1], u[1:]
+            probe = np.stack([a + f * (b - a) for f in (0.25, 0.5, 0.75)], axis=1)
+            pa, pb, pm = self._spline(a), self._spline(b), self._spline(probe.ravel()).reshape(-1, 3, 2)
+            d = pb - pa
+            norm = np.hypot(d[:, 0], d[:, 1])
+            rel = pm - pa[:, None, :]
+            cross = np.abs(d[:, None, 0] * rel[..., 1] - d[:, None, 1] * rel[..., 0])
+            dist = np.where(norm[:, None] > 0, cross / np.where(norm > 0, norm, 1)[:, None],
+                            np.hypot(rel[..., 0], rel[..., 1]))
+            split = dist.max(axis=1) > tol
+            if not split.any():
+                break
+            u = np.sort(np.concatenate((u, 0.5 * (a + b)[split])))
+        tu, cum = self._table
+        return self._spline(u), np.interp(u, tu, cum) / cum[-1]
+
+    def to_json(self):
+        return {
+            "bspline": {
+                "degree": int(self.degree),
+                "control_points": self.control_points.tolist(),
+                "knots": self.knots.tolist(),
+            }
+        }
+
+
+@dataclass(frozen=True, eq=False)
+class Chain(Curve):
+    """Pieces joined end to start, each a :class:`Curve`.
+
+    Examples
+    --------
+    >>> c = Chain((Polyline([[0, 0], [1, 0]]), Polyline([[1, 0], [1, 1]])))
+    >>> c.length
+    2.0
+    >>> c.at_fractions(np.array([0.75])).tolist()
+    [[1.0, 0.5]]
+    """
+
+    pieces: tuple
+    kind = "chain"
+
+    @cached_property
+    def _bounds(self) -> np.ndarray:
+        lengths = np.array([p.length for p in self.pieces])
+        return np.concatenate(([0.0], np.cumsum(lengths))) / lengths.sum()
+
+    @property
+    def length(self):
+        return float(sum(p.length for p in self.pieces))
+
+    def at_fractions(self, s):
+        s = np.clip(np.asarray(s, dtype=np.float64), 0, 1)
+        b = self._bounds
+        which = np.clip(np.searchsorted(b, s, side="right") - 1, 0, len(self.pieces) - 1)
+        out = np.empty((len(s), 2))
+        for i, piece in enumerate(self.pieces):
+            m = which == i
+            if m.any():
+                width = b[i + 1] - b[i]
+                local = (s[m] - b[i]) / width if width > 0 else np.zeros(m.sum())
+                out[m] = piece.at_fractions(local)
+        return out
+
+    def _join(self, parts: list[np.ndarray]) -> np.ndarray:
+        return np.concatenate([parts[0]] + [q[1:] for q in parts[1:]])
+
+    def discretise(self, tol):
+        b = self._bounds
+        pts, fr = [], []
+        for i, piece in enumerate(self.pieces):
+            q, s = piece.discretise(tol)
+            pts.append(q)
+            fr.append(b[i] + s * (b[i + 1] - b[i]))
+        return self._join(pts), self._join(fr)
+
+    def characteristic_points(self, tol):
+        return self._join([p.characteristic_points(tol) for p in self.pieces])
+
+    def to_json(self):
+        return {"chain": [p.to_json() for p in self.pieces]}
+
+
+# --------------------------------------------------------------------------
+# Reading CURVE objects
+
+
+def _number(value, field: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise CaseError(field, f"expected a number, got {value!r}")
+    if not math.isfinite(value):
+        raise CaseError(field, f"expected a finite number, got {value!r}")
+    return float(value)
+
+
+def curve_from_json(obj, field: str = "curve", join_tol: float | None = None) -> Curve:
+    """Build a :class:`Curve` from a CURVE object of the case format.
+
+    Parameters
+    ----------
+    obj : dict
+        One of ``{"polyline": ...}``, ``{"bspline": ...}``, ``{"arc": ...}``,
+        ``{"chain": [...]}``.
+    field : str
+        Where the object sits in the case, for error messages (``"upper"``).
+    join_tol : float, optional
+        Largest gap allowed between the pieces of a chain, in case units;
+        by default 1e-6 of the chain's size.
+
+    Returns
+    -------
+    Curve
+
+    Raises
+    ------
+    CaseError
+        Naming the field at fault: unknown kind, missing key, bad numbers,
+        degenerate curve, chain pieces that do not join.
+
+    Examples
+    --------
+    >>> curve_from_json({"polyline": [[0, 0], [1, 0]]}, "lower").length
+    1.0
+    >>> curve_from_json({"circle": {}}, "lower")
+    Traceback (most recent call last):
+    ...
+    sectiondeform.errors.CaseError: lower: unknown curve kind 'circle'; use one of polyline, bspline, arc, chain
+    """
+    kinds = ("polyline", "bspline", "arc", "chain")
+    if not isinstance(obj, dict):
+        raise CaseError(field, f"expected a curve object such as {{\"polyline\": [...]}}, got {type(obj).__name__}")
+    if len(obj) != 1:
+        keys = ", ".join(sorted(obj)) or "none"
+        raise CaseError(field, f"a curve object has exactly one key ({', '.join(kinds)}), got {keys}")
+    (kind, body), = obj.items()
+    sub = f"{field}.{kind}"
+    if kind == "polyline":
+        pts = as_points(body, sub, min_count=2)
+        curve = Polyline(pts)
+    elif kind == "arc":
+        if not isinstance(body, dict):
+            raise CaseError(sub, "expected an object with center, radius, start_deg, end_deg")
+        for key in ("center", "radius", "start_deg", "end_deg"):
+            if key not in body:
+                raise CaseError(f"{sub}.{key}", "missing")
+        center = as_points([body["center"]], f"{sub}.center")[0]
+        radius = _number(body["radius"], f"{sub}.radius")
+        if radius <= 0:
+            raise CaseError(f"{sub}.radius", f"must be positive, got {radius}")
+        a0 = _number(body["start_deg"], f"{sub}.start_deg")
+        a1 = _number(body["end_deg"], f"{sub}.end_deg")
+        if a0 == a1:
+            raise CaseError(f"{sub}.end_deg", "equals start_deg: the arc has zero length")
+        if abs(a1 - a0) > 360:
+            raise CaseError(f"{sub}.end_deg", f"the arc sweeps {abs(a1 - a0)} degrees; at most 360")
+        curve = Arc(center, radius, a0, a1)
+    elif kind == "bspline":
+        if not isinstance(body, dict):
+            raise CaseError(sub, "expected an object with degree, control_points and optional knots")
+        if "degree" not in body:
+            raise CaseError(f"{sub}.degree", "missing")
+        deg = body["degree"]
+        if isinstance(deg, bool) or not isinstance(deg, int) or deg < 1:
+            raise CaseError(f"{sub}.degree", f"must be a whole number >= 1, got {deg!r}")
+        if "control_points" not in body:
+            raise CaseError(f"{sub}.control_points", "missing")
+        cp = as_points(body["control_points"], f"{sub}.control_points", min_count=deg + 1)
+        knots = body.get("knots")
+        if knots is not None:
+            try:
+                t = np.array(knots, dtype=np.float64)
+            except (TypeError, ValueError):
+                raise CaseError(f"{sub}.knots", "expected a list of numbers") from None
+            n_exp = len(cp) + deg + 1
+            if t.ndim != 1 or len(t) != n_exp:
+                raise CaseError(f"{sub}.knots", f"expected {n_exp} knots (control points + degree + 1), got {t.size}")
+            if not np.isfinite(t).all():
+                raise CaseError(f"{sub}.knots", "knots must be finite numbers")
+            if np.any(np.diff(t) < 0):
+                raise CaseError(f"{sub}.knots", "knots must be non-decreasing")
+            if np.ptp(t[: deg + 1]) or np.ptp(t[-deg - 1 :]):
+                raise CaseError(f"{sub}.knots", f"the spline must be clamped: the first and last {deg + 1} knots equal")
+            if t[-1] <= t[0]:
+                raise CaseError(f"{sub}.knots", "the knot vector spans no interval")
+        else:
+            t = None
+        curve = BSpline(deg, cp, t)
+    elif kind == "chain":
+        if not isinstance(body, list) or not body:
+            raise CaseError(sub, "expected a non-empty list of curve objects")
+        pieces = tuple(curve_from_json(p, f"{sub}[{i}]", join_tol) for i, p in enumerate(body))
+        pts = np.concatenate([np.vstack((p.start, p.end)) for p in pieces])
+        size = float(np.hypot(*np.ptp(pts, axis=0))) or 1.0
+        tol = join_tol if join_tol is not None else 1e-6 * size
+        for i in range(1, len(pieces)):
+            gap = float(np.hypot(*(pieces[i].start - pieces[i - 1].end)))
+            if gap > tol:
+                raise CaseError(
+                    f"{sub}[{i}]",
+                    f"starts {gap:.6g} away from where {sub}[{i - 1}] ends; each piece must start where the one before ends",
+                )
+        curve = Chain(pieces)
+    else:
+        raise CaseError(field, f"unknown curve kind {kind!r}; use one of {', '.join(kinds)}")
+    if not curve.length > 0:
+        raise CaseError(sub, "the curve has zero length")
+    return curve

@@ -1,0 +1,48 @@
+"""Case and result JSON files (``section-case/1``, ``section-result/1``)."""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+
+from ..case import Case, case_to_dict, load_case
+
+__all__ = ["read_case", "write_case", "write_result", "atomic_write"]
+
+
+def atomic_write(path, write) -> None:
+    """Call ``write(tmp_path)`` then rename the temporary file to ``path``.
+
+    Nothing is left at ``path`` if ``write`` raises: no half-written output.
+    """
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=path.parent or ".")
+    os.close(fd)
+    try:
+        write(Path(tmp))
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def _dump(obj, path: Path) -> None:
+    path.write_text(json.dumps(obj, indent=1) + "\n", encoding="utf-8")
+
+
+def read_case(path, **_options) -> Case:
+    """Read a case JSON file (see :func:`sectiondeform.case.load_case`)."""
+    return load_case(path)
+
+
+def write_case(path, case: Case) -> None:
+    """Write a case JSON file atomically."""
+    atomic_write(path, lambda tmp: _dump(case_to_dict(case), tmp))
+
+
+def write_result(path, result, meshes: bool = True) -> None:
+    """Write a result JSON file atomically, meshes included by default."""
+    atomic_write(path, lambda tmp: _dump(result.to_json(meshes=meshes), tmp))

@@ -1,0 +1,303 @@
+"""The layered structured quad mesh grown from the lower curve (paper §3.4).
+
+Nodes are stored as a ``(L + 1, n, 2)`` array: layer ``i`` (0 is the base)
+and column ``j`` (0 at A). Element ``(i, j)`` has the nodes::
+
+    (i+1, j) 3-----2 (i+1, j+1)
+             |     |
+      (i, j) 0-----1 (i, j+1)
+
+listed counter-clockwise in :attr:`LayeredMesh.quads` whatever the section's
+orientation (the two bottom nodes are swapped in the ``quads`` order of a
+clockwise section, so every element of a valid mesh has a positive Jacobian).
+
+Growth: each new layer stands on the normals of the layer below, at the
+element height; the displacement field of the layer is then smoothed by a
+small quadratic optimisation (data fidelity plus a penalty on its second
+differences, a pentadiagonal solve), with the smoothing weight raised until
+no element of the new strip is inverted. The two end columns are straight
+lines along the base's end normals, splayed outward where the upper curve
+overhangs the ends of the lower curve. Layers are added until every upper
+point lies in the mesh.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+import shapely
+from scipy.linalg import solveh_banded
+
+from .errors import MeshError
+
+__all__ = [
+    "LayeredMesh",
+    "grow_mesh",
+    "node_frames",
+    "quad_jacobians",
+    "SMOOTHING_WEIGHTS",
+]
+
+SMOOTHING_WEIGHTS = (0.5, 5.0, 50.0, 500.0, 5e3, 5e4, 5e5)
+SPLAY_STEP_DEG = 10.0
+SPLAY_MAX_DEG = 80.0
+
+
+@dataclass(frozen=True, eq=False)
+class LayeredMesh:
+    """A structured quad mesh of ``L`` layers and ``n - 1`` columns.
+
+    Attributes
+    ----------
+    nodes : (L + 1, n, 2) float64 ndarray
+        Node coordinates by layer and column, units.
+    orientation : int
+        +1 if the section lies to the left of the base (A to B), else -1.
+    """
+
+    nodes: np.ndarray
+    orientation: int = 1
+
+    @property
+    def n_layers(self) -> int:
+        """Number of element layers L."""
+        return self.nodes.shape[0] - 1
+
+    @property
+    def n_columns(self) -> int:
+        """Number of elements per layer, n - 1."""
+        return self.nodes.shape[1] - 1
+
+    @property
+    def points(self) -> np.ndarray:
+        """Node coordinates flattened layer by layer, ``((L + 1) * n, 2)``."""
+        return self.nodes.reshape(-1, 2)
+
+    @cached_property
+    def quads(self) -> np.ndarray:
+        """Counter-clockwise node indices of each element, ``(L * (n - 1), 4)`` int64."""
+        return structured_quads(self.n_layers, self.nodes.shape[1], self.orientation)
+
+    def jacobians(self) -> np.ndarray:
+        """Corner Jacobians (twice the corner triangle areas), ``(M, 4)``, units²."""
+        return quad_jacobians(self.points, self.quads)
+
+
+def structured_quads(n_layers: int, n_nodes: int, orientation: int = 1) -> np.ndarray:
+    """Quads of a structured ``n_layers`` x ``(n_nodes - 1)`` grid, ``(M, 4)`` int64.
+
+    Examples
+    --------
+    >>> structured_quads(1, 3).tolist()
+    [[0, 1, 4, 3], [1, 2, 5, 4]]
+    >>> structured_quads(1, 2, -1).tolist()
+    [[1, 0, 2, 3]]
+    """
+    i, j = np.meshgrid(np.arange(n_layers), np.arange(n_nodes - 1), indexing="ij")
+    base = (i * n_nodes + j).ravel()
+    q = np.stack((base, base + 1, base + n_nodes + 1, base + n_nodes), axis=1)
+    if orientation < 0:
+        q = q[:, [1, 0, 3, 2]]
+    return q.astype(np.int64)
+
+
+def quad_jacobians(points: np.ndarray, quads: np.ndarray) -> np.ndarray:
+    """Cross product of the two edges at each corner of each quad, ``(M, 4)``.
+
+    All four positive means a valid (non-inverted, convex-cornered) bilinear
+    element: the bilinear Jacobian is affine in each local coordinate, so it
+    is positive everywhere in the element.
+
+    Examples
+    --------
+    >>> pts = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    >>> quad_jacobians(pts, np.array([[0, 1, 2, 3]])).tolist()
+    [[1.0, 1.0, 1.0, 1.0]]
+    """
+    p = points[quads]
+    e_next = np.roll(p, -1, axis=1) - p
+    e_prev = np.roll(p, 1, axis=1) - p
+    return e_next[..., 0] * e_prev[..., 1] - e_next[..., 1] * e_prev[..., 0]
+
+
+def node_frames(line: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndarray]:
+    """Unit tangent and inward unit normal at each node of a polyline.
+
+    The tangent at an interior node bisects the two adjacent segments; the
+    normal is the tangent turned a quarter towards the section's side.
+
+    Parameters
+    ----------
+    line : (n, 2) float64 ndarray
+    orientation : int
+        +1: the section lies to the left of the line's direction.
+
+    Returns
+    -------
+    tangents, normals : (n, 2) float64 ndarray
+    """
+    seg = np.diff(line, axis=0)
+    seg /= np.hypot(seg[:, 0], seg[:, 1])[:, None]
+    t = np.empty_like(line)
+    t[0], t[-1] = seg[0], seg[-1]
+    t[1:-1] = seg[:-1] + seg[1:]
+    norm = np.hypot(t[:, 0], t[:, 1])
+    # A cusp (segments going back on themselves) has no bisector: keep the incoming direction.
+    cusp = norm < 1e-12
+    if cusp.any():
+        t[cusp] = np.concatenate((seg[:1], seg[:-1]))[cusp]
+        norm[cusp] = 1.0
+    t /= norm[:, None]
+    n = orientation * np.column_stack((-t[:, 1], t[:, 0]))
+    return t, n
+
+
+class _Smoother:
+    """Solves (W + lam K'K) D = W G for a displacement field G along a layer.
+
+    K is the second-difference operator, W weights the two ends ``end_weight``
+    times more than the interior so they stay on their prescribed lines.
+    """
+
+    def __init__(self, n: int, end_weight: float = 1e4):
+        self.n = n
+        w = np.ones(n)
+        w[0] = w[-1] = end_weight
+        self.w = w
+        k = np.diff(np.eye(n), 2, axis=0)
+        ktk = k.T @ k
+        self.bands = [np.diagonal(ktk, d).copy() for d in range(3)]
+
+    def __call__(self, g: np.ndarray, lam: float) -> np.ndarray:
+        n = self.n
+        if n < 3 or lam == 0:
+            return g
+        ab = np.zeros((3, n))
+        ab[2] = self.w + lam * self.bands[0]
+        ab[1, 1:] = lam * self.bands[1]
+        ab[0, 2:] = lam * self.bands[2]
+        return solveh_banded(ab, self.w[:, None] * g, check_finite=False)
+
+
+def _splay_needed(base: np.ndarray, orientation: int, points: np.ndarray) -> tuple[float, float]:
+    """Outward tilt, in degrees, of the end columns at A and B so that overhanging points fit."""
+    t, n = node_frames(base, orientation)
+    out = []
+    for end, sign in ((0, -1.0), (-1, 1.0)):
+        rel = points - base[end]
+        u = sign * (rel @ t[end])  # distance beyond the end, along the outward tangent
+        v = rel @ n[end]
+        over = (u > 1e-9 * (1 + np.abs(v))) & (v > 0)
+        ang = np.degrees(np.arctan2(u[over], v[over])).max() + 2.0 if over.any() else 0.0
+        out.append(min(ang, SPLAY_MAX_DEG))
+    return out[0], out[1]
+
+
+def _end_direction(t: np.ndarray, n: np.ndarray, end: int, deg: float) -> np.ndarray:
+    sign = -1.0 if end == 0 else 1.0
+    a = math.radians(deg)
+    return math.cos(a) * n[end] + sign * math.sin(a) * t[end]
+
+
+def _outline(nodes: np.ndarray) -> shapely.Polygon:
+    ring = np.concatenate((nodes[0], nodes[1:, -1], nodes[-1, ::-1][1:], nodes[-2:0:-1, 0]))
+    return shapely.Polygon(ring)
+
+
+def grow_mesh(
+    base: np.ndarray,
+    height: float,
+    orientation: int,
+    cover: np.ndarray,
+    tol: float,
+    max_layers: int | None = None,
+) -> LayeredMesh:
+    """Grow layers from ``base`` until every point of ``cover`` lies in the mesh.
+
+    Parameters
+    ----------
+    base : (n, 2) float64 ndarray
+        Discretised lower curve, A to B, units.
+    height : float
+        Element height, units.
+    orientation : int
+        +1 if the section lies to the left of the base.
+    cover : (m, 2) float64 ndarray
+        Points the mesh must contain (the upper curve's characteristic points).
+    tol : float
+        Distance within which a point on the mesh's outline counts as inside.
+    max_layers : int, optional
+        Stop with an error past this many layers; by default twice the
+        farthest point's distance over ``height``, plus 4.
+
+    Returns
+    -------
+    LayeredMesh
+
+    Raises
+    ------
+    MeshError
+        If a layer cannot be smoothed free of inverted elements, or some
+        point cannot be covered even with the end columns splayed to 80°.
+    """
+    base = np.asarray(base, dtype=np.float64)
+    cover = np.asarray(cover, dtype=np.float64)
+    reach = float(np.max(shapely.distance(shapely.LineString(base), shapely.points(cover))))
+    if max_layers is None:
+        max_layers = int(math.ceil(2.0 * reach / height)) + 4
+    splay = list(_splay_needed(base, orientation, cover))
+    smoother = _Smoother(len(base))
+    t0, n0 = node_frames(base, orientation)
+    while True:
+        dirs = (_end_direction(t0, n0, 0, splay[0]), _end_direction(t0, n0, -1, splay[1]))
+        nodes, missing = _grow(base, height, orientation, cover, tol, max_layers, smoother, dirs)
+        if not missing.size:
+            return LayeredMesh(nodes, orientation)
+        # Splay the end nearest to the uncovered points further, or give up.
+        near_a = np.hypot(*(cover[missing] - base[0]).T) < np.hypot(*(cover[missing] - base[-1]).T)
+        grew = False
+        for end, flag in ((0, near_a.any()), (1, (~near_a).any())):
+            if flag and splay[end] < SPLAY_MAX_DEG:
+                splay[end] = min(SPLAY_MAX_DEG, splay[end] + SPLAY_STEP_DEG)
+                grew = True
+        if not grew:
+            k = int(missing[0])
+            raise MeshError(
+                f"upper point {k} at {np.round(cover[k], 6).tolist()} cannot be covered by the layered mesh "
+                f"grown from the lower curve (end columns splayed to {SPLAY_MAX_DEG:g} degrees, "
+                f"{max_layers} layers); it lies below the lower curve's end or behind it"
+            )
+
+
+def _grow(base, height, orientation, cover, tol, max_layers, smoother, end_dirs):
+    layers = [base]
+    todo = np.arange(len(cover))
+    on_base = shapely.dwithin(shapely.LineString(base), shapely.points(cover), tol)
+    todo = todo[~on_base]
+    while todo.size and len(layers) <= max_layers:
+        below = layers[-1]
+        _, n = node_frames(below, orientation)
+        g = height * n
+        g[0], g[-1] = height * end_dirs[0], height * end_dirs[1]
+        for lam in SMOOTHING_WEIGHTS:
+            d = smoother(g, lam)
+            d[0], d[-1] = g[0], g[-1]
+            new = below + d
+            strip = np.stack((below, new))
+            jac = quad_jacobians(strip.reshape(-1, 2), structured_quads(1, len(base), orientation))
+            if jac.min() > 1e-9 * height * height and shapely.LineString(new).is_simple:
+                break
+        else:
+            raise MeshError(
+                f"layer {len(layers)} of the initial mesh folds over whatever the smoothing "
+                f"(element height {height:.6g}); the lower curve bends too sharply for this "
+                "element size: lower options.element_size or smooth the lower curve"
+            )
+        layers.append(new)
+        outline = _outline(np.stack(layers))
+        inside = shapely.dwithin(outline, shapely.points(cover[todo]), tol)
+        todo = todo[~inside]
+    return np.stack(layers), todo

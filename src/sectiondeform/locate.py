@@ -1,0 +1,196 @@
+"""Point location in a quad mesh and placement at the same local coordinates (paper §3.6).
+
+A point is located by its element and its local coordinates ``(xi, eta)``
+in [0, 1]² under the bilinear map of that element::
+
+    x = (1-xi)(1-eta) p0 + xi(1-eta) p1 + xi eta p2 + (1-xi) eta p3
+
+The inverse is solved in closed form (a quadratic in ``eta``), for all
+points at once. Candidate elements come from a k-d tree of element centres
+(scipy), tried nearest first; points still unlocated are tried against every
+element, so a point on an edge or a node is always found.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from .errors import LocateError
+
+__all__ = ["Location", "locate", "place", "bilinear_weights", "inverse_bilinear"]
+
+LOCAL_TOL = 1e-6
+CANDIDATES = 6
+
+
+@dataclass(frozen=True, eq=False)
+class Location:
+    """Where points sit in a mesh.
+
+    Attributes
+    ----------
+    elements : (p,) int64 ndarray
+        Element index of each point.
+    local : (p, 2) float64 ndarray
+        Local coordinates (xi, eta) in [0, 1]².
+    nodes : (p, 4) int64 ndarray
+        The element's node indices, in element order.
+    weights : (p, 4) float64 ndarray
+        Bilinear weights of those nodes; each row sums to 1.
+    """
+
+    elements: np.ndarray
+    local: np.ndarray
+    nodes: np.ndarray
+    weights: np.ndarray
+
+
+def bilinear_weights(local: np.ndarray) -> np.ndarray:
+    """Bilinear shape-function values at local coordinates, ``(p, 2)`` -> ``(p, 4)``.
+
+    Examples
+    --------
+    >>> bilinear_weights(np.array([[0.5, 0.5]])).tolist()
+    [[0.25, 0.25, 0.25, 0.25]]
+    """
+    xi, eta = local[:, 0], local[:, 1]
+    return np.column_stack(((1 - xi) * (1 - eta), xi * (1 - eta), xi * eta, (1 - xi) * eta))
+
+
+def place(points: np.ndarray, location: Location) -> np.ndarray:
+    """Positions at the located local coordinates in a mesh with nodes ``points``.
+
+    Parameters
+    ----------
+    points : (N, 2) float64 ndarray
+        Node coordinates of a mesh with the same elements as the one the
+        points were located in (for example the final mesh).
+    location : Location
+
+    Returns
+    -------
+    (p, 2) float64 ndarray
+    """
+    return np.einsum("pk,pkd->pd", location.weights, points[location.nodes])
+
+
+def _cross(a, b):
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def inverse_bilinear(quad_pts: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Local coordinates of points ``x`` under the bilinear maps of ``quad_pts``.
+
+    Parameters
+    ----------
+    quad_pts : (p, 4, 2) float64 ndarray
+        Corner coordinates of one element per point.
+    x : (p, 2) float64 ndarray
+
+    Returns
+    -------
+    (p, 2) float64 ndarray
+        ``(xi, eta)``; inside the element both are in [0, 1]. Points whose
+        equation has no real root get NaN.
+
+    Examples
+    --------
+    >>> q = np.array([[[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]])
+    >>> inverse_bilinear(q, np.array([[1.0, 0.25]])).tolist()
+    [[0.5, 0.25]]
+    """
+    p0, p1, p2, p3 = (quad_pts[:, i] for i in range(4))
+    e, f, g, h = p1 - p0, p3 - p0, p0 - p1 + p2 - p3, x - p0
+    k2 = _cross(g, f)
+    k1 = _cross(e, f) + _cross(h, g)
+    k0 = _cross(h, e)
+    scale = np.abs(_cross(e, f)) + np.abs(k1) + 1e-300
+    disc = k1 * k1 - 4.0 * k0 * k2
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sq = np.sqrt(np.where(disc >= 0, disc, np.nan))
+        q = -0.5 * (k1 + np.copysign(sq, k1))
+        r1 = np.where(np.abs(k2) > 1e-12 * scale, q / k2, np.inf)
+        r2 = np.where(np.abs(q) > 0, k0 / q, -k0 / np.where(k1 != 0, k1, np.nan))
+        # Linear case: k2 == 0 gives eta = -k0 / k1, which r2 equals.
+        dist1 = np.abs(r1 - np.clip(r1, 0, 1))
+        dist2 = np.abs(r2 - np.clip(r2, 0, 1))
+        eta = np.where(np.nan_to_num(dist2, nan=np.inf) <= np.nan_to_num(dist1, nan=np.inf), r2, r1)
+        a = e + g * eta[:, None]
+        xi = np.einsum("pd,pd->p", h - f * eta[:, None], a) / np.einsum("pd,pd->p", a, a)
+    return np.column_stack((xi, eta))
+
+
+def _try(quad_pts, x, tol):
+    local = inverse_bilinear(quad_pts, x)
+    ok = np.all((local >= -tol) & (local <= 1 + tol), axis=1)
+    return ok, local
+
+
+def locate(points: np.ndarray, quads: np.ndarray, x: np.ndarray, tol: float = LOCAL_TOL) -> Location:
+    """Locate each point of ``x`` in the mesh ``(points, quads)``.
+
+    Parameters
+    ----------
+    points : (N, 2) float64 ndarray
+        Mesh node coordinates.
+    quads : (M, 4) int ndarray
+        Counter-clockwise node indices of each element.
+    x : (p, 2) float64 ndarray
+        Points to locate.
+    tol : float
+        Tolerance on the local coordinates; points up to ``tol`` of an
+        element's size outside it are taken as on its edge.
+
+    Returns
+    -------
+    Location
+
+    Raises
+    ------
+    LocateError
+        Naming the first point that lies in no element.
+
+    Examples
+    --------
+    >>> pts = np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [0.0, 1.0], [1.0, 1.0], [2.0, 1.0]])
+    >>> loc = locate(pts, np.array([[0, 1, 4, 3], [1, 2, 5, 4]]), np.array([[1.5, 0.5], [1.0, 1.0]]))
+    >>> loc.elements.tolist(), place(pts, loc).tolist()
+    ([1, 0], [[1.5, 0.5], [1.0, 1.0]])
+    """
+    x = np.asarray(x, dtype=np.float64)
+    quad_pts_all = points[quads]
+    centres = quad_pts_all.mean(axis=1)
+    k = min(CANDIDATES, len(quads))
+    _, cand = cKDTree(centres).query(x, k=k)
+    cand = cand.reshape(len(x), k)
+    elements = np.full(len(x), -1, dtype=np.int64)
+    local = np.zeros((len(x), 2))
+    todo = np.arange(len(x))
+    for c in range(k):
+        if not todo.size:
+            break
+        el = cand[todo, c]
+        ok, loc = _try(quad_pts_all[el], x[todo], tol)
+        elements[todo[ok]] = el[ok]
+        local[todo[ok]] = loc[ok]
+        todo = todo[~ok]
+    if todo.size:  # exhaustive pass for the few points the nearest centres missed
+        for i in todo:
+            ok, loc = _try(quad_pts_all, np.broadcast_to(x[i], (len(quads), 2)), tol)
+            if ok.any():
+                # Prefer the element that contains the point most deeply.
+                depth = np.min(np.minimum(loc, 1 - loc), axis=1)
+                best = int(np.argmax(np.where(ok, depth, -np.inf)))
+                elements[i], local[i] = best, loc[best]
+        missing = np.flatnonzero(elements < 0)
+        if missing.size:
+            i = int(missing[0])
+            raise LocateError(
+                f"point {i} at {np.round(x[i], 9).tolist()} lies in no element of the mesh "
+                f"({missing.size} point(s) unlocated)"
+            )
+    local = np.clip(local, 0.0, 1.0)
+    return Location(elements, local, quads[elements], bilinear_weights(local))

@@ -1,0 +1,181 @@
+"""The paper's model: a geometric final mesh on the target (paper §3.4-3.6).
+
+Prepare (once per section): grow the layered initial mesh from the lower
+curve (:func:`~sectiondeform.layers.grow_mesh`), locate the upper points in
+it, and write every node as an offset ``(a, b)`` in the frame (tangent,
+normal) of its column's base node.
+
+Place (once per target): build the empty final mesh with the same layers
+and columns on the target nodes, each node at ``T_j + k (a t'_j + b n'_j)``
+in the target's frame, and put the upper points at their local coordinates.
+The nodes and so the placed points are affine in the height scale ``k``; the
+area of the deformed section (target + placed upper curve, shoelace) is
+therefore a quadratic in ``k``, solved in closed form: the law holds to
+rounding error. With the target equal to the lower curve and ratio 1, ``k``
+is 1 and every point comes back; a rigid motion of the target moves the
+section rigidly.
+
+Where the target bends so sharply that the straight frame lines would cross
+(an inverted element), the target's normal field is smoothed, with growing
+weight, before giving up with :class:`~sectiondeform.errors.MeshError`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import LawError, MeshError
+from ..layers import SMOOTHING_WEIGHTS, _Smoother, grow_mesh, node_frames, quad_jacobians
+from ..laws import Law
+from ..locate import locate
+from ..section import Section
+from .base import MeshData, Model, Placement, Prepared
+
+__all__ = ["PaperModel", "PaperPrepared", "MODEL", "solve_scale"]
+
+
+def _cross(a, b):
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def solve_scale(fixed: np.ndarray, moving: np.ndarray, signed_area: float, guess: float) -> float:
+    """Scale ``k`` for which the polygon ``fixed + k moving`` has ``signed_area``.
+
+    Parameters
+    ----------
+    fixed, moving : (N, 2) float64 ndarray
+        Polygon vertices as ``fixed + k * moving``.
+    signed_area : float
+        Wanted signed area (positive counter-clockwise), units².
+    guess : float
+        Expected value; of two admissible roots the nearer is returned.
+
+    Returns
+    -------
+    float
+        The positive root nearest ``guess``.
+
+    Raises
+    ------
+    LawError
+        If no positive ``k`` gives that area.
+
+    Examples
+    --------
+    >>> sq = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    >>> up = np.array([[0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [0.0, 1.0]])
+    >>> solve_scale(sq - up, up, 0.8, 1.0)
+    0.8
+    """
+    f1, g1 = np.roll(fixed, -1, axis=0), np.roll(moving, -1, axis=0)
+    c0 = 0.5 * float(np.sum(_cross(fixed, f1))) - signed_area
+    c1 = 0.5 * float(np.sum(_cross(fixed, g1) + _cross(moving, f1)))
+    c2 = 0.5 * float(np.sum(_cross(moving, g1)))
+    if abs(c2) <= 1e-14 * (abs(c1) + abs(c0)):
+        roots = [-c0 / c1] if c1 != 0 else []
+    else:
+        disc = c1 * c1 - 4.0 * c2 * c0
+        if disc < 0:
+            roots = []
+        else:
+            q = -0.5 * (c1 + math.copysign(math.sqrt(disc), c1))
+            roots = [q / c2] + ([c0 / q] if q != 0 else [])
+    roots = [r for r in roots if r > 0 and math.isfinite(r)]
+    if not roots:
+        raise LawError(
+            f"law: no height scale gives the area {abs(signed_area):.6g}; the target cannot carry "
+            "this section under this law (check the target's direction and the area ratio)"
+        )
+    return min(roots, key=lambda r: abs(r - guess))
+
+
+def _frames_from_normals(normals: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndarray]:
+    n = normals / np.hypot(normals[:, 0], normals[:, 1])[:, None]
+    t = orientation * np.column_stack((n[:, 1], -n[:, 0]))
+    return t, n
+
+
+class PaperPrepared(Prepared):
+    """A section ready for the paper's model: initial mesh, locations, frame offsets."""
+
+    def __init__(self, section: Section):
+        self.section = section
+        size = section.size
+        mesh = grow_mesh(section.lower, section.element_size, section.orientation, section.upper, tol=1e-9 * size)
+        self.mesh = mesh
+        self.quads = mesh.quads
+        self.location = locate(mesh.points, mesh.quads, section.upper)
+        nodes = mesh.nodes
+        t0, n0 = node_frames(nodes[0], section.orientation)
+        rel = nodes - nodes[0][None]
+        self.a = np.einsum("ijd,jd->ij", rel, t0)
+        self.b = np.einsum("ijd,jd->ij", rel, n0)
+        n = nodes.shape[1]
+        self.columns = self.location.nodes % n
+        self._smoother = _Smoother(n, end_weight=1.0)
+        jac = mesh.jacobians()
+        self.initial_mesh = MeshData(mesh.points, mesh.quads, "quad", (mesh.n_layers, mesh.n_columns))
+        self.quality = {
+            "layers": mesh.n_layers,
+            "columns": mesh.n_columns,
+            "elements": int(len(mesh.quads)),
+            "element_size": section.element_size,
+            "jacobian_min": float(jac.min()),
+            "jacobian_max": float(jac.max()),
+        }
+
+    def _offsets(self, t: np.ndarray, n: np.ndarray) -> np.ndarray:
+        return self.a[..., None] * t[None] + self.b[..., None] * n[None]
+
+    def place(self, target_nodes: np.ndarray, law: Law) -> Placement:
+        sec = self.section
+        target_area = law.target_area(sec.area)
+        t, n = node_frames(target_nodes, sec.orientation)
+        loc = self.location
+        lengths = np.hypot(*np.diff(target_nodes, axis=0).T).sum()
+        guess = target_area / sec.area * sec.lower_length / lengths
+        smoothing = 0.0
+        for lam in (0.0,) + SMOOTHING_WEIGHTS:
+            if lam:
+                t, n = _frames_from_normals(self._smoother(n, lam), sec.orientation)
+            offsets = self._offsets(t, n)
+            fixed_up = np.einsum("pk,pkd->pd", loc.weights, target_nodes[self.columns])
+            moving_up = np.einsum("pk,pkd->pd", loc.weights, offsets.reshape(-1, 2)[loc.nodes])
+            fixed = np.concatenate((target_nodes, fixed_up[1:-1]))
+            moving = np.concatenate((np.zeros_like(target_nodes), moving_up[1:-1]))
+            k = solve_scale(fixed, moving, sec.orientation * target_area, guess)
+            nodes = target_nodes[None] + k * offsets
+            jac = quad_jacobians(nodes.reshape(-1, 2), self.quads)
+            if jac.min() > 0:
+                smoothing = lam
+                break
+        else:
+            e = int(np.argmin(jac.min(axis=1)))
+            cols = self.mesh.n_columns
+            raise MeshError(
+                f"target: the final mesh has an inverted element (layer {e // cols}, column {e % cols}) "
+                "even with its normals smoothed; the target bends too sharply for this section's thickness"
+            )
+        upper = fixed_up + k * moving_up
+        upper[0], upper[-1] = target_nodes[-1], target_nodes[0]
+        final = MeshData(nodes.reshape(-1, 2), self.quads, "quad", self.initial_mesh.shape)
+        return Placement(
+            upper=upper,
+            final_mesh=final,
+            quality={"jacobian_min": float(jac.min()), "jacobian_max": float(jac.max())},
+            info={"height_scale": k, "normal_smoothing": smoothing},
+        )
+
+
+class PaperModel(Model):
+    """The paper's geometric method (the default model)."""
+
+    name = "paper"
+
+    def prepare(self, section: Section, options: dict) -> PaperPrepared:
+        return PaperPrepared(section)
+
+
+MODEL = PaperModel()

@@ -1,0 +1,102 @@
+"""The result of one deformation (``section-result/1``) and its JSON form."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .models.base import MeshData
+
+__all__ = ["Result", "RESULT_FORMAT"]
+
+RESULT_FORMAT = "section-result/1"
+
+
+@dataclass(frozen=True, eq=False)
+class Result:
+    """A deformed section.
+
+    Attributes
+    ----------
+    name, units, model : str
+    lower : (n, 2) float64 ndarray
+        Deformed lower curve as discretised, on the target, A' to B'.
+    upper : (m, 2) float64 ndarray
+        Image of each upper characteristic point, B' to A'.
+    initial_lower, initial_upper : ndarray
+        The same points before deformation.
+    area_initial, area_target, area_final : float
+        Areas in units².
+    initial_mesh, final_mesh : MeshData
+    quality : dict
+        Mesh figures: layers, columns, element counts, Jacobian ranges.
+    info : dict
+        Model figures (height scale, iterations...).
+    timings : dict
+        Seconds spent in ``prepare`` and ``place``.
+    warnings : tuple of str
+    """
+
+    name: str
+    units: str
+    model: str
+    lower: np.ndarray
+    upper: np.ndarray
+    initial_lower: np.ndarray
+    initial_upper: np.ndarray
+    area_initial: float
+    area_target: float
+    area_final: float
+    initial_mesh: MeshData
+    final_mesh: MeshData
+    quality: dict = field(default_factory=dict)
+    info: dict = field(default_factory=dict)
+    timings: dict = field(default_factory=dict)
+    warnings: tuple = ()
+
+    @property
+    def contour(self) -> np.ndarray:
+        """Closed deformed section, lower then upper, shared ends once, ``(n + m - 2, 2)``."""
+        return np.concatenate((self.lower, self.upper[1:-1]))
+
+    @property
+    def initial_contour(self) -> np.ndarray:
+        """Closed initial section, ``(n + m - 2, 2)``."""
+        return np.concatenate((self.initial_lower, self.initial_upper[1:-1]))
+
+    @property
+    def relative_error(self) -> float:
+        """(final - target) / target."""
+        return (self.area_final - self.area_target) / self.area_target
+
+    def to_json(self, meshes: bool = True) -> dict:
+        """The ``section-result/1`` object, with the project's extra keys.
+
+        Parameters
+        ----------
+        meshes : bool
+            Include both meshes under ``"meshes"``.
+        """
+        out = {
+            "format": RESULT_FORMAT,
+            "name": self.name,
+            "units": self.units,
+            "lower": self.lower.tolist(),
+            "upper": self.upper.tolist(),
+            "contour": self.contour.tolist(),
+            "area": {
+                "initial": self.area_initial,
+                "target": self.area_target,
+                "final": self.area_final,
+                "relative_error": self.relative_error,
+            },
+            "model": self.model,
+            "quality": self.quality,
+            "info": self.info,
+            "timings": self.timings,
+            "warnings": list(self.warnings),
+        }
+        if meshes:
+            out["meshes"] = {"initial": self.initial_mesh.to_json(), "final": self.final_mesh.to_json()}
+        return out

@@ -1,0 +1,242 @@
+"""The section as the method sees it: discretised lower curve, upper points, checks.
+
+Paper §3.2-3.3. :func:`build_section` turns a :class:`~sectiondeform.case.Case`
+into a :class:`Section`:
+
+1. the chordal error ``tol`` is ``options.chordal_error`` or, by default,
+   ``DEFAULT_CHORDAL_FRACTION`` (1e-4) of the section's bounding-box diagonal;
+2. the upper curve gives its characteristic points (a polyline's vertices,
+   the adaptive discretisation of the other kinds);
+3. the lower curve is discretised adaptively, and the arc-length fractions
+   at which the *target* needs vertices to stay within ``tol`` are added, so
+   the deformed lower curve is resolved too (a target vertex closer than
+   half the smallest element to a lower vertex is merged into it);
+4. no step may exceed ``STEP_CAP_FRACTION`` (1/4) of the mean thickness
+   T = area / lower length, so the mesh can follow a bent target even where
+   the lower curve is one straight chord;
+5. the element size is the smallest step S_min (paper §3.4), kept within
+   [T / 32, T / 4] unless ``options.element_size`` sets it, and divided by
+   ``options.refine``; every step longer than it is split evenly.
+
+The section is checked on the way: ends that meet, a simple contour (shapely),
+non-degenerate curves. Either orientation of the contour is accepted and
+recorded in :attr:`Section.orientation`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from .case import Case
+from .curves import Curve
+from .errors import GeometryError
+
+__all__ = ["Section", "build_section", "polygon_area", "DEFAULT_CHORDAL_FRACTION"]
+
+DEFAULT_CHORDAL_FRACTION = 1e-4
+JOIN_FRACTION = 1e-6
+STEP_CAP_FRACTION = 0.25
+ELEMENT_FLOOR_FRACTION = 1.0 / 32.0
+
+
+def polygon_area(points: np.ndarray) -> float:
+    """Signed area of a closed polygon (shoelace), positive when counter-clockwise.
+
+    Parameters
+    ----------
+    points : (N, 2) float64 ndarray
+        Vertices in order; the closing edge back to the first is implied.
+
+    Returns
+    -------
+    float
+        Area in units².
+
+    Examples
+    --------
+    >>> polygon_area(np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]))
+    2.0
+    """
+    x, y = points[:, 0], points[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+@dataclass(frozen=True, eq=False)
+class Section:
+    """A discretised, checked section.
+
+    Attributes
+    ----------
+    lower : (n, 2) float64 ndarray
+        Lower-curve nodes from A to B: the base of the meshes.
+    fractions : (n,) float64 ndarray
+        Normalised arc length of each lower node on the lower curve.
+    upper : (m, 2) float64 ndarray
+        Characteristic points of the upper curve, from B to A.
+    orientation : int
+        +1 when lower-then-upper runs counter-clockwise (the section lies to
+        the left of the lower curve), -1 when clockwise.
+    area : float
+        Area of the contour polygon, units², positive.
+    lower_length : float
+        Arc length of the lower curve, units.
+    element_size : float
+        Element size h of the layered mesh, units.
+    chordal_error : float
+        Chordal error used for every discretisation, units.
+    """
+
+    lower: np.ndarray
+    fractions: np.ndarray
+    upper: np.ndarray
+    orientation: int
+    area: float
+    lower_length: float
+    element_size: float
+    chordal_error: float
+
+    @property
+    def thickness(self) -> float:
+        """Mean thickness T = area / lower length, units."""
+        return self.area / self.lower_length
+
+    @property
+    def contour(self) -> np.ndarray:
+        """Closed contour, lower then upper, shared ends written once, ``(n + m - 2, 2)``."""
+        return np.concatenate((self.lower, self.upper[1:-1]))
+
+    @property
+    def size(self) -> float:
+        """Bounding-box diagonal of the contour, units."""
+        return float(np.hypot(*np.ptp(self.contour, axis=0)))
+
+
+def _merge_fractions(primary: np.ndarray, extra: np.ndarray, gap: float) -> np.ndarray:
+    """Union of two sorted fraction sets; ``extra`` values within ``gap`` of a kept one are dropped."""
+    kept = list(primary)
+    for s in np.sort(extra):
+        i = np.searchsorted(kept, s)
+        near = [kept[j] for j in (i - 1, i) if 0 <= j < len(kept)]
+        if all(abs(s - q) > gap for q in near):
+            kept.insert(i, float(s))
+    return np.asarray(kept)
+
+
+def _split_steps(fractions: np.ndarray, max_step: float) -> np.ndarray:
+    """Split every step of ``fractions`` longer than ``max_step`` into equal parts."""
+    steps = np.diff(fractions)
+    parts = np.maximum(1, np.ceil(steps / max_step - 1e-9)).astype(int)
+    pieces = [np.linspace(a, b, p + 1)[:-1] for a, b, p in zip(fractions[:-1], fractions[1:], parts)]
+    return np.concatenate(pieces + [fractions[-1:]])
+
+
+def _sketch(curve: Curve) -> np.ndarray:
+    return curve.at_fractions(np.linspace(0.0, 1.0, 65))
+
+
+def build_section(case: Case, element_size: float | None = None) -> Section:
+    """Discretise and check a case's section (see the module docstring for the rules).
+
+    Parameters
+    ----------
+    case : Case
+    element_size : float, optional
+        Element size in units; overrides ``case.options["element_size"]``.
+
+    Returns
+    -------
+    Section
+
+    Raises
+    ------
+    GeometryError
+        If the ends do not meet, the contour crosses itself or has no area.
+    """
+    opts = case.options
+    sketch = np.concatenate((_sketch(case.lower), _sketch(case.upper)))
+    size = float(np.hypot(*np.ptp(sketch, axis=0)))
+    tol = float(opts.get("chordal_error", DEFAULT_CHORDAL_FRACTION * size))
+
+    upper = case.upper.characteristic_points(tol)
+    join = JOIN_FRACTION * size
+    a, b = case.lower.start, case.lower.end
+    gap_b = float(np.hypot(*(upper[0] - b)))
+    gap_a = float(np.hypot(*(upper[-1] - a)))
+    if gap_b > join:
+        raise GeometryError(
+            f"upper: starts at {upper[0].tolist()}, {gap_b:.6g} from the lower curve's end B "
+            f"{b.tolist()}; upper must run from B back to A (tolerance {join:.3g})"
+        )
+    if gap_a > join:
+        raise GeometryError(
+            f"upper: ends at {upper[-1].tolist()}, {gap_a:.6g} from the lower curve's start A "
+            f"{a.tolist()}; upper must run from B back to A (tolerance {join:.3g})"
+        )
+    if len(upper) < 3:
+        raise GeometryError("upper: needs at least one point between B and A to enclose an area")
+
+    low_pts, low_s = case.lower.discretise(tol)
+    ring = np.concatenate((low_pts, upper[1:-1]))
+    signed = polygon_area(ring)
+    if not abs(signed) > 1e-12 * size * size:
+        raise GeometryError("section: lower and upper enclose no area; check that upper is not the lower curve retraced")
+    _check_simple(ring, len(low_pts))
+
+    length = case.lower.length
+    thickness = abs(signed) / length
+    floor = ELEMENT_FLOOR_FRACTION * thickness
+    _, tgt_s = case.target.discretise(tol)
+    s = _merge_fractions(low_s, tgt_s, 0.5 * floor / length)
+    s = _split_steps(s, STEP_CAP_FRACTION * thickness / length)
+    if element_size is None:
+        element_size = opts.get("element_size")
+    if element_size is None:
+        s_min = float(np.min(np.diff(s))) * length
+        element_size = min(max(s_min, floor), STEP_CAP_FRACTION * thickness)
+    element_size = float(element_size) / float(opts.get("refine", 1.0))
+    s = _split_steps(s, element_size / length)
+    s[0], s[-1] = 0.0, 1.0
+    lower = case.lower.at_fractions(s)
+    lower[0], lower[-1] = a, b
+    upper = upper.copy()
+    upper[0], upper[-1] = b, a
+
+    ring = np.concatenate((lower, upper[1:-1]))
+    signed = polygon_area(ring)
+    _check_simple(ring, len(lower))
+    for arr in (lower, s, upper):
+        arr.setflags(write=False)
+    return Section(
+        lower=lower,
+        fractions=s,
+        upper=upper,
+        orientation=1 if signed > 0 else -1,
+        area=abs(signed),
+        lower_length=length,
+        element_size=element_size,
+        chordal_error=tol,
+    )
+
+
+def _check_simple(ring: np.ndarray, n_lower: int) -> None:
+    """Raise :class:`GeometryError` if the closed ring crosses itself, naming where."""
+    line = shapely.LinearRing(ring)
+    if line.is_simple:
+        return
+    # Find a crossing to report: the first pair of non-adjacent edges that meet.
+    edges = shapely.linestrings(np.stack((ring, np.roll(ring, -1, axis=0)), axis=1))
+    tree = shapely.STRtree(edges)
+    left, right = tree.query(edges, predicate="intersects")
+    n = len(ring)
+    far = (np.abs(left - right) > 1) & (np.abs(left - right) != n - 1)
+    where = ""
+    if far.any():
+        i, j = int(left[far][0]), int(right[far][0])
+        pt = shapely.intersection(edges[i], edges[j])
+        name = lambda k: f"lower edge {k}" if k < n_lower - 1 else f"upper edge {k - n_lower + 1}"  # noqa: E731
+        where = f" ({name(i)} meets {name(j)} near {np.round(shapely.get_coordinates(pt)[0], 6).tolist()})"
+    raise GeometryError(f"section: the contour lower + upper crosses itself{where}; the section must be a simple polygon")
