@@ -125,6 +125,14 @@ class Curve:
         """The CURVE object of the case format."""
         raise NotImplementedError
 
+    def green(self) -> float:  # pragma: no cover - abstract
+        """Exact 1/2 * integral of (x dy - y dx) along the curve, units².
+
+        Summed over the curves of a closed contour it gives the enclosed
+        signed area (positive counter-clockwise).
+        """
+        raise NotImplementedError
+
 
 @dataclass(frozen=True, eq=False)
 class Polyline(Curve):
@@ -170,6 +178,10 @@ class Polyline(Curve):
 
     def characteristic_points(self, tol):
         return self.vertices.copy()
+
+    def green(self):
+        v = self.vertices
+        return 0.5 * float(np.sum(v[:-1, 0] * v[1:, 1] - v[1:, 0] * v[:-1, 1]))
 
     def to_json(self):
         return {"polyline": self.vertices.tolist()}
@@ -250,6 +262,11 @@ class Arc(Curve):
         n = max(1, math.ceil(abs(self._sweep) / min(step, math.pi / 2) - 1e-9))
         s = np.linspace(0.0, 1.0, n + 1)
         return self.at_fractions(s), s
+
+    def green(self):
+        (cx, cy), r = self.center, self.radius
+        a0, a1 = math.radians(self.start_deg), math.radians(self.end_deg)
+        return 0.5 * (r * cx * (math.sin(a1) - math.sin(a0)) - r * cy * (math.cos(a1) - math.cos(a0)) + r * r * (a1 - a0))
 
     def to_json(self):
         return {
@@ -345,6 +362,15 @@ class BSpline(Curve):
         tu, cum = self._table
         return self._spline(u), np.interp(u, tu, cum) / cum[-1]
 
+    def green(self):
+        u, _ = self._table
+        a, b = u[:-1], u[1:]
+        half = 0.5 * (b - a)
+        q = ((0.5 * (a + b))[:, None] + half[:, None] * _GL_X[None, :]).ravel()
+        p, d = self._spline(q), self._spline.derivative()(q)
+        integrand = (p[:, 0] * d[:, 1] - p[:, 1] * d[:, 0]).reshape(-1, len(_GL_X))
+        return 0.5 * float(np.sum(half * (integrand @ _GL_W)))
+
     def to_json(self):
         return {
             "bspline": {
@@ -407,6 +433,9 @@ class Chain(Curve):
 
     def characteristic_points(self, tol):
         return self._join([p.characteristic_points(tol) for p in self.pieces])
+
+    def green(self):
+        return float(sum(p.green() for p in self.pieces))
 
     def to_json(self):
         return {"chain": [p.to_json() for p in self.pieces]}

@@ -6,7 +6,11 @@ into a :class:`Section`:
 1. the chordal error ``tol`` is ``options.chordal_error`` or, by default,
    ``DEFAULT_CHORDAL_FRACTION`` (1e-4) of the section's bounding-box diagonal;
 2. the upper curve gives its characteristic points (a polyline's vertices,
-   the adaptive discretisation of the other kinds);
+   the adaptive discretisation of the other kinds); where the polygon of
+   the discretised curves misses the curves' exact area (Green's theorem)
+   by more than ``AREA_FRACTION`` (1e-5), the chordal error of the upper
+   and lower discretisations is divided by 4 until it does not, so the
+   areas the law works on are the section's true areas;
 3. the lower curve is discretised adaptively, and the arc-length fractions
    at which the *target* needs vertices to stay within ``tol`` are added, so
    the deformed lower curve is resolved too (a target vertex closer than
@@ -39,6 +43,8 @@ __all__ = ["Section", "build_section", "polygon_area", "DEFAULT_CHORDAL_FRACTION
 
 DEFAULT_CHORDAL_FRACTION = 1e-4
 JOIN_FRACTION = 1e-6
+AREA_FRACTION = 1e-5
+AREA_REFINEMENTS = 8
 STEP_CAP_FRACTION = 0.25
 ELEMENT_FLOOR_FRACTION = 1.0 / 32.0
 
@@ -87,7 +93,9 @@ class Section:
     element_size : float
         Element size h of the layered mesh, units.
     chordal_error : float
-        Chordal error used for every discretisation, units.
+        Chordal error asked for, units.
+    curve_area : float
+        Exact area enclosed by the curves themselves, units².
     """
 
     lower: np.ndarray
@@ -98,6 +106,7 @@ class Section:
     lower_length: float
     element_size: float
     chordal_error: float
+    curve_area: float
 
     @property
     def thickness(self) -> float:
@@ -161,7 +170,14 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
     size = float(np.hypot(*np.ptp(sketch, axis=0)))
     tol = float(opts.get("chordal_error", DEFAULT_CHORDAL_FRACTION * size))
 
-    upper = case.upper.characteristic_points(tol)
+    exact = abs(case.lower.green() + case.upper.green())
+    fine = tol
+    for _ in range(AREA_REFINEMENTS):
+        upper = case.upper.characteristic_points(fine)
+        low_pts, low_s = case.lower.discretise(fine)
+        if len(upper) < 2 or abs(abs(polygon_area(np.concatenate((low_pts, upper[1:-1])))) - exact) <= AREA_FRACTION * exact:
+            break
+        fine /= 4.0
     join = JOIN_FRACTION * size
     a, b = case.lower.start, case.lower.end
     gap_b = float(np.hypot(*(upper[0] - b)))
@@ -179,7 +195,6 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
     if len(upper) < 3:
         raise GeometryError("upper: needs at least one point between B and A to enclose an area")
 
-    low_pts, low_s = case.lower.discretise(tol)
     ring = np.concatenate((low_pts, upper[1:-1]))
     signed = polygon_area(ring)
     if not abs(signed) > 1e-12 * size * size:
@@ -219,6 +234,7 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
         lower_length=length,
         element_size=element_size,
         chordal_error=tol,
+        curve_area=exact,
     )
 
 

@@ -1,0 +1,60 @@
+"""The ``sectiondeform`` command: a thin layer over the library.
+
+Each subcommand is a module of :mod:`sectiondeform.commands` with
+``add_args(parser)`` and ``run(args) -> int``; its docstring's first line is
+its help. Errors of the project (:class:`~sectiondeform.errors.SectionDeformError`)
+print one line on stderr and exit with status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import pkgutil
+import sys
+
+from . import __version__, commands
+from .errors import SectionDeformError
+
+__all__ = ["main", "build_parser"]
+
+
+def _command_modules():
+    for info in sorted(pkgutil.iter_modules(commands.__path__), key=lambda m: m.name):
+        if not info.name.startswith("_"):
+            yield info.name, importlib.import_module(f"{commands.__name__}.{info.name}")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser with every subcommand."""
+    parser = argparse.ArgumentParser(
+        prog="sectiondeform",
+        description="Deform the cross-section of an elastomer body onto a deformed support, following a mechanical law.",
+    )
+    parser.add_argument("--version", action="version", version=f"sectiondeform {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    for name, module in _command_modules():
+        doc = (module.__doc__ or "").strip()
+        first = doc.splitlines()[0] if doc else name
+        p = sub.add_parser(name, help=first, description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+        module.add_args(p)
+        p.set_defaults(_run=module.run)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the command line; returns the exit status (0 success, 2 bad input or failure)."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return int(args._run(args) or 0)
+    except SectionDeformError as exc:
+        print(f"sectiondeform {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:  # pragma: no cover - interactive
+        print("interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

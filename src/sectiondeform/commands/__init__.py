@@ -1,0 +1,1 @@
+"""Subcommands of the ``sectiondeform`` command line, one module each."""
