@@ -12,12 +12,15 @@ orientation (the two bottom nodes are swapped in the ``quads`` order of a
 clockwise section, so every element of a valid mesh has a positive Jacobian).
 
 Growth: each new layer stands on the normals of the layer below, at the
-element height; the displacement field of the layer is then smoothed by a
-small quadratic optimisation (data fidelity plus a penalty on its second
-differences, a pentadiagonal solve), with the smoothing weight raised until
-no element of the new strip is inverted. The two end columns are straight
+element height; the layer is then smoothed into a continuous curve by a
+small quadratic optimisation (closeness to the raw layer plus a penalty on
+the second differences of its nodes, a pentadiagonal solve), with the
+smoothing weight raised until no element of the new strip is inverted and
+the layer does not cross itself. On a smooth layer the penalty acts like a
+fourth derivative and moves nothing measurable; at kinks and above concave
+parts it rounds the layer and evens out the node spacing. The two end columns are straight
 lines along the base's end normals, splayed outward where the upper curve
-overhangs the ends of the lower curve. Layers are added until every upper
+overhangs the ends of the lower curve (:func:`end_frames`). Layers are added until every upper
 point lies in the mesh.
 """
 
@@ -37,11 +40,12 @@ __all__ = [
     "LayeredMesh",
     "grow_mesh",
     "node_frames",
+    "end_frames",
     "quad_jacobians",
     "SMOOTHING_WEIGHTS",
 ]
 
-SMOOTHING_WEIGHTS = (0.5, 5.0, 50.0, 500.0, 5e3, 5e4, 5e5)
+SMOOTHING_WEIGHTS = (0.05, 0.5, 5.0, 50.0, 500.0, 5e3, 5e4, 5e5)
 SPLAY_STEP_DEG = 10.0
 SPLAY_MAX_DEG = 80.0
 
@@ -156,7 +160,7 @@ def node_frames(line: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndar
 
 
 class _Smoother:
-    """Solves (W + lam K'K) D = W G for a displacement field G along a layer.
+    """Solves (W + lam K'K) Q = W G: the smoothest layer Q close to the raw layer G.
 
     K is the second-difference operator, W weights the two ends ``end_weight``
     times more than the interior so they stay on their prescribed lines.
@@ -182,24 +186,45 @@ class _Smoother:
         return solveh_banded(ab, self.w[:, None] * g, check_finite=False)
 
 
+def end_frames(base: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndarray]:
+    """Directions of the two end columns and their outward perpendiculars.
+
+    An end column leaves the base along the bisector of the base's end
+    normal and the normal of the chord A-B: straight up for a flat base, and
+    converging or diverging only half as much as the end normals where the
+    base is curved, so a concave base leaves room for many layers.
+
+    Returns
+    -------
+    dirs, outward : (2, 2) float64 ndarray
+        Row 0 for A, row 1 for B; ``outward`` points away from the section.
+    """
+    _, n = node_frames(base, orientation)
+    chord = base[-1] - base[0]
+    nc = orientation * np.array([-chord[1], chord[0]]) / math.hypot(*chord)
+    dirs = n[[0, -1]] + nc
+    dirs /= np.hypot(dirs[:, 0], dirs[:, 1])[:, None]
+    perp = orientation * np.column_stack((dirs[:, 1], -dirs[:, 0]))  # along the base, A to B
+    return dirs, perp * np.array([[-1.0], [1.0]])
+
+
 def _splay_needed(base: np.ndarray, orientation: int, points: np.ndarray) -> tuple[float, float]:
     """Outward tilt, in degrees, of the end columns at A and B so that overhanging points fit."""
-    t, n = node_frames(base, orientation)
+    dirs, outward = end_frames(base, orientation)
     out = []
-    for end, sign in ((0, -1.0), (-1, 1.0)):
+    for k, end in enumerate((0, -1)):
         rel = points - base[end]
-        u = sign * (rel @ t[end])  # distance beyond the end, along the outward tangent
-        v = rel @ n[end]
+        u = rel @ outward[k]  # distance beyond the end column
+        v = rel @ dirs[k]
         over = (u > 1e-9 * (1 + np.abs(v))) & (v > 0)
         ang = np.degrees(np.arctan2(u[over], v[over])).max() + 2.0 if over.any() else 0.0
         out.append(min(ang, SPLAY_MAX_DEG))
     return out[0], out[1]
 
 
-def _end_direction(t: np.ndarray, n: np.ndarray, end: int, deg: float) -> np.ndarray:
-    sign = -1.0 if end == 0 else 1.0
+def _end_direction(dirs: np.ndarray, outward: np.ndarray, k: int, deg: float) -> np.ndarray:
     a = math.radians(deg)
-    return math.cos(a) * n[end] + sign * math.sin(a) * t[end]
+    return math.cos(a) * dirs[k] + math.sin(a) * outward[k]
 
 
 def _outline(nodes: np.ndarray) -> shapely.Polygon:
@@ -250,9 +275,9 @@ def grow_mesh(
         max_layers = int(math.ceil(2.0 * reach / height)) + 4
     splay = list(_splay_needed(base, orientation, cover))
     smoother = _Smoother(len(base))
-    t0, n0 = node_frames(base, orientation)
+    frames = end_frames(base, orientation)
     while True:
-        dirs = (_end_direction(t0, n0, 0, splay[0]), _end_direction(t0, n0, -1, splay[1]))
+        dirs = (_end_direction(*frames, 0, splay[0]), _end_direction(*frames, 1, splay[1]))
         nodes, missing = _grow(base, height, orientation, cover, tol, max_layers, smoother, dirs)
         if not missing.size:
             return LayeredMesh(nodes, orientation)
@@ -282,10 +307,10 @@ def _grow(base, height, orientation, cover, tol, max_layers, smoother, end_dirs)
         _, n = node_frames(below, orientation)
         g = height * n
         g[0], g[-1] = height * end_dirs[0], height * end_dirs[1]
+        raw = below + g
         for lam in SMOOTHING_WEIGHTS:
-            d = smoother(g, lam)
-            d[0], d[-1] = g[0], g[-1]
-            new = below + d
+            new = smoother(raw, lam)
+            new[0], new[-1] = raw[0], raw[-1]
             strip = np.stack((below, new))
             jac = quad_jacobians(strip.reshape(-1, 2), structured_quads(1, len(base), orientation))
             if jac.min() > 1e-9 * height * height and shapely.LineString(new).is_simple:

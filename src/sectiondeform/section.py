@@ -196,10 +196,10 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
         raise GeometryError("upper: needs at least one point between B and A to enclose an area")
 
     ring = np.concatenate((low_pts, upper[1:-1]))
+    _check_simple(ring, len(low_pts))
     signed = polygon_area(ring)
     if not abs(signed) > 1e-12 * size * size:
         raise GeometryError("section: lower and upper enclose no area; check that upper is not the lower curve retraced")
-    _check_simple(ring, len(low_pts))
 
     length = case.lower.length
     thickness = abs(signed) / length
