@@ -1,0 +1,90 @@
+"""The command line, run in-process: outputs, exit status 2 and no file on bad input."""
+
+import json
+
+import pytest
+
+from sectiondeform.cli import main
+
+from conftest import SHARED_CASES, box_case
+
+
+def _write(tmp_path, obj, name="case.json"):
+    p = tmp_path / name
+    p.write_text(obj if isinstance(obj, str) else json.dumps(obj))
+    return p
+
+
+@pytest.mark.parametrize("path", SHARED_CASES, ids=[p.stem for p in SHARED_CASES])
+def test_deform_writes_the_result_format(path, tmp_path, capsys):
+    out = tmp_path / "r.json"
+    assert main(["deform", str(path), "-o", str(out)]) == 0
+    r = json.loads(out.read_text())
+    assert r["format"] == "section-result/1"
+    assert set(r["area"]) == {"initial", "target", "final", "relative_error"}
+    assert abs(r["area"]["relative_error"]) <= 1e-9
+    assert len(r["contour"]) == len(r["lower"]) + len(r["upper"]) - 2
+    assert r["contour"][0] == r["lower"][0] and r["upper"][0] == r["lower"][-1]
+    mesh = r["meshes"]["final"]
+    assert len(mesh["cells"]) == mesh["layers"] * mesh["columns"]
+    assert "relative error" in capsys.readouterr().out
+
+
+def test_deform_with_plot_and_overrides(tmp_path):
+    out, fig = tmp_path / "r.json", tmp_path / "f.svg"
+    case = _write(tmp_path, box_case(20, 5))
+    assert main(["deform", str(case), "-o", str(out), "--plot", str(fig), "--area-ratio", "0.7"]) == 0
+    r = json.loads(out.read_text())
+    assert r["area"]["target"] == pytest.approx(70.0)
+    assert fig.read_text().lstrip().startswith("<?xml")
+
+
+def test_demo_prints_the_paper_figures(tmp_path, capsys):
+    assert main(["demo", "--no-plot", "-o", str(tmp_path / "demo.json")]) == 0
+    text = capsys.readouterr().out
+    assert "4379 mm² -> 3503.2 mm²" in text
+
+
+BAD = [
+    ("{not json", "not valid JSON"),
+    (dict(box_case(), lower={"spline": []}), "lower: unknown curve kind 'spline'"),
+    ({k: v for k, v in box_case().items() if k != "target"}, "target: missing"),
+    (box_case(upper=[[10, 1], [10, 4], [0, 4], [0, 0]]), "upper: starts at"),
+    (box_case(upper=[[10, 0], [10, 4], [-2, -1], [0, 0]]), "crosses itself"),
+    (json.dumps(box_case()).replace('[10.0, 4.0]', '[10.0, NaN]', 1), "coordinates must be finite"),
+    (box_case(ratio=-0.8), "law.area_ratio: must be a finite number > 0"),
+    (box_case(target={"polyline": [[1, 1], [1, 1]]}), "target.polyline: the curve has zero length"),
+    (dict(box_case(), options={"model": "fast"}), "options.model: unknown model"),
+]
+
+
+@pytest.mark.parametrize("case, message", BAD, ids=[m.split(":")[0][:20] for _, m in BAD])
+def test_bad_input_exits_2_with_one_line_and_no_output(case, message, tmp_path, capsys):
+    out = tmp_path / "r.json"
+    assert main(["deform", str(_write(tmp_path, case)), "-o", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert message in err
+    assert len(err.splitlines()) == 1
+    assert not out.exists()
+    assert [p.name for p in tmp_path.iterdir()] == ["case.json"]
+
+
+def test_unknown_output_format_and_missing_file(tmp_path, capsys):
+    case = _write(tmp_path, box_case())
+    assert main(["deform", str(case), "-o", str(tmp_path / "r.xyz")]) == 2
+    assert "unknown output format '.xyz'" in capsys.readouterr().err
+    assert main(["deform", str(tmp_path / "nope.json"), "-o", str(tmp_path / "r.json")]) == 2
+    assert "cannot read the case file" in capsys.readouterr().err
+
+
+def test_help_on_every_command(capsys):
+    from sectiondeform.cli import build_parser
+
+    parser = build_parser()
+    names = parser._subparsers._group_actions[0].choices
+    assert {"deform", "demo"} <= set(names)
+    for name in names:
+        with pytest.raises(SystemExit) as info:
+            main([name, "--help"])
+        assert info.value.code == 0
+        assert "usage: sectiondeform" in capsys.readouterr().out

@@ -1,0 +1,125 @@
+"""Invariants of the paper's model: identity, rigid motion, area law, valid meshes, order."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import sectiondeform as sd
+from sectiondeform.curves import Polyline
+from sectiondeform.errors import LawError, MeshError
+from sectiondeform.laws import AreaRatio
+from sectiondeform.models.paper import solve_scale
+
+from conftest import SHARED_CASES, box_case, rigid
+
+
+def _identity_case(case):
+    """The case with the target equal to the lower curve and ratio 1."""
+    return dataclasses.replace(case, target=case.lower, law=AreaRatio(1.0))
+
+
+@pytest.mark.parametrize("path", SHARED_CASES, ids=[p.stem for p in SHARED_CASES])
+def test_identity_gives_back_the_section(path):
+    case = _identity_case(sd.load_case(path))
+    r = sd.deform(case)
+    size = np.hypot(*np.ptp(r.initial_contour, axis=0))
+    assert np.abs(r.upper - r.initial_upper).max() <= 1e-9 * size
+    assert np.abs(r.lower - r.initial_lower).max() <= 1e-9 * size
+    assert r.info["height_scale"] == pytest.approx(1.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("path", SHARED_CASES, ids=[p.stem for p in SHARED_CASES])
+@pytest.mark.parametrize("angle, shift", [(30.0, (5.0, -2.0)), (-135.0, (100.0, 40.0))])
+def test_rigid_motion_of_the_target_moves_the_section_rigidly(path, angle, shift):
+    case = _identity_case(sd.load_case(path))
+    deformer = sd.Deformer(case)
+    moved = rigid(deformer.section.lower, angle, shift)
+    r = deformer.deform(moved)
+    size = deformer.section.size
+    assert np.abs(r.upper - rigid(r.initial_upper, angle, shift)).max() <= 1e-9 * size
+    assert r.relative_error == pytest.approx(0.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("path", SHARED_CASES, ids=[p.stem for p in SHARED_CASES])
+def test_shared_cases_meet_the_law_with_valid_meshes(path):
+    case = sd.load_case(path)
+    r = sd.deform(case)
+    assert abs(r.relative_error) <= 1e-9
+    assert r.quality["jacobian_min"] > 0 and r.quality["final_jacobian_min"] > 0
+    assert len(r.upper) == len(r.initial_upper)
+    assert np.allclose(r.upper[0], r.lower[-1]) and np.allclose(r.upper[-1], r.lower[0])
+    # the lower curve lands on the target, arc-length fractions preserved
+    deformer = sd.Deformer(case)
+    assert np.allclose(r.lower, case.target.at_fractions(deformer.section.fractions), atol=1e-12)
+    assert np.allclose(r.lower[[0, -1]], [case.target.start, case.target.end], atol=1e-9)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    ratio=st.floats(0.5, 1.5),
+    sagitta=st.floats(-12.0, 12.0),
+    stretch=st.floats(0.8, 1.25),
+    angle=st.floats(-180, 180),
+)
+def test_area_law_and_valid_mesh_for_bent_targets(ratio, sagitta, stretch, angle):
+    """A 40 x 12 block with a domed top on a parabolic target of any bend, stretch, rotation."""
+    x = np.linspace(40, 0, 21)
+    top = np.column_stack((x, 12 + 3 * np.sin(np.pi * x / 40)))
+    upper = [[40.0, 0.0]] + top.tolist() + [[0.0, 0.0]]
+    xt = np.linspace(0, 40 * stretch, 41)
+    yt = sagitta * (1 - (2 * xt / xt[-1] - 1) ** 2)
+    target = rigid(np.column_stack((xt, yt)), angle, (3.0, -7.0))
+    case = sd.case_from_dict(box_case(40, 12, upper=upper, target={"polyline": target.tolist()}, ratio=ratio))
+    try:
+        r = sd.deform(case)
+    except (MeshError, LawError, sd.GeometryError) as exc:
+        # a refusal must be a clear one-line error, never a silent bad result
+        assert "\n" not in str(exc)
+        return
+    assert abs(r.relative_error) <= 1e-9
+    assert r.quality["final_jacobian_min"] > 0
+    assert len(r.upper) == len(upper)
+
+
+def test_re_deformation_reuses_the_section():
+    case = sd.load_case(sd.example_case_path())
+    deformer = sd.Deformer(case)
+    first = deformer.deform()
+    mesh = deformer.prepared.initial_mesh
+    for sag in (0.0, 5.0, 10.0):
+        x = np.linspace(0, 110, 23)
+        t = Polyline(np.column_stack((x, sag * (1 - (2 * x / 110 - 1) ** 2))))
+        r = deformer.deform(t)
+        assert r.initial_mesh is mesh
+        assert abs(r.relative_error) <= 1e-9
+    assert np.array_equal(deformer.deform().upper, first.upper)
+
+
+def test_reversed_straight_target_is_a_half_turn():
+    case = sd.case_from_dict(box_case(10, 4, ratio=1.0))
+    deformer = sd.Deformer(case)
+    r = deformer.deform(deformer.section.lower[::-1].copy())
+    assert np.allclose(r.upper, rigid(r.initial_upper, 180.0, (10.0, 0.0)), atol=1e-12)
+
+
+def test_sharp_target_fold_is_reported():
+    case = sd.case_from_dict(box_case(20, 10, ratio=1.0))
+    deformer = sd.Deformer(case)
+    n = len(deformer.section.lower)
+    s = deformer.section.fractions
+    # a hairpin: the target goes out and comes back 0.1 apart
+    hairpin = np.where(s[:, None] < 0.5, np.column_stack((40 * s, 0 * s)), np.column_stack((40 * (1 - s), 0.1 + 0 * s)))
+    with pytest.raises((MeshError, LawError, sd.GeometryError)):
+        deformer.deform(hairpin)
+    assert n == len(hairpin)
+
+
+def test_solve_scale_picks_the_root_near_the_guess():
+    sq = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    up = np.array([[0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [0.0, 1.0]])
+    assert solve_scale(sq - up, up, 2.0, 1.0) == pytest.approx(2.0)
+    with pytest.raises(LawError, match="no height scale"):
+        solve_scale(sq - up, up, -1.0, 1.0)
