@@ -290,7 +290,7 @@ class BSpline(Curve):
     Examples
     --------
     >>> b = BSpline(1, np.array([[0.0, 0.0], [2.0, 0.0]]), None)
-    >>> b.length
+    >>> round(b.length, 12)
     2.0
     """
 
