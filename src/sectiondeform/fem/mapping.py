@@ -1,0 +1,191 @@
+"""From the solved mesh to the section's points: boundary location, lower data, area.
+
+* :func:`boundary_weights`: every contour point lies on a coarse boundary
+  edge's stretch of the contour. It is located by its parameter on that
+  (quadratic) edge, found by projection, and its small offset ``d`` from the
+  edge (the true curve between two mesh nodes bulges off the edge). Its
+  image is ``x(t) + F(t) d``: the edge's image plus the offset carried by
+  the local deformation gradient, a first-order extrapolation with the
+  element's own shape functions. Linear in the node positions, so it is a
+  sparse matrix; no point is dropped, the order is kept, an identity or a
+  rigid motion is reproduced exactly.
+* :func:`interpolation_matrix`: the prescribed positions of the coarse
+  lower nodes, the target at their arc-length fractions, interpolated
+  linearly between the target nodes given at the section's lower fractions.
+* :func:`rigid_fit`: the rotation and translation that best carry the
+  lower nodes to the target (least squares), the cold start.
+* :func:`correct_area`: the exact area law by one normal offset of the
+  upper points, a quadratic solved in closed form.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..errors import LawError
+from .elements import p2_gradients, p2_values
+from .mesh import CoarseMesh
+
+__all__ = ["boundary_weights", "interpolation_matrix", "rigid_fit", "correct_area"]
+
+
+def _edge_curve(a, m, b, t):
+    """Quadratic edge through a (t=0), m (t=1/2), b (t=1): point, first and second derivative."""
+    t = t[:, None]
+    x = a * (1 - t) * (1 - 2 * t) + m * 4 * t * (1 - t) + b * t * (2 * t - 1)
+    dx = a * (4 * t - 3) + m * (4 - 8 * t) + b * (4 * t - 1)
+    ddx = 4 * a - 8 * m + 4 * b
+    return x, dx, ddx
+
+
+def boundary_weights(mesh: CoarseMesh, s: np.ndarray, points: np.ndarray) -> sp.csr_matrix:
+    """Matrix ``W`` with ``W @ x_nodes`` the images of contour points.
+
+    Parameters
+    ----------
+    mesh : CoarseMesh
+    s : (m,) float64 ndarray
+        Arc length of each point along the mesh's contour, in
+        ``[0, perimeter]``, units.
+    points : (m, 2) float64 ndarray
+        The points (on the contour), units.
+
+    Returns
+    -------
+    (m, N) scipy.sparse.csr_matrix
+        Weights ``N_a + grad N_a . d`` on the six nodes of each point's cell.
+    """
+    s_b = mesh.boundary_s
+    s_end = np.append(s_b[1:], mesh.ring.perimeter)
+    j = np.clip(np.searchsorted(s_b, s, side="right") - 1, 0, len(s_b) - 1)
+    cell, loc, direction = mesh.boundary_edges[j].T
+    nodes = mesh.nodes
+    cn = mesh.cells[cell]
+    ends = np.array([[0, 1], [1, 2], [2, 0]])[loc]
+    first = np.where(direction > 0, ends[:, 0], ends[:, 1])
+    second = np.where(direction > 0, ends[:, 1], ends[:, 0])
+    rows = np.arange(len(s))
+    a, b = nodes[cn[rows, first]], nodes[cn[rows, second]]
+    m = nodes[cn[rows, 3 + loc]]
+    t = np.clip((s - s_b[j]) / (s_end[j] - s_b[j]), 0.0, 1.0)
+    for _ in range(4):  # project the point on the quadratic edge
+        x, dx, ddx = _edge_curve(a, m, b, t)
+        r = x - points
+        t = np.clip(t - np.einsum("ij,ij->i", r, dx) / (np.einsum("ij,ij->i", dx, dx) + np.einsum("ij,ij->i", r, ddx)), 0, 1)
+    x, _, _ = _edge_curve(a, m, b, t)
+    d = points - x
+    tau = np.where(direction > 0, t, 1.0 - t)
+    local = np.select(
+        [loc[:, None] == 0, loc[:, None] == 1],
+        [np.column_stack((tau, 0 * tau)), np.column_stack((1 - tau, tau))],
+        np.column_stack((0 * tau, 1 - tau)),
+    )
+    vals = p2_values(local)  # (m, 6)
+    dref = p2_gradients(local)  # (m, 6, 2)
+    xe = nodes[cn]
+    jac = np.einsum("pai,paj->pij", xe, dref)
+    grad = np.einsum("paj,pji->pai", dref, np.linalg.inv(jac))
+    w = vals + np.einsum("pai,pi->pa", grad, d)
+    return sp.csr_matrix((w.ravel(), (np.repeat(rows, 6), cn.ravel())), shape=(len(s), len(nodes)))
+
+
+def interpolation_matrix(at: np.ndarray, fractions: np.ndarray) -> np.ndarray:
+    """Linear interpolation weights ``(k, n)`` from values at ``fractions`` to values at ``at``.
+
+    Examples
+    --------
+    >>> interpolation_matrix(np.array([0.25, 1.0]), np.array([0.0, 0.5, 1.0])).tolist()
+    [[0.5, 0.5, 0.0], [0.0, 0.0, 1.0]]
+    """
+    n = len(fractions)
+    i = np.clip(np.searchsorted(fractions, at, side="right") - 1, 0, n - 2)
+    u = np.clip((at - fractions[i]) / (fractions[i + 1] - fractions[i]), 0.0, 1.0)
+    w = np.zeros((len(at), n))
+    rows = np.arange(len(at))
+    w[rows, i] += 1.0 - u
+    w[rows, i + 1] += u
+    return w
+
+
+def rigid_fit(src: np.ndarray, dst: np.ndarray, weights: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Rotation ``Q`` (2, 2) and translation ``t`` (2,) minimising ``sum w |Q src + t - dst|^2``.
+
+    Examples
+    --------
+    >>> q, t = rigid_fit(np.array([[0.0, 0], [1, 0]]), np.array([[1.0, 1], [1, 2]]))
+    >>> q.round(12).tolist(), t.round(12).tolist()
+    ([[0.0, -1.0], [1.0, 0.0]], [1.0, 1.0])
+    """
+    w = np.ones(len(src)) if weights is None else weights
+    w = w / w.sum()
+    cs, cd = w @ src, w @ dst
+    a, b = src - cs, dst - cd
+    c = np.einsum("p,pi,pj->ij", w, b, a)  # sum w b a^T
+    ang = math.atan2(c[1, 0] - c[0, 1], c[0, 0] + c[1, 1])
+    q = np.array([[math.cos(ang), -math.sin(ang)], [math.sin(ang), math.cos(ang)]])
+    return q, cd - q @ cs
+
+
+def _cross(a, b):
+    return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+
+
+def correct_area(lower: np.ndarray, upper: np.ndarray, signed_area: float) -> tuple[np.ndarray, float]:
+    """Offset the inner upper points along their normals so the contour has ``signed_area``.
+
+    Parameters
+    ----------
+    lower : (n, 2) float64 ndarray
+        Deformed lower curve, A' to B' (kept).
+    upper : (m, 2) float64 ndarray
+        Deformed upper points, B' to A'; the ends stay.
+    signed_area : float
+        Wanted signed area of ``lower + upper[1:-1]``, units².
+
+    Returns
+    -------
+    upper : (m, 2) float64 ndarray
+        Corrected points.
+    offset : float
+        The normal offset applied, units (signed; positive grows the area).
+
+    Raises
+    ------
+    LawError
+        If no offset gives that area.
+
+    Examples
+    --------
+    >>> low = np.array([[0.0, 0.0], [1.0, 0.0]])
+    >>> up, k = correct_area(low, np.array([[1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.0, 0.0]]), 1.1)
+    >>> round(k, 12)
+    0.1
+    """
+    inner = upper[1:-1]
+    tang = upper[2:] - upper[:-2]
+    nrm = np.column_stack((tang[:, 1], -tang[:, 0]))
+    nrm /= np.hypot(nrm[:, 0], nrm[:, 1])[:, None]
+    fixed = np.concatenate((lower, inner))
+    moving = np.concatenate((np.zeros_like(lower), nrm))
+    f1, g1 = np.roll(fixed, -1, axis=0), np.roll(moving, -1, axis=0)
+    c0 = 0.5 * float(np.sum(_cross(fixed, f1))) - signed_area
+    c1 = 0.5 * float(np.sum(_cross(fixed, g1) + _cross(moving, f1)))
+    c2 = 0.5 * float(np.sum(_cross(moving, g1)))
+    if c1 == 0.0:
+        raise LawError("law: the upper curve cannot be offset to meet the area (degenerate contour)")
+    if abs(c2 * c0) <= 1e-12 * c1 * c1:
+        k = -c0 / c1
+    else:
+        disc = c1 * c1 - 4.0 * c2 * c0
+        if disc < 0:
+            raise LawError(f"law: no normal offset of the upper curve gives the area {abs(signed_area):.6g}")
+        q = -0.5 * (c1 + math.copysign(math.sqrt(disc), c1))
+        k = c0 / q  # the root of smaller magnitude
+    out = upper.copy()
+    out[1:-1] = inner + k * nrm
+    # Sign convention: report the offset as positive when the area grows.
+    grow = 0.5 * float(np.sum(_cross(fixed, g1) + _cross(moving, f1)))
+    return out, float(k if grow * signed_area >= 0 else -k)

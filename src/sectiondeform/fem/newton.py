@@ -1,0 +1,284 @@
+"""Newton's method with line search, a linear predictor and automatic load stepping.
+
+The problem is a path in the prescribed data: the lower dofs ``xd`` and the
+out-of-plane stretch ``lz`` go from a solved state (``t = 0``) to the wanted
+one (``t = 1``). Each step is
+
+1. a *predictor*: the tangent at the solved state answers linearly to the
+   change of ``xd`` and of ``ln lz`` (one back-substitution with a
+   factorisation already at hand);
+2. a *corrector*: Newton iterations, first reusing that factorisation
+   (modified Newton, cheap when the change is small), then with a fresh
+   tangent each iteration when the cheap ones stop contracting; a
+   backtracking line search keeps every point's J > 0 and decreases the
+   residual norm.
+
+If a step fails it is halved, down to ``1 / 2**MAX_HALVINGS`` of the path;
+then :class:`~sectiondeform.errors.ConvergenceError` is raised. Never a
+quiet unconverged result.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import splu
+
+from ..errors import ConvergenceError
+from .assembly import MixedNeoHooke, Pattern
+
+__all__ = ["State", "Tangent", "NewtonSolver", "MAX_HALVINGS"]
+
+MAX_HALVINGS = 8
+MAX_ITERATIONS = 25
+MODIFIED_ITERATIONS = 6
+MODIFIED_RATE = 0.3
+
+
+@dataclass(frozen=True, eq=False)
+class Tangent:
+    """A factorised tangent and its free-fixed block, at some state.
+
+    A tangent may be a *rotated* copy of another: the problem is frame
+    indifferent, so at the state ``Q x`` the tangent is ``R K R^T`` with
+    ``R`` applying ``Q`` to every node's pair of position dofs. Its
+    factorisation is the original one, rotated on the way in and out.
+
+    Attributes
+    ----------
+    lu : scipy.sparse.linalg.SuperLU
+        Factorisation of ``K_ff`` (free dofs in increasing order, position
+        dofs first, in node pairs).
+    kfd : scipy.sparse.csc_matrix
+        ``K_fd``, free rows by fixed columns.
+    n_free_x : int
+        Number of free position dofs (they come first).
+    rotation : (2, 2) float64 ndarray or None
+        ``Q``, or None for no rotation.
+    """
+
+    lu: object
+    kfd: sp.csc_matrix
+    n_free_x: int
+    rotation: np.ndarray | None = None
+
+    def rotated(self, q: np.ndarray) -> "Tangent":
+        """This tangent carried to the state rotated by ``q`` ((2, 2))."""
+        base = self.rotation if self.rotation is not None else np.eye(2)
+        return Tangent(self.lu, self.kfd, self.n_free_x, q @ base)
+
+    def _rot(self, v: np.ndarray, k: int, inverse: bool) -> np.ndarray:
+        q = self.rotation
+        v = v.copy()
+        v[:k] = (v[:k].reshape(-1, 2) @ (q if inverse else q.T)).ravel()
+        return v
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        """``K_ff^-1 rhs``, ``rhs`` of shape ``(f,)`` or ``(f, k)`` (no rotation only)."""
+        if self.rotation is None:
+            return self.lu.solve(rhs)
+        k = self.n_free_x
+        return self._rot(self.lu.solve(self._rot(rhs, k, True)), k, False)
+
+    def kfd_dot(self, v: np.ndarray) -> np.ndarray:
+        """``K_fd v`` for a change ``v`` ((d,)) of the fixed dofs."""
+        if self.rotation is None:
+            return self.kfd @ v
+        return self._rot(self.kfd @ self._rot(v, len(v), True), self.n_free_x, False)
+
+
+@dataclass(frozen=True, eq=False)
+class State:
+    """A solved (equilibrium) state.
+
+    Attributes
+    ----------
+    z : (n_dofs,) float64 ndarray
+        Node positions (node-major) then pressures.
+    lz : float
+        Out-of-plane stretch.
+    tangent : Tangent
+        A factorised tangent at (or next to) this state.
+    iterations : int
+        Newton iterations it took (fresh factorisations, modified ones).
+    """
+
+    z: np.ndarray
+    lz: float
+    tangent: Tangent
+    iterations: tuple = (0, 0)
+
+
+class NewtonSolver:
+    """Equilibrium solver of one mesh's mixed problem.
+
+    Parameters
+    ----------
+    physics : MixedNeoHooke
+    pattern : Pattern
+        Its ``fixed`` dofs are the prescribed lower-curve positions.
+    length : float
+        Length scale (the section's mean thickness T), units: the tolerance
+        on the position increments is ``tol * length``.
+    tol : float
+        Relative tolerance on the last position increment.
+    permc_spec : str
+        Column ordering of SuperLU.
+    """
+
+    def __init__(self, physics: MixedNeoHooke, pattern: Pattern, length: float, tol: float = 1e-9,
+                 permc_spec: str = "MMD_AT_PLUS_A"):
+        self.physics = physics
+        self.pattern = pattern
+        self.length = float(length)
+        self.tol = float(tol)
+        self.permc_spec = permc_spec
+        n = physics.n_nodes
+        free = pattern.free
+        self.free_x = free < 2 * n
+        if np.any(np.diff(free) <= 0):
+            raise ValueError("NewtonSolver needs the pattern's free dofs in increasing order")
+        # Pressure rows scaled by 1/length so the residual norm mixes like units.
+        self.row_scale = np.where(self.free_x, 1.0, 1.0 / self.length)
+        wm = physics._wM.sum(axis=1)  # (E, 3): integral of each pressure function
+        mp = np.bincount(physics.cells[:, :3].ravel(), weights=wm.ravel(), minlength=physics.cells[:, :3].max() + 1)
+        full = np.zeros(pattern.n_dofs)
+        full[2 * n :] = mp
+        self.dres_dlnlz = full[free]  # d R_f / d ln lz, exact (R_p is linear in ln lz)
+        self.assemblies = 0
+        self.factorisations = 0
+
+    # -- building blocks -------------------------------------------------
+    def residual(self, z: np.ndarray, lz: float):
+        """``(R_f, fields)`` at ``z``, or ``(None, None)`` if a point is inverted."""
+        f = self.physics.fields(z, lz)
+        if f is None:
+            return None, None
+        self.assemblies += 1
+        r = self.pattern.vector(self.physics.element_residuals(f))
+        return r[self.pattern.free], f
+
+    def tangent(self, fields) -> Tangent:
+        """Assemble and factorise the tangent for ``fields``."""
+        kff, kfd = self.pattern.matrices(self.physics.element_matrices(fields))
+        self.factorisations += 1
+        try:
+            lu = splu(kff, permc_spec=self.permc_spec)
+        except RuntimeError as exc:  # exactly singular
+            raise ConvergenceError(f"hyperelastic: singular tangent ({exc}); is a part of the mesh unconstrained?") from None
+        return Tangent(lu, kfd, int(self.free_x.sum()))
+
+    def _merit(self, r: np.ndarray) -> float:
+        return float(np.linalg.norm(r * self.row_scale))
+
+    def _state(self, z_free: np.ndarray, xd: np.ndarray, template: np.ndarray) -> np.ndarray:
+        z = template.copy()
+        z[self.pattern.free] = z_free
+        z[self.pattern.fixed] = xd
+        return z
+
+    # -- one corrector ---------------------------------------------------
+    def correct(self, z: np.ndarray, lz: float, tangent: Tangent | None, max_iter: int = MAX_ITERATIONS):
+        """Newton corrector from ``z`` (prescribed dofs already in place).
+
+        Returns
+        -------
+        State or None
+            None if the iterations fail (inverted points, no decrease, too many).
+        """
+        free = self.pattern.free
+        r, f = self.residual(z, lz)
+        if r is None:
+            return None
+        merit = self._merit(r)
+        modified = tangent is not None
+        counts = [0, 0]
+        last = tangent
+        for _ in range(max_iter):
+            if not modified:
+                last = self.tangent(f)
+            dz = -last.solve(r)
+            counts[1 if modified else 0] += 1
+            step = float(np.abs(dz[self.free_x]).max(initial=0.0))
+            alpha, accepted = 1.0, False
+            while alpha >= 1.0 / 64:
+                zt = z.copy()
+                zt[free] += alpha * dz
+                rt, ft = self.residual(zt, lz)
+                if rt is not None:
+                    mt = self._merit(rt)
+                    if mt <= (1.0 - 1e-4 * alpha) * merit or step * alpha <= self.tol * self.length:
+                        accepted = True
+                        break
+                if modified:
+                    break
+                alpha *= 0.5
+            if step <= self.tol * self.length and accepted:
+                return State(zt, lz, last, tuple(counts))
+            if not accepted:
+                if modified:
+                    modified = False  # fall back to full Newton from the current point
+                    continue
+                return None
+            if modified and mt > MODIFIED_RATE * merit:
+                modified = False
+            z, r, f, merit = zt, rt, ft, mt
+        return None
+
+    # -- the path ----------------------------------------------------------
+    def predict(self, state: State, xd: np.ndarray, lz: float, xd0: np.ndarray | None = None) -> np.ndarray:
+        """Linear predictor from ``state`` to the data ``(xd, lz)``; returns the full ``z``."""
+        d0 = state.z[self.pattern.fixed] if xd0 is None else xd0
+        rhs = state.tangent.kfd_dot(xd - d0) + (np.log(lz) - np.log(state.lz)) * self.dres_dlnlz
+        dz = -state.tangent.solve(rhs)
+        return self._state(state.z[self.pattern.free] + dz, xd, state.z)
+
+    def solve(self, start: State, xd: np.ndarray, lz: float, modified: bool = True) -> State:
+        """Equilibrium for the prescribed ``xd`` and ``lz``, continuing from ``start``.
+
+        Parameters
+        ----------
+        start : State
+            A solved state (with its tangent) to start the path from.
+        xd : (d,) float64 ndarray
+            Wanted values of the fixed dofs, units.
+        lz : float
+            Wanted out-of-plane stretch.
+        modified : bool
+            Try modified Newton with the predictor's factorisation first.
+
+        Returns
+        -------
+        State
+
+        Raises
+        ------
+        ConvergenceError
+            If the path cannot be followed even in ``2**MAX_HALVINGS`` steps.
+        """
+        xd0 = start.z[self.pattern.fixed]
+        lnl0, lnl1 = np.log(start.lz), np.log(lz)
+        t, dt, state = 0.0, 1.0, start
+        total = [0, 0]
+        steps = 0
+        while t < 1.0:
+            t1 = min(1.0, t + dt)
+            xd_t = xd0 + t1 * (xd - xd0)
+            lz_t = float(np.exp(lnl0 + t1 * (lnl1 - lnl0)))
+            z = self.predict(state, xd_t, lz_t)
+            new = self.correct(z, lz_t, state.tangent if modified else None)
+            if new is None:
+                dt *= 0.5
+                if dt < 0.5**MAX_HALVINGS:
+                    raise ConvergenceError(
+                        f"hyperelastic: Newton did not converge even with load steps of 1/{2**MAX_HALVINGS} "
+                        f"(stopped at {t:.3g} of the way to the target); the target or the law is too severe"
+                    )
+                continue
+            total[0] += new.iterations[0]
+            total[1] += new.iterations[1]
+            state, t, steps = new, t1, steps + 1
+            dt = min(1.0 - t, 2.0 * dt) if t < 1.0 else dt
+        return State(state.z, state.lz, state.tangent, (total[0], total[1], steps))

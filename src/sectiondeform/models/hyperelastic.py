@@ -1,0 +1,273 @@
+"""The section's mechanics on a coarse mesh: nearly incompressible neo-Hookean, generalised plane strain.
+
+Physics (the same as the fine reference): compressible neo-Hookean with
+bulk/shear ``options.bulk_to_shear`` (default 1000), generalised plane
+strain with the out-of-plane stretch ``lz = 1 / r`` of the area law (a
+volume-preserving section stretched along its length shrinks in area by
+``r``), the lower curve bonded to the target by normalised arc length, the
+rest of the contour traction free.
+
+Prepare (once per section, :class:`HyperelasticPrepared`):
+
+* a coarse body-fitted P2 triangle mesh with about
+  ``options.elements_through_thickness`` (default
+  :data:`DEFAULT_THROUGH_THICKNESS`) elements across the mean thickness T
+  (:func:`~sectiondeform.fem.mesh.coarse_mesh`), every contour corner a node;
+* Taylor-Hood elements (P2 displacement, P1 pressure), which do not lock;
+* the sparse pattern, the tangent at the undeformed state, factorised;
+* the upper points located on the coarse boundary edges
+  (:func:`~sectiondeform.fem.mapping.boundary_weights`).
+
+Place (once per target): the coarse lower nodes go to the target at their
+arc-length fractions; Newton follows the path from the last solved state (or,
+the first time, from the undeformed section moved rigidly onto the target,
+whose tangent is the prepared one rotated) with a linear predictor,
+modified-Newton corrections with the factorisation at hand, full Newton
+when those stall, a line search and automatic load steps. The upper points
+are read off the solved field; a small normal offset (reported in
+``info["area_correction"]``, relative to T) then makes the area law exact.
+
+:meth:`HyperelasticPrepared.preview` is the drag preview: one linear step
+from the last solved state (or the rigidly moved undeformed one) with a
+factorisation that does not depend on the new target, as one dense
+matrix-vector product.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..errors import CaseError
+from ..fem.assembly import MixedNeoHooke, Pattern
+from ..fem.elements import geometry
+from ..fem.mapping import boundary_weights, correct_area, interpolation_matrix, rigid_fit
+from ..fem.mesh import coarse_mesh
+from ..fem.newton import NewtonSolver, State
+from ..laws import Law
+from ..section import Section
+from .base import MeshData, Model, Placement, Prepared
+
+__all__ = ["HyperelasticModel", "HyperelasticPrepared", "MODEL", "DEFAULT_THROUGH_THICKNESS", "DEFAULT_BULK_TO_SHEAR"]
+
+DEFAULT_THROUGH_THICKNESS = 4.0
+DEFAULT_BULK_TO_SHEAR = 1000.0
+DEFAULT_TOLERANCE = 1e-8
+
+
+def _option(options: dict, key: str, default: float) -> float:
+    v = options.get(key, default)
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+        raise CaseError(f"options.{key}", f"must be a finite number > 0, got {v!r}")
+    return float(v)
+
+
+class HyperelasticPrepared(Prepared):
+    """A section meshed and factorised for the hyperelastic model.
+
+    Parameters
+    ----------
+    section : Section
+    through_thickness : float
+        Elements across the mean thickness T (the element size is T / this).
+    bulk_to_shear : float
+        Bulk modulus over shear modulus (> 2/3).
+    tol : float
+        Newton tolerance on the position increment, relative to T.
+
+    Attributes
+    ----------
+    mesh : CoarseMesh
+    solver : NewtonSolver
+    last : State or None
+        The last solved state, the start of the next solve.
+    """
+
+    def __init__(self, section: Section, through_thickness: float = DEFAULT_THROUGH_THICKNESS,
+                 bulk_to_shear: float = DEFAULT_BULK_TO_SHEAR, tol: float = DEFAULT_TOLERANCE):
+        if bulk_to_shear <= 2.0 / 3.0:
+            raise CaseError("options.bulk_to_shear", f"must exceed 2/3 (a positive Lame constant), got {bulk_to_shear!r}")
+        self.section = section
+        T = section.thickness
+        n_low = len(section.lower)
+        mesh = coarse_mesh(section.contour, np.array([0, n_low - 1]), T / through_thickness)
+        self.mesh = mesh
+        geom = geometry(mesh.nodes, mesh.cells)
+        self.physics = MixedNeoHooke(mesh.cells, len(mesh.nodes), geom, bulk_to_shear - 2.0 / 3.0)
+        ring = mesh.ring
+        s_lower = ring.s[:n_low]
+        ids, s = mesh.boundary_nodes_between(0.0, float(s_lower[-1]))
+        self.lower_ids = ids
+        self.lower_interp = interpolation_matrix(np.interp(s, s_lower, section.fractions), section.fractions)
+        n = len(mesh.nodes)
+        fixed = (2 * ids[:, None] + np.arange(2)).ravel()
+        pattern = Pattern(self.physics.edofs, 2 * n + mesh.n_vertices, fixed)
+        self.solver = NewtonSolver(self.physics, pattern, T, tol)
+        # The upper points on the coarse boundary.
+        m = len(section.upper)
+        s_up = ring.s[n_low - 1 : n_low - 1 + m].copy()
+        s_up[-1] = ring.perimeter
+        self.upper_weights = boundary_weights(mesh, s_up, section.upper)
+        # The undeformed state and its factorised tangent.
+        self.z_ref = np.concatenate((mesh.nodes.ravel(), np.zeros(mesh.n_vertices)))
+        fields = self.physics.fields(self.z_ref, 1.0)
+        self.reference = State(self.z_ref, 1.0, self.solver.tangent(fields))
+        self.last: State | None = None
+        self._preview_base = None
+        self.initial_mesh = MeshData(mesh.nodes, mesh.cells, "triangle6")
+        self.quality = {
+            "elements": int(len(mesh.cells)),
+            "nodes": int(n),
+            "unknowns": int(len(pattern.free)),
+            "element_size": float(mesh.size),
+            "through_thickness": float(through_thickness),
+            "jacobian_ratio_min": float(geom.detj_ratio.min()),
+        }
+
+    # -- helpers -----------------------------------------------------------
+    def _fixed_values(self, target_nodes: np.ndarray) -> np.ndarray:
+        return self.lower_interp @ target_nodes  # (k, 2)
+
+    def _rigid_start(self, xd: np.ndarray) -> tuple[State, np.ndarray, np.ndarray]:
+        nodes = self.mesh.nodes
+        q, t = rigid_fit(nodes[self.lower_ids], xd)
+        z = np.concatenate(((nodes @ q.T + t).ravel(), np.zeros(self.mesh.n_vertices)))
+        return State(z, 1.0, self.reference.tangent.rotated(q)), q, t
+
+    def _finish(self, x: np.ndarray, target_nodes: np.ndarray, law: Law, upper: np.ndarray):
+        sec = self.section
+        upper[0], upper[-1] = target_nodes[-1], target_nodes[0]
+        wanted = sec.orientation * law.target_area(sec.area)
+        upper, offset = correct_area(target_nodes, upper, wanted)
+        return upper, offset / sec.thickness
+
+    # -- the model's interface --------------------------------------------
+    def place(self, target_nodes: np.ndarray, law: Law) -> Placement:
+        """Solve the section's equilibrium on ``target_nodes`` ((n, 2), units) under ``law``.
+
+        Raises
+        ------
+        ConvergenceError
+            If Newton fails even with small load steps.
+        LawError
+            If the area cannot be corrected to the law.
+        """
+        target_nodes = np.asarray(target_nodes, dtype=np.float64)
+        lz = law.out_of_plane_stretch(self.section.area)
+        xd = self._fixed_values(target_nodes)
+        warm = self.last is not None
+        start = self.last if warm else self._rigid_start(xd)[0]
+        a0, f0 = self.solver.assemblies, self.solver.factorisations
+        state = self.solver.solve(start, xd.ravel(), lz)
+        self.last = state
+        self._preview_base = None
+        n = len(self.mesh.nodes)
+        x = state.z[: 2 * n].reshape(n, 2)
+        upper, correction = self._finish(x, target_nodes, law, self.upper_weights @ x)
+        quality = self._quality(state)
+        info = {
+            "newton_full": int(state.iterations[0]),
+            "newton_modified": int(state.iterations[1]),
+            "load_steps": int(state.iterations[2]),
+            "factorisations": self.solver.factorisations - f0,
+            "assemblies": self.solver.assemblies - a0,
+            "warm_start": warm,
+            "area_correction": abs(correction),
+            "out_of_plane_stretch": lz,
+        }
+        return Placement(upper, MeshData(x.copy(), self.mesh.cells, "triangle6"), quality, info)
+
+    def _quality(self, state: State) -> dict:
+        f = self.physics.fields(state.z, state.lz)
+        det = np.exp(f.lnj) / state.lz
+        return {"area_stretch_min": float(det.min()), "area_stretch_max": float(det.max())}
+
+    def preview(self, target_nodes: np.ndarray, law: Law) -> Placement:
+        """Drag preview: one linear step from the last solved state, no new factorisation.
+
+        The first call after a solve builds the linear map from the target to
+        the upper points (a few back-substitutions); later calls are one
+        matrix-vector product and the area correction. Before any solve, the
+        step starts from the undeformed section moved rigidly onto the target.
+        The result meets the area law exactly but is only first-order accurate
+        in the change of target: call :meth:`place` when the drag ends.
+
+        Parameters
+        ----------
+        target_nodes : (n, 2) float64 ndarray
+            The target at the lower fractions, units.
+        law : Law
+
+        Returns
+        -------
+        Placement
+            ``final_mesh`` is the base state's mesh (not updated);
+            ``info["preview"]`` is True.
+        """
+        target_nodes = np.asarray(target_nodes, dtype=np.float64)
+        xd = self._fixed_values(target_nodes)
+        base = self._preview_base
+        if base is None:
+            base = self._build_preview(xd)
+            self._preview_base = base
+        state, upper0, xd0, h_d, h_lz, q, t = base
+        if q is not None:  # before any solve: the base is the rigid fit of this target
+            q, t = rigid_fit(self.mesh.nodes[self.lower_ids], xd)
+            upper0 = self.upper_ref @ q.T + t
+            xd0 = self.mesh.nodes[self.lower_ids] @ q.T + t
+        dxd = xd - xd0
+        dlnl = math.log(law.out_of_plane_stretch(self.section.area)) - math.log(state.lz)
+        if q is not None:
+            dxd = dxd @ q
+        du = (h_d @ dxd.ravel() + h_lz * dlnl).reshape(-1, 2)
+        if q is not None:
+            du = du @ q.T
+        upper, correction = self._finish(None, target_nodes, law, upper0 + du)
+        final = MeshData(state.z[: 2 * len(self.mesh.nodes)].reshape(-1, 2), self.mesh.cells, "triangle6")
+        return Placement(upper, final, {}, {"preview": True, "area_correction": abs(correction)})
+
+    def _build_preview(self, xd: np.ndarray):
+        solver = self.solver
+        pat = solver.pattern
+        n = len(self.mesh.nodes)
+        state = self.last if self.last is not None else self.reference
+        tan = state.tangent
+        kfd = tan.kfd.toarray()
+        if tan.rotation is not None:  # a warm state whose tangent is a rotated reference one
+            k = len(pat.fixed)
+            kfd = np.column_stack([tan.kfd_dot(np.eye(k)[:, i]) for i in range(k)])
+        sens = -tan.solve(np.column_stack((kfd, solver.dres_dlnlz))) if tan.rotation is None else -np.column_stack(
+            [tan.solve(c) for c in np.column_stack((kfd, solver.dres_dlnlz)).T]
+        )
+        wx = sp.kron(self.upper_weights, sp.eye(2), format="csr")  # (2m, 2N) on position dofs
+        free_x = pat.free[solver.free_x]
+        resp = wx[:, free_x] @ sens[: len(free_x)] + np.column_stack((wx[:, pat.fixed].toarray(), np.zeros(wx.shape[0])))
+        h_d, h_lz = np.ascontiguousarray(resp[:, :-1]), resp[:, -1].copy()
+        x = state.z[: 2 * n].reshape(n, 2)
+        upper0 = self.upper_weights @ x
+        xd0 = state.z[pat.fixed].reshape(-1, 2)
+        rigid = self.last is None
+        if rigid:
+            self.upper_ref = upper0
+        q = np.eye(2) if rigid else None
+        return state, upper0, xd0, h_d, h_lz, q, None
+
+
+class HyperelasticModel(Model):
+    """The hyperelastic model: ``options.elements_through_thickness``, ``options.bulk_to_shear``."""
+
+    name = "hyperelastic"
+
+    def prepare(self, section: Section, options: dict) -> HyperelasticPrepared:
+        return HyperelasticPrepared(
+            section,
+            through_thickness=_option(options, "elements_through_thickness", DEFAULT_THROUGH_THICKNESS),
+            bulk_to_shear=_option(options, "bulk_to_shear", DEFAULT_BULK_TO_SHEAR),
+            tol=_option(options, "newton_tolerance", DEFAULT_TOLERANCE),
+        )
+
+
+MODEL = HyperelasticModel()
