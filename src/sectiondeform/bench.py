@@ -1,0 +1,605 @@
+"""The speed benchmark: pipeline, re-deformation, scaling, peers and command line, in one run.
+
+:func:`run_benchmark` measures, in one process, medians over repeated runs
+after a warm-up, and returns a JSON-ready report; :func:`to_markdown` turns
+it into the table of ``docs/benchmarks.md``, every figure beside its target.
+``benchmarks/run.py`` and ``sectiondeform bench`` both call :func:`main`.
+
+What is timed:
+
+1. ``pipeline``: ``Deformer(case).deform()`` on each case (discretise,
+   initial mesh, location, final mesh with the area solve, placement), with
+   the stages (section, prepare, deform) timed apart to show where time goes;
+2. ``redeform``: ``deformer.deform(target)`` on the prepared section, the
+   target bent a little further at each step (interactive use);
+3. ``scaling``: locating and placing N points sampled inside the section,
+   N = 10² ... 10⁶ (time, tracemalloc peak), and the pipeline as the element
+   size is halved; the growth exponent is the slope of log time on log N;
+4. ``peers``: an RBF morph (scipy's thin-plate ``RBFInterpolator``) of the
+   same upper points driven by the lower curve's displacement, and the
+   finite-element reference (``sectiondeform.reference.solve_reference``)
+   where it is installed; ratios ours / peer;
+5. ``cli``: wall time of ``sectiondeform deform CASE -o OUT`` as a process.
+
+Times are seconds in the JSON; the Markdown shows ms or µs. No figure is
+asserted anywhere: the benchmark reports, the reader judges.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import tracemalloc
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["run_benchmark", "to_markdown", "main", "TARGETS", "growth_exponent", "median_time"]
+
+# Targets on a 2-core machine (medians); seconds unless named otherwise.
+TARGETS = {
+    "pipeline_paper_s": 2e-3,
+    "redeform_paper_s": 0.2e-3,
+    "locate_place_per_point_s": 0.5e-6,
+    "locate_place_peak_mb": 500.0,
+    "locate_place_exponent": 1.1,
+    "cli_s": 0.4,
+    "rbf_area_error_factor": 1e4,
+    "fe_full_speedup": 1e3,
+    "fe_redeform_speedup": 1e4,
+}
+
+FULL = {"repeats": 30, "warmup": 3, "redeform_steps": 200, "sizes": (100, 1000, 10_000, 100_000, 1_000_000),
+        "refinements": 5, "cli_repeats": 7, "peer_repeats": 20, "fe_repeats": 2}
+QUICK = {"repeats": 3, "warmup": 1, "redeform_steps": 5, "sizes": (100, 1000), "refinements": 2,
+         "cli_repeats": 1, "peer_repeats": 2, "fe_repeats": 1}
+REFERENCE_CASE = "paper-example"
+
+
+def median_time(fn, repeats: int, warmup: int = 1) -> float:
+    """Median wall time of ``fn()`` over ``repeats`` runs after ``warmup`` runs, seconds."""
+    for _ in range(warmup):
+        fn()
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def peak_memory(fn) -> float:
+    """Peak memory allocated (tracemalloc) while ``fn()`` runs, MB."""
+    tracemalloc.start()
+    try:
+        tracemalloc.reset_peak()
+        fn()
+        return tracemalloc.get_traced_memory()[1] / 1e6
+    finally:
+        tracemalloc.stop()
+
+
+def growth_exponent(sizes, times) -> float:
+    """Slope of log(time) on log(size), least squares.
+
+    Examples
+    --------
+    >>> round(growth_exponent([10, 100, 1000], [1.0, 10.0, 100.0]), 6)
+    1.0
+    """
+    return float(np.polyfit(np.log(np.asarray(sizes, float)), np.log(np.asarray(times, float)), 1)[0])
+
+
+def machine_info() -> dict:
+    """Machine, Python and library versions."""
+    import scipy
+    import shapely
+
+    from . import __version__
+
+    return {
+        "date": time.strftime("%Y-%m-%d %H:%M:%S"),
+        "platform": platform.platform(),
+        "processor": platform.processor() or platform.machine(),
+        "cpus": os.cpu_count(),
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "scipy": scipy.__version__,
+        "shapely": shapely.__version__,
+        "sectiondeform": __version__,
+    }
+
+
+# --------------------------------------------------------------------------
+# 1. Pipeline and 2. re-deformation
+
+
+def bench_pipeline(case, cfg: dict) -> dict:
+    """Full pipeline and its stages on one case, medians in seconds."""
+    from .deform import Deformer
+    from .models import get_model
+    from .section import build_section
+
+    r, w = cfg["repeats"], cfg["warmup"]
+    deformer = Deformer(case)
+    section = deformer.section
+    model = get_model(deformer.model_name)
+    result = deformer.deform()
+    return {
+        "case": case.name,
+        "elements": deformer.prepared.quality.get("elements"),
+        "upper_points": int(len(section.upper)),
+        "relative_area_error": float(abs(result.relative_error)),
+        "full_s": median_time(lambda: Deformer(case).deform(), r, w),
+        "section_s": median_time(lambda: build_section(case), r, w),
+        "prepare_s": median_time(lambda: model.prepare(section, case.options), r, w),
+        "deform_s": median_time(deformer.deform, r, w),
+    }
+
+
+def bent_targets(deformer, steps: int, extra: float = 0.1) -> list:
+    """Targets bent a little further each step: lower + (1 + extra * i / steps) (target - lower).
+
+    Returned as polylines (curves), so each re-deformation resamples its target.
+    """
+    from .curves import Polyline
+
+    lower = deformer.section.lower
+    target = deformer.target_nodes()
+    return [Polyline(lower + (1.0 + extra * i / max(steps - 1, 1)) * (target - lower)) for i in range(steps)]
+
+
+def bench_redeform(case, cfg: dict) -> dict:
+    """Median time of ``deformer.deform(target)`` over targets bent further at each step."""
+    from .deform import Deformer
+    from .errors import SectionDeformError
+
+    deformer = Deformer(case)
+    for extra in (0.1, 0.02, 0.0):
+        targets = bent_targets(deformer, cfg["redeform_steps"], extra)
+        try:
+            for t in targets:
+                deformer.deform(t)
+            break
+        except SectionDeformError:
+            continue
+    for t in targets[: cfg["warmup"]]:
+        deformer.deform(t)
+    times = []
+    for _ in range(max(1, cfg["repeats"] // 10)):
+        for t in targets:
+            t0 = time.perf_counter()
+            deformer.deform(t)
+            times.append(time.perf_counter() - t0)
+    last = deformer.deform(targets[-1])
+    return {
+        "case": case.name,
+        "steps": len(targets),
+        "extra_bend": extra,
+        "redeform_s": statistics.median(times),
+        "normal_smoothing_last": float(last.info.get("normal_smoothing", 0.0)),
+    }
+
+
+# --------------------------------------------------------------------------
+# 3. Scaling
+
+
+def sample_inside(deformer, n: int, seed: int = 0) -> np.ndarray:
+    """``(n, 2)`` points drawn uniformly inside both the section and its initial mesh."""
+    import shapely
+
+    section_poly = shapely.Polygon(deformer.section.contour)
+    nodes = deformer.prepared.mesh.nodes
+    ring = np.concatenate((nodes[0], nodes[1:, -1], nodes[-1, ::-1][1:], nodes[-2:0:-1, 0]))
+    region = section_poly.intersection(shapely.Polygon(ring).buffer(0))
+    rng = np.random.default_rng(seed)
+    lo, hi = np.array(region.bounds[:2]), np.array(region.bounds[2:])
+    out, count = [], 0
+    while count < n:
+        x = lo + (hi - lo) * rng.random((max(2 * (n - count), 64), 2))
+        x = x[shapely.contains_xy(region, x[:, 0], x[:, 1])]
+        out.append(x)
+        count += len(x)
+    return np.concatenate(out)[:n]
+
+
+def bench_locate_scaling(case, cfg: dict) -> dict:
+    """Locating N points in the initial mesh and placing them in the final one."""
+    from .deform import Deformer
+    from .locate import locate, place
+
+    deformer = Deformer(case)
+    mesh = deformer.prepared.mesh
+    final = deformer.deform().final_mesh.points
+    rows = []
+    for n in cfg["sizes"]:
+        x = sample_inside(deformer, n)
+
+        def run(x=x):
+            return place(final, locate(mesh.points, mesh.quads, x))
+
+        reps = max(1, min(cfg["repeats"], int(3e5 // n)))
+        t = median_time(run, reps, 1)
+        rows.append({"n": int(n), "time_s": t, "per_point_s": t / n, "peak_mb": peak_memory(run)})
+    sizes = [r["n"] for r in rows]
+    big = [r for r in rows if r["n"] >= 1000] or rows
+    return {
+        "case": case.name,
+        "elements": int(len(mesh.quads)),
+        "rows": rows,
+        "exponent": growth_exponent(sizes, [r["time_s"] for r in rows]),
+        "exponent_n_ge_1000": growth_exponent([r["n"] for r in big], [r["time_s"] for r in big]) if len(big) > 1 else None,
+    }
+
+
+def bench_refinement(case, cfg: dict) -> dict:
+    """The full pipeline as the element size is halved again and again."""
+    from .deform import Deformer
+
+    h0 = Deformer(case).section.element_size
+    rows = []
+    for level in range(cfg["refinements"]):
+        h = h0 / 2**level
+        d = Deformer(case, element_size=h)
+        reps = max(1, cfg["repeats"] // 2**level)
+        t = median_time(lambda h=h: Deformer(case, element_size=h).deform(), reps, 1)
+        rows.append({
+            "element_size": h,
+            "elements": int(d.prepared.quality["elements"]),
+            "full_s": t,
+            "redeform_s": median_time(d.deform, reps, 1),
+            "peak_mb": peak_memory(lambda h=h: Deformer(case, element_size=h).deform()),
+        })
+    els = [r["elements"] for r in rows]
+    return {
+        "case": case.name,
+        "rows": rows,
+        "exponent": growth_exponent(els, [r["full_s"] for r in rows]) if len(rows) > 1 else None,
+    }
+
+
+# --------------------------------------------------------------------------
+# 4. Peers
+
+
+def rbf_morph(lower: np.ndarray, target_nodes: np.ndarray, upper: np.ndarray) -> tuple[np.ndarray, str]:
+    """Upper points moved by a thin-plate RBF of the lower nodes' displacement.
+
+    A straight lower curve makes the linear polynomial part singular; the
+    morph then falls back to a constant one (noted in the returned string).
+    """
+    import warnings
+
+    from scipy.interpolate import RBFInterpolator
+
+    disp = target_nodes - lower
+    try:
+        rbf = RBFInterpolator(lower, disp, kernel="thin_plate_spline", degree=1)
+        note = "degree 1"
+    except np.linalg.LinAlgError:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            rbf = RBFInterpolator(lower, disp, kernel="thin_plate_spline", degree=0)
+        note = "degree 0 (collinear lower nodes make the linear part singular)"
+    return upper + rbf(upper), note
+
+
+def bench_rbf(case, cfg: dict, ours: dict, ours_redeform: dict) -> dict:
+    """The RBF morph of the same section onto the same target: time and area error."""
+    from .deform import Deformer
+    from .section import polygon_area
+
+    deformer = Deformer(case)
+    sec = deformer.section
+    nodes = deformer.target_nodes()
+    upper, note = rbf_morph(sec.lower, nodes, sec.upper)
+    wanted = case.law.target_area(sec.area)
+    err = abs(abs(polygon_area(np.concatenate((nodes, upper[1:-1])))) - wanted) / wanted
+    t = median_time(lambda: rbf_morph(sec.lower, nodes, sec.upper), cfg["peer_repeats"], 1)
+    ours_err = max(ours["relative_area_error"], 1e-17)
+    return {
+        "case": case.name,
+        "rbf_s": t,
+        "rbf_note": note,
+        "rbf_area_error": float(err),
+        "ours_area_error": ours["relative_area_error"],
+        "area_error_factor": float(err / ours_err),
+        "ratio_full": ours["full_s"] / t,
+        "ratio_redeform": ours_redeform["redeform_s"] / t,
+    }
+
+
+def bench_fe(case, cfg: dict, ours: dict, ours_redeform: dict) -> dict:
+    """The finite-element reference, where installed: time and ratios."""
+    try:
+        from .reference import solve_reference
+    except ImportError as exc:
+        return {"case": case.name, "available": False, "note": f"sectiondeform.reference.solve_reference not importable ({exc})"}
+    try:
+        t = median_time(lambda: solve_reference(case), cfg["fe_repeats"], 0)
+    except Exception as exc:  # the reference is someone else's work in progress: report, do not fail
+        return {"case": case.name, "available": False, "note": f"solve_reference(case) failed: {type(exc).__name__}: {exc}"}
+    return {
+        "case": case.name,
+        "available": True,
+        "fe_s": t,
+        "speedup_full": t / ours["full_s"],
+        "speedup_redeform": t / ours_redeform["redeform_s"],
+    }
+
+
+# --------------------------------------------------------------------------
+# 5. Command line
+
+
+def _cli_command() -> list[str]:
+    script = Path(sys.executable).with_name("sectiondeform")
+    return [str(script)] if script.exists() else [sys.executable, "-m", "sectiondeform"]
+
+
+def bench_cli(case_path: Path, cfg: dict) -> dict:
+    """Wall time of ``sectiondeform deform CASE -o OUT`` and of a bare interpreter, medians."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "result.json"
+        cmd = _cli_command() + ["deform", str(case_path), "-o", str(out)]
+
+        def run(args):
+            subprocess.run(args, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+        reps = cfg["cli_repeats"]
+        return {
+            "case": case_path.stem,
+            "command": "sectiondeform deform CASE -o OUT",
+            "cli_s": median_time(lambda: run(cmd), reps, 1),
+            "python_bare_s": median_time(lambda: run([sys.executable, "-c", "pass"]), reps, 1),
+            "import_s": median_time(lambda: run([sys.executable, "-c", "import sectiondeform.cli"]), reps, 1),
+        }
+
+
+# --------------------------------------------------------------------------
+# The run
+
+
+def default_cases_dir() -> Path:
+    """``benchmarks/cases`` of the source tree when it exists, else the packaged example's folder."""
+    here = Path(__file__).resolve().parents[2] / "benchmarks" / "cases"
+    if here.is_dir():
+        return here
+    from . import example_case_path
+
+    return example_case_path().parent
+
+
+def profile_text(case, seconds: float = 2.0) -> str | None:
+    """pyinstrument's view of the pipeline on ``case`` (None without pyinstrument)."""
+    try:
+        from pyinstrument import Profiler
+    except ImportError:
+        return None
+    from .deform import Deformer
+
+    profiler = Profiler(interval=1e-4)
+    profiler.start()
+    t0 = time.perf_counter()
+    while time.perf_counter() - t0 < seconds:
+        Deformer(case).deform()
+    profiler.stop()
+    return profiler.output_text(unicode=False, color=False, show_all=False)
+
+
+def run_benchmark(cases_dir=None, quick: bool = False, profile: bool = True, log=print) -> dict:
+    """Measure everything once; returns the report (JSON-ready dict).
+
+    Parameters
+    ----------
+    cases_dir : path, optional
+        Folder of case JSON files (default :func:`default_cases_dir`).
+    quick : bool
+        Few repetitions and small N: a smoke run for CI.
+    profile : bool
+        Add pyinstrument's profile of the pipeline (full mode only).
+    log : callable
+        Progress messages.
+    """
+    from .case import load_case
+
+    cfg = QUICK if quick else FULL
+    paths = sorted(Path(cases_dir or default_cases_dir()).glob("*.json"))
+    cases = {p.stem: load_case(p) for p in paths}
+    ref_name = REFERENCE_CASE if REFERENCE_CASE in cases else next(iter(cases))
+    ref = cases[ref_name]
+    report = {"format": "sectiondeform-bench/1", "quick": quick, "config": {k: list(v) if isinstance(v, tuple) else v for k, v in cfg.items()},
+              "machine": machine_info(), "reference_case": ref_name}
+    log("pipeline ...")
+    report["pipeline"] = [bench_pipeline(c, cfg) for c in cases.values()]
+    log("re-deformation ...")
+    report["redeform"] = [bench_redeform(c, cfg) for c in cases.values()]
+    log("scaling ...")
+    report["locate_scaling"] = bench_locate_scaling(ref, cfg)
+    report["refinement"] = bench_refinement(ref, cfg)
+    log("peers ...")
+    ours = next(r for r in report["pipeline"] if r["case"] == ref_name)
+    ours_re = next(r for r in report["redeform"] if r["case"] == ref_name)
+    report["rbf"] = bench_rbf(ref, cfg, ours, ours_re)
+    report["fe"] = bench_fe(ref, cfg, ours, ours_re)
+    log("command line ...")
+    report["cli"] = bench_cli(paths[[p.stem for p in paths].index(ref_name)], cfg)
+    report["targets"] = check_targets(report)
+    if profile and not quick:
+        report["profile"] = profile_text(ref)
+    return report
+
+
+def check_targets(report: dict) -> list[dict]:
+    """Every target with the measured figure and whether it is met."""
+    T = TARGETS
+    ref = report["reference_case"]
+    pipe = next(r for r in report["pipeline"] if r["case"] == ref)
+    red = next(r for r in report["redeform"] if r["case"] == ref)
+    loc = report["locate_scaling"]
+    last = loc["rows"][-1]
+    rbf, fe, cli = report["rbf"], report["fe"], report["cli"]
+    rows = [
+        ("full pipeline, " + ref, pipe["full_s"], "<=", T["pipeline_paper_s"], "s"),
+        ("re-deformation, " + ref, red["redeform_s"], "<=", T["redeform_paper_s"], "s"),
+        (f"locate + place per point, N = {last['n']:.0e}", last["per_point_s"], "<=", T["locate_place_per_point_s"], "s"),
+        (f"locate + place peak memory, N = {last['n']:.0e}", last["peak_mb"], "<=", T["locate_place_peak_mb"], "MB"),
+        ("locate + place growth exponent", loc["exponent"], "<=", T["locate_place_exponent"], ""),
+        ("command line, whole process", cli["cli_s"], "<=", T["cli_s"], "s"),
+        ("re-deformation / RBF morph time", rbf["ratio_redeform"], "<", 1.0, "x"),
+        ("RBF area error / ours", rbf["area_error_factor"], ">=", T["rbf_area_error_factor"], "x"),
+    ]
+    if fe.get("available"):
+        rows += [
+            ("FE reference / full pipeline", fe["speedup_full"], ">=", T["fe_full_speedup"], "x"),
+            ("FE reference / re-deformation", fe["speedup_redeform"], ">=", T["fe_redeform_speedup"], "x"),
+        ]
+    out = []
+    for name, value, op, target, unit in rows:
+        met = value <= target if op == "<=" else value < target if op == "<" else value >= target
+        out.append({"figure": name, "value": float(value), "op": op, "target": float(target), "unit": unit, "met": bool(met)})
+    return out
+
+
+# --------------------------------------------------------------------------
+# Markdown
+
+
+def _fmt(value: float | None, unit: str = "s") -> str:
+    if value is None or not math.isfinite(value):
+        return "-"
+    if unit == "s":
+        if value >= 1:
+            return f"{value:.2f} s"
+        if value >= 1e-3:
+            return f"{value * 1e3:.2f} ms"
+        return f"{value * 1e6:.2f} µs" if value < 1e-4 else f"{value * 1e3:.3f} ms"
+    if unit == "MB":
+        return f"{value:.1f} MB"
+    if unit == "x":
+        return f"{value:.3g}×"
+    return f"{value:.3g}"
+
+
+def to_markdown(report: dict, changes: str = "") -> str:
+    """The report as Markdown: machine, targets, then each section's table."""
+    m = report["machine"]
+    lines = [
+        "# Benchmarks",
+        "",
+        f"Produced by `python benchmarks/run.py{' --quick' if report['quick'] else ''}` "
+        f"(same as `sectiondeform bench`) on {m['date']}, in one process and one run; "
+        "every time is a median over repeated runs after a warm-up.",
+        "",
+        f"Machine: {m['platform']}, {m['processor']}, {m['cpus']} CPUs (shared with other work). "
+        f"Python {m['python']}, numpy {m['numpy']}, scipy {m['scipy']}, shapely {m['shapely']}, "
+        f"sectiondeform {m['sectiondeform']}.",
+        "",
+        "## Targets",
+        "",
+        "| figure | measured | target | |",
+        "|---|---|---|---|",
+    ]
+    for t in report["targets"]:
+        lines.append(f"| {t['figure']} | {_fmt(t['value'], t['unit'])} | {t['op']} {_fmt(t['target'], t['unit'])} | "
+                     f"{'met' if t['met'] else '**missed**'} |")
+    if not report["fe"].get("available"):
+        lines += ["", f"FE reference: not measured ({report['fe']['note']})."]
+    lines += ["", "## 1. Full pipeline (`Deformer(case).deform()`)", "",
+              "| case | elements | upper points | full | section | prepare (mesh + location) | deform | area error |",
+              "|---|---|---|---|---|---|---|---|"]
+    for r in report["pipeline"]:
+        lines.append(f"| {r['case']} | {r['elements']} | {r['upper_points']} | {_fmt(r['full_s'])} | {_fmt(r['section_s'])} | "
+                     f"{_fmt(r['prepare_s'])} | {_fmt(r['deform_s'])} | {r['relative_area_error']:.1e} |")
+    lines += ["", "## 2. Re-deformation (`deformer.deform(target)`, the target bent further at each step)", "",
+              "| case | steps | extra bend | per re-deformation | normal smoothing (last) |", "|---|---|---|---|---|"]
+    for r in report["redeform"]:
+        lines.append(f"| {r['case']} | {r['steps']} | {r['extra_bend']:.0%} | {_fmt(r['redeform_s'])} | {r['normal_smoothing_last']:g} |")
+    loc = report["locate_scaling"]
+    lines += ["", f"## 3. Scaling ({loc['case']})", "",
+              f"Locating N points (sampled inside the section) in the initial mesh ({loc['elements']} elements) "
+              "and placing them in the final mesh; peak memory by tracemalloc.", "",
+              "| N | time | per point | peak memory |", "|---|---|---|---|"]
+    for r in loc["rows"]:
+        lines.append(f"| {r['n']:.0e} | {_fmt(r['time_s'])} | {_fmt(r['per_point_s'])} | {_fmt(r['peak_mb'], 'MB')} |")
+    lines += ["", f"Growth exponent (log time on log N): {loc['exponent']:.3f} over all N"
+              + (f", {loc['exponent_n_ge_1000']:.3f} for N ≥ 1000." if loc.get("exponent_n_ge_1000") is not None else ".")]
+    ref = report["refinement"]
+    lines += ["", "Full pipeline as the element size is halved:", "",
+              "| element size | elements | full pipeline | re-deformation | peak memory |", "|---|---|---|---|---|"]
+    for r in ref["rows"]:
+        lines.append(f"| {r['element_size']:.4g} | {r['elements']} | {_fmt(r['full_s'])} | {_fmt(r['redeform_s'])} | {_fmt(r['peak_mb'], 'MB')} |")
+    if ref["exponent"] is not None:
+        lines += ["", f"Growth exponent (log time on log elements): {ref['exponent']:.3f}."]
+    rbf, fe = report["rbf"], report["fe"]
+    lines += ["", f"## 4. Peers ({rbf['case']})", "",
+              "| method | time | relative area error | ours / peer (full) | ours / peer (re-deformation) |", "|---|---|---|---|---|",
+              f"| ours | {_fmt(next(r['full_s'] for r in report['pipeline'] if r['case'] == rbf['case']))} full, "
+              f"{_fmt(next(r['redeform_s'] for r in report['redeform'] if r['case'] == rbf['case']))} re-deformation | "
+              f"{rbf['ours_area_error']:.1e} | | |",
+              f"| RBF morph, thin-plate, {rbf['rbf_note']} | {_fmt(rbf['rbf_s'])} | {rbf['rbf_area_error']:.1e} | "
+              f"{rbf['ratio_full']:.3g} | {rbf['ratio_redeform']:.3g} |"]
+    if fe.get("available"):
+        lines.append(f"| FE reference | {_fmt(fe['fe_s'])} | | {1 / fe['speedup_full']:.3g} | {1 / fe['speedup_redeform']:.3g} |")
+    else:
+        lines.append(f"| FE reference | not measured | | | |")
+    cli = report["cli"]
+    lines += ["", "## 5. Command line", "",
+              "| process | wall time |", "|---|---|",
+              f"| `{cli['command']}` ({cli['case']}) | {_fmt(cli['cli_s'])} |",
+              f"| `python -c 'import sectiondeform.cli'` | {_fmt(cli['import_s'])} |",
+              f"| `python -c pass` | {_fmt(cli['python_bare_s'])} |"]
+    if changes:
+        lines += ["", changes.strip()]
+    if report.get("profile"):
+        lines += ["", f"## Profile of the full pipeline ({report['reference_case']}, pyinstrument)", "", "```",
+                  report["profile"].strip(), "```"]
+    return "\n".join(lines) + "\n"
+
+
+def _json_default(obj):
+    if isinstance(obj, (np.floating, np.integer)):
+        return obj.item()
+    raise TypeError(f"cannot write {type(obj).__name__} to JSON")
+
+
+def add_args(parser) -> None:
+    """Options shared by ``benchmarks/run.py`` and ``sectiondeform bench``."""
+    parser.add_argument("--quick", action="store_true", help="few repetitions and small N (CI smoke run)")
+    parser.add_argument("--cases", type=Path, help="folder of case files (default: benchmarks/cases)")
+    parser.add_argument("--json", type=Path, default=Path("docs/benchmarks.json"), help="JSON report to write")
+    parser.add_argument("--markdown", type=Path, default=Path("docs/benchmarks.md"), help="Markdown table to write")
+    parser.add_argument("--changes", type=Path, help="Markdown file appended to the table (what changed, what it gained)")
+    parser.add_argument("--no-profile", action="store_true", help="leave pyinstrument's profile out")
+
+
+def run(args) -> int:
+    """Run the benchmark with parsed ``args``; write the JSON and the Markdown."""
+    report = run_benchmark(args.cases, quick=args.quick, profile=not args.no_profile, log=lambda s: print(s, file=sys.stderr))
+    changes = args.changes.read_text(encoding="utf-8") if args.changes else ""
+    for path in (args.json, args.markdown):
+        path.parent.mkdir(parents=True, exist_ok=True)
+    args.json.write_text(json.dumps(report, indent=1, default=_json_default) + "\n", encoding="utf-8")
+    args.markdown.write_text(to_markdown(report, changes), encoding="utf-8")
+    for t in report["targets"]:
+        print(f"{t['figure']:45s} {_fmt(t['value'], t['unit']):>12s}  {t['op']} {_fmt(t['target'], t['unit']):>10s}  "
+              f"{'met' if t['met'] else 'MISSED'}")
+    print(f"wrote {args.json} and {args.markdown}")
+    return 0
+
+
+def main(argv=None) -> int:
+    """``benchmarks/run.py``: parse ``argv`` and :func:`run`."""
+    import argparse
+
+    parser = argparse.ArgumentParser(prog="benchmarks/run.py", description=__doc__.splitlines()[0])
+    add_args(parser)
+    return run(parser.parse_args(argv))
