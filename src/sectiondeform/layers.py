@@ -32,7 +32,6 @@ from functools import cached_property
 
 import numpy as np
 import shapely
-from scipy.linalg import solveh_banded
 
 from .errors import MeshError
 
@@ -42,6 +41,7 @@ __all__ = [
     "node_frames",
     "end_frames",
     "quad_jacobians",
+    "grid_jacobians",
     "SMOOTHING_WEIGHTS",
 ]
 
@@ -87,7 +87,7 @@ class LayeredMesh:
 
     def jacobians(self) -> np.ndarray:
         """Corner Jacobians (twice the corner triangle areas), ``(M, 4)``, units²."""
-        return quad_jacobians(self.points, self.quads)
+        return grid_jacobians(self.nodes, self.orientation)
 
 
 def structured_quads(n_layers: int, n_nodes: int, orientation: int = 1) -> np.ndarray:
@@ -127,6 +127,38 @@ def quad_jacobians(points: np.ndarray, quads: np.ndarray) -> np.ndarray:
     return e_next[..., 0] * e_prev[..., 1] - e_next[..., 1] * e_prev[..., 0]
 
 
+def _cross(a, b):
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def grid_jacobians(nodes: np.ndarray, orientation: int = 1) -> np.ndarray:
+    """:func:`quad_jacobians` of a layered grid, without gathering: ``(L * (n - 1), 4)``.
+
+    Equal, value for value and in the same order, to
+    ``quad_jacobians(nodes.reshape(-1, 2), structured_quads(L, n, orientation))``,
+    from the grid's horizontal and vertical edges.
+
+    Parameters
+    ----------
+    nodes : (L + 1, n, 2) float64 ndarray
+    orientation : int
+
+    Examples
+    --------
+    >>> g = np.array([[[0.0, 0.0], [1.0, 0.0]], [[0.0, 1.0], [1.0, 1.0]]])
+    >>> grid_jacobians(g).tolist()
+    [[1.0, 1.0, 1.0, 1.0]]
+    """
+    h = np.diff(nodes, axis=1)  # along the layers, (L + 1, n - 1, 2)
+    v = np.diff(nodes, axis=0)  # up the columns, (L, n, 2)
+    h0, h1, v0, v1 = h[:-1], h[1:], v[:, :-1], v[:, 1:]
+    if orientation < 0:
+        jac = (-_cross(h0, v1), -_cross(h0, v0), -_cross(h1, v0), -_cross(h1, v1))
+    else:
+        jac = (_cross(h0, v0), _cross(h0, v1), _cross(h1, v1), _cross(h1, v0))
+    return np.stack(jac, axis=-1).reshape(-1, 4)
+
+
 def node_frames(line: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndarray]:
     """Unit tangent and inward unit normal at each node of a polyline.
 
@@ -164,26 +196,59 @@ class _Smoother:
 
     K is the second-difference operator, W weights the two ends ``end_weight``
     times more than the interior so they stay on their prescribed lines.
+    The operator of each weight is built once and kept: where the system is
+    small and well conditioned (``n <= DENSE_MAX``, ``lam <= DENSE_MAX_WEIGHT``)
+    the dense matrix (W + lam K'K)^-1 W, one product per call; otherwise its
+    banded Cholesky factor (scipy's LAPACK, as ``solveh_banded`` uses,
+    imported only then).
     """
+
+    DENSE_MAX = 200
+    DENSE_MAX_WEIGHT = 50.0
 
     def __init__(self, n: int, end_weight: float = 1e4):
         self.n = n
         w = np.ones(n)
         w[0] = w[-1] = end_weight
         self.w = w
-        k = np.diff(np.eye(n), 2, axis=0)
-        ktk = k.T @ k
-        self.bands = [np.diagonal(ktk, d).copy() for d in range(3)]
+        self._ops = {}
+
+    def _bands(self, lam: float) -> np.ndarray:
+        """Upper banded form of W + lam K'K, ``(3, n)``: K'K has bands (1, -4, 6, ..., 6, -4, 1)."""
+        n = self.n
+        ktk = np.full(n, 6.0)
+        ktk[[0, -1]], ktk[[1, -2]] = 1.0, 5.0
+        off1 = np.full(n - 1, -4.0)
+        off1[[0, -1]] = -2.0
+        ab = np.zeros((3, n))
+        ab[2] = self.w + lam * ktk
+        ab[1, 1:] = lam * off1
+        ab[0, 2:] = lam
+        return ab
+
+    def _operator(self, lam: float) -> tuple[bool, np.ndarray]:
+        """``(dense, op)`` for ``lam``, built on first use."""
+        if lam not in self._ops:
+            ab = self._bands(lam)
+            if self.n <= self.DENSE_MAX and lam <= self.DENSE_MAX_WEIGHT:
+                a = np.diag(ab[2]) + np.diag(ab[1, 1:], 1) + np.diag(ab[1, 1:], -1)
+                a += np.diag(ab[0, 2:], 2) + np.diag(ab[0, 2:], -2)
+                self._ops[lam] = (True, np.linalg.solve(a, np.diag(self.w)))
+            else:
+                from scipy.linalg import cholesky_banded
+
+                self._ops[lam] = (False, cholesky_banded(ab, check_finite=False))
+        return self._ops[lam]
 
     def __call__(self, g: np.ndarray, lam: float) -> np.ndarray:
-        n = self.n
-        if n < 3 or lam == 0:
+        if self.n < 3 or lam == 0:
             return g
-        ab = np.zeros((3, n))
-        ab[2] = self.w + lam * self.bands[0]
-        ab[1, 1:] = lam * self.bands[1]
-        ab[0, 2:] = lam * self.bands[2]
-        return solveh_banded(ab, self.w[:, None] * g, check_finite=False)
+        dense, op = self._operator(lam)
+        if dense:
+            return op @ g
+        from scipy.linalg import cho_solve_banded
+
+        return cho_solve_banded((op, False), self.w[:, None] * g, check_finite=False)
 
 
 def end_frames(base: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndarray]:
@@ -227,9 +292,37 @@ def _end_direction(dirs: np.ndarray, outward: np.ndarray, k: int, deg: float) ->
     return math.cos(a) * dirs[k] + math.sin(a) * outward[k]
 
 
-def _outline(nodes: np.ndarray) -> shapely.Polygon:
-    ring = np.concatenate((nodes[0], nodes[1:, -1], nodes[-1, ::-1][1:], nodes[-2:0:-1, 0]))
-    return shapely.Polygon(ring)
+def _distance_to_polyline(line: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Distance of each point of ``x`` ``(m, 2)`` to the polyline ``line`` ``(n, 2)``, ``(m,)``."""
+    ax, ay = line[:-1, 0], line[:-1, 1]
+    dx, dy = np.diff(line[:, 0]), np.diff(line[:, 1])
+    dd = dx * dx + dy * dy
+    rx, ry = x[:, :1] - ax, x[:, 1:] - ay  # (m, n - 1)
+    t = np.clip((rx * dx + ry * dy) / np.where(dd > 0, dd, 1.0), 0.0, 1.0)
+    gx, gy = rx - t * dx, ry - t * dy
+    return np.sqrt(np.min(gx * gx + gy * gy, axis=1))
+
+
+def _in_strip(below: np.ndarray, new: np.ndarray, orientation: int, x: np.ndarray, tol: float) -> np.ndarray:
+    """Which points of ``x`` ``(m, 2)`` lie in the strip of elements between two layers, ``(m,)`` bool.
+
+    The elements are convex (all corner Jacobians positive), so a point is
+    in one when it is on the inner side of its four edges, within ``tol``.
+    Only points in the strip's bounding box, and then only the (point,
+    element) pairs whose bounding boxes meet, are tested.
+    """
+    corners = np.stack((below[:-1], below[1:], new[1:], new[:-1]), axis=1)  # (n - 1, 4, 2)
+    lo, hi = corners.min(axis=1) - tol, corners.max(axis=1) + tol
+    inside = np.zeros(len(x), dtype=bool)
+    cand = np.flatnonzero(np.all((x >= lo.min(axis=0)) & (x <= hi.max(axis=0)), axis=1))
+    xc = x[cand]
+    near = (xc[:, None, 0] >= lo[:, 0]) & (xc[:, None, 0] <= hi[:, 0]) & (xc[:, None, 1] >= lo[:, 1]) & (xc[:, None, 1] <= hi[:, 1])
+    p, e = np.nonzero(near)
+    c = corners[e]
+    edges = np.roll(c, -1, axis=1) - c
+    side = orientation * _cross(edges, xc[p][:, None] - c) + tol * np.hypot(edges[..., 0], edges[..., 1])
+    inside[cand[p[np.all(side >= 0, axis=1)]]] = True
+    return inside
 
 
 def grow_mesh(
@@ -270,7 +363,8 @@ def grow_mesh(
     """
     base = np.asarray(base, dtype=np.float64)
     cover = np.asarray(cover, dtype=np.float64)
-    reach = float(np.max(shapely.distance(shapely.LineString(base), shapely.points(cover))))
+    distance = _distance_to_polyline(base, cover)
+    reach = float(np.max(distance))
     if max_layers is None:
         max_layers = int(math.ceil(2.0 * reach / height)) + 4
     splay = list(_splay_needed(base, orientation, cover))
@@ -278,7 +372,7 @@ def grow_mesh(
     frames = end_frames(base, orientation)
     while True:
         dirs = (_end_direction(*frames, 0, splay[0]), _end_direction(*frames, 1, splay[1]))
-        nodes, missing = _grow(base, height, orientation, cover, tol, max_layers, smoother, dirs)
+        nodes, missing = _grow(base, height, orientation, cover, distance > tol, tol, max_layers, smoother, dirs)
         if not missing.size:
             return LayeredMesh(nodes, orientation)
         # Splay the end nearest to the uncovered points further, or give up.
@@ -297,11 +391,9 @@ def grow_mesh(
             )
 
 
-def _grow(base, height, orientation, cover, tol, max_layers, smoother, end_dirs):
+def _grow(base, height, orientation, cover, off_base, tol, max_layers, smoother, end_dirs):
     layers = [base]
-    todo = np.arange(len(cover))
-    on_base = shapely.dwithin(shapely.LineString(base), shapely.points(cover), tol)
-    todo = todo[~on_base]
+    todo = np.flatnonzero(off_base)
     while todo.size and len(layers) <= max_layers:
         below = layers[-1]
         _, n = node_frames(below, orientation)
@@ -311,8 +403,7 @@ def _grow(base, height, orientation, cover, tol, max_layers, smoother, end_dirs)
         for lam in SMOOTHING_WEIGHTS:
             new = smoother(raw, lam)
             new[0], new[-1] = raw[0], raw[-1]
-            strip = np.stack((below, new))
-            jac = quad_jacobians(strip.reshape(-1, 2), structured_quads(1, len(base), orientation))
+            jac = grid_jacobians(np.stack((below, new)), orientation)
             if jac.min() > 1e-9 * height * height and shapely.LineString(new).is_simple:
                 break
         else:
@@ -322,7 +413,5 @@ def _grow(base, height, orientation, cover, tol, max_layers, smoother, end_dirs)
                 "element size: lower options.element_size or smooth the lower curve"
             )
         layers.append(new)
-        outline = _outline(np.stack(layers))
-        inside = shapely.dwithin(outline, shapely.points(cover[todo]), tol)
-        todo = todo[~inside]
+        todo = todo[~_in_strip(below, new, orientation, cover[todo], tol)]
     return np.stack(layers), todo
