@@ -1,21 +1,26 @@
 """Vectorised assembly of the mixed neo-Hookean problem, generalised plane strain.
 
-Per unit reference area and unit length out of plane, with shear modulus 1
-(the shape does not depend on it: only displacements are prescribed) and
-``lam`` the first Lame constant (bulk/shear - 2/3)::
+The material is the reference's (:mod:`sectiondeform.reference.solver`):
+per unit reference area and unit length out of plane, with shear modulus 1
+(the shape does not depend on it: only positions are prescribed) and bulk
+modulus ``kappa``::
 
-    F3 = [[F, 0], [0, lz]],   J = lz det F
-    psi(F, p) = (|F|^2 + lz^2 - 3) / 2 - ln J + p ln J - p^2 / (2 lam)
+    F3 = [[F, 0], [0, lz]],   J = lz det F,   I1 = |F|^2 + lz^2,   a = J^(-2/3)
+    psi(F, p) = (a I1 - 3) / 2 + p (J - 1) - p^2 / (2 kappa)
 
-the compressible neo-Hookean energy ``(I1 - 3)/2 - ln J + lam (ln J)^2 / 2``
+the decoupled compressible neo-Hookean energy ``(a I1 - 3)/2 + kappa (J - 1)^2 / 2``
 with its volumetric part written through an independent pressure ``p``
-(stationarity in p gives p = lam ln J). The out-of-plane stretch ``lz`` is
-given (1 / area ratio). With ``g_a = F^-T grad N_a`` (spatial gradients)::
+(stationarity in p gives p = kappa (J - 1)). The out-of-plane stretch ``lz``
+is given (1 / area ratio). With ``g_a = F^-T grad N_a`` (spatial gradients)
+and ``h_a = F grad N_a``::
 
-    R_x[a, i] = sum_q w (F grad N_a + (p - 1) g_a)_i
-    R_p[b]    = sum_q w M_b (ln J - p / lam)
-    K_xx[a i, b k] = sum_q w (delta_ik grad N_a . grad N_b - (p - 1) g_ak g_bi)
-    K_xp[a i, b]   = sum_q w g_ai M_b,      K_pp = -sum_q w M_a M_b / lam
+    P = a (F - I1 F^-T / 3) + p J F^-T
+    R_x[a, i] = sum_q w (P grad N_a)_i,      R_p[b] = sum_q w M_b (J - 1 - p / kappa)
+    K_xx[a i, b k] = sum_q w ( a delta_ik grad N_a . grad N_b
+                               - 2a/3 (h_ai g_bk + g_ai h_bk)
+                               + (2 a I1 / 9 + p J) g_ai g_bk
+                               + (a I1 / 3 - p J) g_ak g_bi )
+    K_xp[a i, b] = sum_q w J g_ai M_b,       K_pp = -sum_q w M_a M_b / kappa
 
 Every quantity is computed for all elements and quadrature points at once
 (arrays ``(E, q, ...)``); element matrices go into a fixed sparse pattern by
@@ -42,17 +47,20 @@ class Fields:
     ----------
     F : (E, q, 2, 2) float64 ndarray
         In-plane deformation gradient.
-    g : (E, q, 6, 2) float64 ndarray
-        Spatial gradients of the shape functions, ``grad N F^-1``.
-    lnj : (E, q) float64 ndarray
-        ln J with J = lz det F.
+    det : (E, q) float64 ndarray
+        det F (the in-plane area stretch).
+    J : (E, q) float64 ndarray
+        Volume ratio ``lz det F``.
+    i1 : (E, q) float64 ndarray
+        ``|F|^2 + lz^2``.
     p : (E, q) float64 ndarray
         Pressure at the quadrature points (units of the shear modulus).
     """
 
     F: np.ndarray
-    g: np.ndarray
-    lnj: np.ndarray
+    det: np.ndarray
+    J: np.ndarray
+    i1: np.ndarray
     p: np.ndarray
 
 
@@ -67,61 +75,118 @@ class MixedNeoHooke:
         Number of displacement nodes N.
     geom : Geometry
         Shape-function gradients and weights at the quadrature points.
-    lam : float
-        First Lame constant over the shear modulus.
+    kappa : float
+        Bulk modulus over the shear modulus.
 
     Notes
     -----
     The unknown vector is ``z = [x (2 N, node-major), p (n_vertices)]`` with
     ``x`` the deformed node positions; the element dofs are
     ``(x0, y0, ..., x5, y5, p0, p1, p2)``.
+
+    The deformation gradients at all quadrature points are one sparse
+    product ``B x`` (``B`` of shape ``(4 E q, 2 N)``, built once), and the
+    assembled position residual is ``B^T (w P)``: no element loop and no
+    scatter for the residual, the cheap part of a warm re-solve.
     """
 
-    def __init__(self, cells: np.ndarray, n_nodes: int, geom: Geometry, lam: float):
+    def __init__(self, cells: np.ndarray, n_nodes: int, geom: Geometry, kappa: float):
         self.cells = cells
         self.n_nodes = n_nodes
         self.geom = geom
-        self.lam = float(lam)
-        e = len(cells)
+        self.kappa = float(kappa)
+        e, q = geom.weight.shape
+        self.n_vertices = int(cells[:, :3].max()) + 1
         xd = (2 * cells[:, :, None] + np.arange(2)).reshape(e, 12)
         self.edofs = np.concatenate((xd, 2 * n_nodes + cells[:, :3]), axis=1)
         G, w, M = geom.grad, geom.weight, geom.pvalues
+        # B[(e, q, i, j), 2 node + i] = G[e, q, a, j]
+        rows = (((np.arange(e)[:, None, None, None, None] * q + np.arange(q)[None, :, None, None, None]) * 2
+                 + np.arange(2)[None, None, None, :, None]) * 2 + np.arange(2)[None, None, None, None, :])
+        cols = 2 * cells[:, None, :, None, None] + np.arange(2)[None, None, None, :, None]
+        vals = G[:, :, :, None, :]
+        shape5 = (e, q, 6, 2, 2)
+        self.B = sp.csr_matrix(
+            (np.broadcast_to(vals, shape5).ravel(), (np.broadcast_to(rows, shape5).ravel(), np.broadcast_to(cols, shape5).ravel())),
+            shape=(4 * e * q, 2 * n_nodes),
+        )
+        self.Bt = self.B.T.tocsr()
+        prow = np.broadcast_to(np.arange(e * q).reshape(e, q, 1), (e, q, 3)).ravel()
+        pcol = np.broadcast_to(cells[:, None, :3], (e, q, 3)).ravel()
+        pval = np.broadcast_to(M[None], (e, q, 3)).ravel()
+        self.Mp = sp.csr_matrix((pval, (prow, pcol)), shape=(e * q, self.n_vertices))
+        self.Mpt = self.Mp.T.tocsr()
         self._wM = w[:, :, None] * M[None]  # (E, q, 3)
-        klin = np.einsum("eqaj,eqbj,eq->eab", G, G, w)
-        self._kxx0 = np.einsum("eab,ik->eaibk", klin, np.eye(2)).reshape(e, 12, 12)
-        self._kpp = -np.einsum("eqa,qb->eab", self._wM, M) / self.lam
+        self._Gt = np.ascontiguousarray(G.transpose(0, 2, 1, 3))  # (E, 6, q, 2)
+        self._gg = np.einsum("eqaj,eqbj,eq->eabq", G, G, w).reshape(e, 36, q)  # w grad N_a . grad N_b
+        self._kpp = -np.einsum("eqa,qb->eab", self._wM, M) / self.kappa
 
     def fields(self, z: np.ndarray, lz: float) -> Fields | None:
         """Kinematics of state ``z``, or None if some J <= 0 (an inverted point)."""
         n = self.n_nodes
-        xe = z[: 2 * n].reshape(n, 2)[self.cells]  # (E, 6, 2)
-        F = np.einsum("eai,eqaj->eqij", xe, self.geom.grad)
+        e, q = self.geom.weight.shape
+        F = (self.B @ z[: 2 * n]).reshape(e, q, 2, 2)
         det = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
         if not det.min() > 0:
             return None
-        inv = np.empty_like(F)
-        inv[..., 0, 0], inv[..., 1, 1] = F[..., 1, 1] / det, F[..., 0, 0] / det
-        inv[..., 0, 1], inv[..., 1, 0] = -F[..., 0, 1] / det, -F[..., 1, 0] / det
-        g = np.einsum("eqaj,eqjk->eqak", self.geom.grad, inv)
-        p = z[2 * n :][self.cells[:, :3]] @ self.geom.pvalues.T
-        return Fields(F, g, np.log(lz * det), p)
+        p = (self.Mp @ z[2 * n :]).reshape(e, q)
+        i1 = np.einsum("eqij,eqij->eq", F, F) + lz * lz
+        return Fields(F, det, lz * det, i1, p)
+
+    @staticmethod
+    def _inverse_transpose(f: Fields) -> np.ndarray:
+        F, det = f.F, f.det
+        it = np.empty_like(F)
+        it[..., 0, 0], it[..., 1, 1] = F[..., 1, 1] / det, F[..., 0, 0] / det
+        it[..., 0, 1], it[..., 1, 0] = -F[..., 1, 0] / det, -F[..., 0, 1] / det
+        return it
+
+    def _stress(self, f: Fields) -> np.ndarray:
+        """``w P`` at the quadrature points, ``(E, q, 2, 2)``."""
+        a = f.J ** (-2.0 / 3.0)
+        c_f = a * self.geom.weight
+        c_it = (f.p * f.J - a * f.i1 / 3.0) * self.geom.weight
+        return f.F * c_f[..., None, None] + self._inverse_transpose(f) * c_it[..., None, None]
+
+    def _pressure_residual(self, f: Fields) -> np.ndarray:
+        return (f.J - 1.0 - f.p / self.kappa) * self.geom.weight
+
+    def residual(self, f: Fields) -> np.ndarray:
+        """Assembled residual ``(2 N + n_vertices,)``."""
+        rx = self.Bt @ self._stress(f).ravel()
+        rp = self.Mpt @ self._pressure_residual(f).ravel()
+        return np.concatenate((rx, rp))
 
     def element_residuals(self, f: Fields) -> np.ndarray:
-        """Element residual vectors, ``(E, 15)``."""
-        w = self.geom.weight
-        rx = np.einsum("eqij,eqaj->eai", f.F * w[..., None, None], self.geom.grad)
-        rx += np.einsum("eq,eqai->eai", (f.p - 1.0) * w, f.g)
-        rp = np.einsum("eq,eqb->eb", f.lnj - f.p / self.lam, self._wM)
+        """Element residual vectors, ``(E, 15)`` (for checks; :meth:`residual` is faster)."""
+        rx = np.einsum("eqij,eqaj->eai", self._stress(f), self.geom.grad)
+        rp = np.einsum("eq,qb->eb", self._pressure_residual(f), self.geom.pvalues)
         return np.concatenate((rx.reshape(-1, 12), rp), axis=1)
 
     def element_matrices(self, f: Fields) -> np.ndarray:
         """Element tangent matrices, ``(E, 15, 15)``, symmetric."""
-        e = len(self.cells)
+        e, q = self.geom.weight.shape
         w = self.geom.weight
+        a = f.J ** (-2.0 / 3.0)
+        G = self.geom.grad
+        finv_t = self._inverse_transpose(f)
+        g = np.matmul(G, finv_t.transpose(0, 1, 3, 2)).reshape(e, q, 12).transpose(0, 2, 1)  # (E, (a,i), q)
+        h = np.matmul(G, f.F.transpose(0, 1, 3, 2)).reshape(e, q, 12).transpose(0, 2, 1)  # F grad N_a
+        gt, ht = g.transpose(0, 2, 1), h.transpose(0, 2, 1)
+        c_gg = w * (2.0 * a * f.i1 / 9.0 + f.p * f.J)
+        c_sw = w * (a * f.i1 / 3.0 - f.p * f.J)
+        c_hg = -2.0 / 3.0 * w * a
+        kxx = np.matmul(g * c_gg[:, None], gt)
+        khg = np.matmul(h * c_hg[:, None], gt)
+        kxx += khg + khg.transpose(0, 2, 1)
+        sw = np.matmul(g * c_sw[:, None], gt)  # [(a,k),(b,i)]
+        kxx += sw.reshape(e, 6, 2, 6, 2).transpose(0, 1, 4, 3, 2).reshape(e, 12, 12)
+        lin = np.matmul(self._gg, a[:, :, None]).reshape(e, 6, 6)
+        kxx[:, 0::2, 0::2] += lin
+        kxx[:, 1::2, 1::2] += lin
         out = np.empty((e, 15, 15))
-        kgeo = np.einsum("eq,eqak,eqbi->eaibk", (f.p - 1.0) * w, f.g, f.g).reshape(e, 12, 12)
-        out[:, :12, :12] = self._kxx0 - kgeo
-        kxp = np.einsum("eqai,eqb->eaib", f.g, self._wM).reshape(e, 12, 3)
+        out[:, :12, :12] = kxx
+        kxp = np.matmul(g * f.J[:, None], self._wM)  # (E, 12, 3)
         out[:, :12, 12:] = kxp
         out[:, 12:, :12] = kxp.transpose(0, 2, 1)
         out[:, 12:, 12:] = self._kpp

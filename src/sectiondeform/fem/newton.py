@@ -20,6 +20,7 @@ quiet unconverged result.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -35,6 +36,7 @@ MAX_HALVINGS = 8
 MAX_ITERATIONS = 25
 MODIFIED_ITERATIONS = 6
 MODIFIED_RATE = 0.3
+SWITCH_STEP = 1e-2
 
 
 @dataclass(frozen=True, eq=False)
@@ -129,7 +131,7 @@ class NewtonSolver:
     """
 
     def __init__(self, physics: MixedNeoHooke, pattern: Pattern, length: float, tol: float = 1e-9,
-                 permc_spec: str = "MMD_AT_PLUS_A"):
+                 permc_spec: str = "COLAMD"):
         self.physics = physics
         self.pattern = pattern
         self.length = float(length)
@@ -146,7 +148,7 @@ class NewtonSolver:
         mp = np.bincount(physics.cells[:, :3].ravel(), weights=wm.ravel(), minlength=physics.cells[:, :3].max() + 1)
         full = np.zeros(pattern.n_dofs)
         full[2 * n :] = mp
-        self.dres_dlnlz = full[free]  # d R_f / d ln lz, exact (R_p is linear in ln lz)
+        self.dres_dlnlz = full[free]  # d R_f / d ln lz at J = 1 (R_p = J - 1 - p / kappa, J = lz det F)
         self.assemblies = 0
         self.factorisations = 0
 
@@ -157,8 +159,7 @@ class NewtonSolver:
         if f is None:
             return None, None
         self.assemblies += 1
-        r = self.pattern.vector(self.physics.element_residuals(f))
-        return r[self.pattern.free], f
+        return self.physics.residual(f)[self.pattern.free], f
 
     def tangent(self, fields) -> Tangent:
         """Assemble and factorise the tangent for ``fields``."""
@@ -183,6 +184,13 @@ class NewtonSolver:
     def correct(self, z: np.ndarray, lz: float, tangent: Tangent | None, max_iter: int = MAX_ITERATIONS):
         """Newton corrector from ``z`` (prescribed dofs already in place).
 
+        Iterations reuse ``tangent`` (modified Newton) while the residual
+        norm falls by at least ``1 / MODIFIED_RATE`` per step, and switch to
+        a fresh tangent otherwise; after a full step shorter than
+        ``SWITCH_STEP`` T they go back to reusing it. Converged when the
+        error left after a step, estimated from the contraction of the last
+        two steps, is below ``tol`` T.
+
         Returns
         -------
         State or None
@@ -196,6 +204,8 @@ class NewtonSolver:
         modified = tangent is not None
         counts = [0, 0]
         last = tangent
+        prev = math.inf
+        target = self.tol * self.length
         for _ in range(max_iter):
             if not modified:
                 last = self.tangent(f)
@@ -209,22 +219,26 @@ class NewtonSolver:
                 rt, ft = self.residual(zt, lz)
                 if rt is not None:
                     mt = self._merit(rt)
-                    if mt <= (1.0 - 1e-4 * alpha) * merit or step * alpha <= self.tol * self.length:
+                    if mt <= (1.0 - 1e-4 * alpha) * merit or step * alpha <= target:
                         accepted = True
                         break
                 if modified:
                     break
                 alpha *= 0.5
-            if step <= self.tol * self.length and accepted:
-                return State(zt, lz, last, tuple(counts))
             if not accepted:
                 if modified:
                     modified = False  # fall back to full Newton from the current point
                     continue
                 return None
+            rate = step / prev
+            left = step if (rate >= 1.0 or prev == math.inf) else step * rate / (1.0 - rate)
+            if alpha == 1.0 and (step <= target or left <= target):
+                return State(zt, lz, last, tuple(counts))
             if modified and mt > MODIFIED_RATE * merit:
                 modified = False
-            z, r, f, merit = zt, rt, ft, mt
+            elif not modified and alpha == 1.0 and step <= SWITCH_STEP * self.length:
+                modified = True
+            z, r, f, merit, prev = zt, rt, ft, mt, step * alpha
         return None
 
     # -- the path ----------------------------------------------------------
