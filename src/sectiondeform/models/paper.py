@@ -27,7 +27,7 @@ import math
 import numpy as np
 
 from ..errors import LawError, MeshError
-from ..layers import SMOOTHING_WEIGHTS, _Smoother, grow_mesh, node_frames, quad_jacobians
+from ..layers import SMOOTHING_WEIGHTS, _Smoother, grid_jacobians, grow_mesh, node_frames
 from ..laws import Law
 from ..locate import locate
 from ..section import Section
@@ -114,6 +114,10 @@ class PaperPrepared(Prepared):
         self.b = np.einsum("ijd,jd->ij", rel, n0)
         n = nodes.shape[1]
         self.columns = self.location.nodes % n
+        # Per located point and corner: bilinear weight times the node's frame offset.
+        w = self.location.weights
+        self._wa = w * self.a.ravel()[self.location.nodes]
+        self._wb = w * self.b.ravel()[self.location.nodes]
         self._smoother = _Smoother(n, end_weight=1.0)
         jac = mesh.jacobians()
         self.initial_mesh = MeshData(mesh.points, mesh.quads, "quad", (mesh.n_layers, mesh.n_columns))
@@ -129,6 +133,11 @@ class PaperPrepared(Prepared):
     def _offsets(self, t: np.ndarray, n: np.ndarray) -> np.ndarray:
         return self.a[..., None] * t[None] + self.b[..., None] * n[None]
 
+    def _moving_up(self, t: np.ndarray, n: np.ndarray) -> np.ndarray:
+        """Upper points' offsets from the target for a unit height scale, ``(m, 2)``."""
+        cols = self.columns
+        return np.einsum("pk,pkd->pd", self._wa, t[cols]) + np.einsum("pk,pkd->pd", self._wb, n[cols])
+
     def place(self, target_nodes: np.ndarray, law: Law) -> Placement:
         sec = self.section
         target_area = law.target_area(sec.area)
@@ -136,18 +145,18 @@ class PaperPrepared(Prepared):
         loc = self.location
         lengths = np.hypot(*np.diff(target_nodes, axis=0).T).sum()
         guess = target_area / sec.area * sec.lower_length / lengths
+        fixed_up = np.einsum("pk,pkd->pd", loc.weights, target_nodes[self.columns])
+        fixed = np.concatenate((target_nodes, fixed_up[1:-1]))
+        zeros = np.zeros_like(target_nodes)
         smoothing = 0.0
         for lam in (0.0,) + SMOOTHING_WEIGHTS:
             if lam:
                 t, n = _frames_from_normals(self._smoother(n, lam), sec.orientation)
-            offsets = self._offsets(t, n)
-            fixed_up = np.einsum("pk,pkd->pd", loc.weights, target_nodes[self.columns])
-            moving_up = np.einsum("pk,pkd->pd", loc.weights, offsets.reshape(-1, 2)[loc.nodes])
-            fixed = np.concatenate((target_nodes, fixed_up[1:-1]))
-            moving = np.concatenate((np.zeros_like(target_nodes), moving_up[1:-1]))
+            moving_up = self._moving_up(t, n)
+            moving = np.concatenate((zeros, moving_up[1:-1]))
             k = solve_scale(fixed, moving, sec.orientation * target_area, guess)
-            nodes = target_nodes[None] + k * offsets
-            jac = quad_jacobians(nodes.reshape(-1, 2), self.quads)
+            nodes = target_nodes[None] + k * self._offsets(t, n)
+            jac = grid_jacobians(nodes, sec.orientation)
             if jac.min() > 0:
                 smoothing = lam
                 break
