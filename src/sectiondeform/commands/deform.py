@@ -5,6 +5,7 @@ the section onto its target under its law, and writes RESULT. The output
 file is written whole or not at all.
 
 Example: sectiondeform deform case.json -o result.json --plot result.png
+         sectiondeform deform profile.dxf --area-ratio 0.8 -o deformed.dxf --mesh-out final.vtu
 """
 
 from __future__ import annotations
@@ -12,27 +13,34 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..deform import Deformer
-from ..io import read_case, write_result
+from ..io import add_input_args, add_output_args, input_options, output_options, read_case, write_meshes, write_result
 from ._common import add_model_args, apply_overrides, summary
 
 
 def add_args(parser) -> None:
-    parser.add_argument("case", type=Path, help="case file (.json)")
-    parser.add_argument("-o", "--output", type=Path, required=True, help="result file (.json)")
+    parser.add_argument("case", type=Path, help="case file (.json, .dxf, .svg)")
+    parser.add_argument("-o", "--output", type=Path, required=True,
+                        help="result file (.json, .dxf, .svg; .vtu, .vtk, .msh, .inp: the final mesh)")
     parser.add_argument("--plot", type=Path, metavar="FIG", help="also draw the figure (.png, .svg or .pdf)")
     parser.add_argument("--no-meshes", action="store_true", help="leave the meshes out of the result JSON")
     add_model_args(parser)
+    add_input_args(parser)
+    add_output_args(parser)
 
 
 def run(args) -> int:
-    case = apply_overrides(read_case(args.case), args)
+    report: list[str] = []
+    case = apply_overrides(read_case(args.case, **input_options(args, report)), args)
     result = Deformer(case, element_size=args.element_size).deform()
-    options = {"meshes": False} if args.no_meshes and args.output.suffix.lower() == ".json" else {}
+    options = {"meshes": False} if args.no_meshes and args.output.suffix.lower() == ".json" else output_options(args, args.output)
     write_result(args.output, result, **options)
+    meshes = write_meshes(args, result)
     if args.plot:
         from ..plot import save_figure
 
         save_figure(result, args.plot)
+    for line in report:
+        print(f"  {line}")
     print(summary(result))
-    print(f"  wrote {args.output}" + (f" and {args.plot}" if args.plot else ""))
+    print(f"  wrote {', '.join(str(p) for p in [args.output, *meshes, *([args.plot] if args.plot else [])])}")
     return 0

@@ -1,8 +1,24 @@
 """File formats, one module each, chosen by file extension.
 
 :data:`CASE_READERS` maps an extension to a function ``(path, **options) -> Case``;
-:data:`RESULT_WRITERS` maps one to ``(path, result) -> None``. Optional
+:data:`CASE_WRITERS` maps one to ``(path, case) -> None``;
+:data:`RESULT_WRITERS` maps one to ``(path, result, **options) -> None``. Optional
 formats register themselves here with the module that implements them.
+
+=========  ======================  ==========================================
+extension  case in / out           result out
+=========  ======================  ==========================================
+``.json``  section-case/1 (may     section-result/1
+           name a drawing)
+``.dxf``   layers LOWER, UPPER,    layers DEFORMED, INITIAL, TARGET,
+           TARGET (or a contour)   MESH_INITIAL, MESH_FINAL
+``.svg``   ids/classes lower,      groups deformed, initial, target,
+           upper, target           mesh-initial, mesh-final
+``.vtu``,  --                      the final mesh, initial coordinates as
+``.msh``,                          point data (see :mod:`.meshes`)
+``.inp``,
+``.vtk``
+=========  ======================  ==========================================
 """
 
 from __future__ import annotations
@@ -11,12 +27,41 @@ import importlib
 from pathlib import Path
 
 from ..errors import CaseError
+from .drawing import add_input_args, input_options
 
-__all__ = ["read_case", "write_result", "CASE_READERS", "RESULT_WRITERS"]
+__all__ = [
+    "read_case",
+    "write_case",
+    "write_result",
+    "CASE_READERS",
+    "CASE_WRITERS",
+    "RESULT_WRITERS",
+    "add_input_args",
+    "input_options",
+    "add_output_args",
+    "output_options",
+]
 
 # extension -> (module, function); modules are imported on first use.
-CASE_READERS = {".json": (".json", "read_case")}
-RESULT_WRITERS = {".json": (".json", "write_result")}
+CASE_READERS = {
+    ".json": (".drawing", "read_json_case"),
+    ".dxf": (".dxf", "read_case"),
+    ".svg": (".svg", "read_case"),
+}
+CASE_WRITERS = {
+    ".json": (".json", "write_case"),
+    ".dxf": (".dxf", "write_case"),
+    ".svg": (".svg", "write_case"),
+}
+RESULT_WRITERS = {
+    ".json": (".json", "write_result"),
+    ".dxf": (".dxf", "write_result"),
+    ".svg": (".svg", "write_result"),
+    ".vtu": (".meshes", "write_result"),
+    ".vtk": (".meshes", "write_result"),
+    ".msh": (".meshes", "write_result"),
+    ".inp": (".meshes", "write_result"),
+}
 
 
 def _resolve(table: dict, path: Path, what: str):
@@ -33,7 +78,44 @@ def read_case(path, **options):
     return _resolve(CASE_READERS, path, "case")(path, **options)
 
 
+def write_case(path, case) -> None:
+    """Write a case in the format its extension names (.json, .dxf, .svg), atomically."""
+    path = Path(path)
+    _resolve(CASE_WRITERS, path, "case output")(path, case)
+
+
 def write_result(path, result, **options) -> None:
     """Write a result in the format its extension names, atomically."""
     path = Path(path)
     _resolve(RESULT_WRITERS, path, "output")(path, result, **options)
+
+
+def add_output_args(parser) -> None:
+    """Add the output options of ``deform``: ``--mesh-out``, ``--initial-mesh-out``, ``--dxf-spline``."""
+    g = parser.add_argument_group("output")
+    g.add_argument("--mesh-out", type=Path, action="append", default=[], metavar="FILE",
+                   help="also write the final mesh (.vtu, .vtk, .msh, .inp); repeatable")
+    g.add_argument("--initial-mesh-out", type=Path, action="append", default=[], metavar="FILE",
+                   help="also write the initial mesh (.vtu, .vtk, .msh, .inp); repeatable")
+    g.add_argument("--dxf-spline", action="store_true",
+                   help="DXF output: the deformed section as SPLINEs fitted within the chordal error")
+
+
+def output_options(args, path: Path) -> dict:
+    """Writer options for ``path`` from parsed arguments (see :func:`add_output_args`)."""
+    ext = Path(path).suffix.lower()
+    if ext == ".dxf" and getattr(args, "dxf_spline", False):
+        return {"spline": True, "chordal_error": getattr(args, "chordal_error", None)}
+    return {}
+
+
+def write_meshes(args, result) -> list[Path]:
+    """Write the meshes asked for by ``--mesh-out`` and ``--initial-mesh-out``; the paths written."""
+    from .meshes import write_mesh
+
+    written = []
+    for which, paths in (("final", getattr(args, "mesh_out", [])), ("initial", getattr(args, "initial_mesh_out", []))):
+        for p in paths:
+            write_mesh(p, result, which)
+            written.append(p)
+    return written

@@ -1,0 +1,34 @@
+"""Convert a case between formats: case JSON, DXF and SVG, chosen by extension.
+
+Reads IN (.json, .dxf, .svg; drawings with the same options as deform) and
+writes OUT (.json, .dxf, .svg). The output file is written whole or not at all.
+
+Examples:
+  sectiondeform convert case.json case.dxf
+  sectiondeform convert profile.dxf case.json --area-ratio 0.8
+  sectiondeform convert scan.dxf case.json --area-ratio 0.8 --split -20,0.4 -16.4,0.4 --target-arc 0.3
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..io import add_input_args, input_options, read_case, write_case
+from ._common import apply_overrides
+
+
+def add_args(parser) -> None:
+    parser.add_argument("input", type=Path, help="case file (.json, .dxf, .svg)")
+    parser.add_argument("output", type=Path, help="case file to write (.json, .dxf, .svg)")
+    parser.add_argument("--area-ratio", type=float, metavar="R", help="the law: final area = R x initial area")
+    add_input_args(parser)
+
+
+def run(args) -> int:
+    report: list[str] = []
+    case = apply_overrides(read_case(args.input, **input_options(args, report)), args)
+    write_case(args.output, case)
+    for line in report:
+        print(f"  {line}")
+    print(f"  wrote {args.output}")
+    return 0

@@ -1,0 +1,414 @@
+"""DXF drawings: read a section from layers, write cases and deformed sections.
+
+Reading (:func:`read_drawing`, :func:`read_case`)
+-------------------------------------------------
+Every entity of the model space becomes a :class:`~.pieces.Piece` tagged
+with its layer name:
+
+=============  ==========================================================
+LINE           a two-point polyline
+ARC, CIRCLE    a circular arc (a CIRCLE is a closed 360° arc)
+LWPOLYLINE,    straight runs become polylines, bulged segments arcs
+POLYLINE (2D)  (bulge = tan(θ/4), positive counter-clockwise); the
+               closing segment of a closed polyline is included
+SPLINE         a clamped non-rational spline is kept exactly (degree,
+               control points, knots); a rational one (unequal weights,
+               e.g. an exact conic) or an unclamped one cannot be a case
+               B-spline, and becomes a polyline within the chordal error
+ELLIPSE        a polyline within the chordal error
+=============  ==========================================================
+
+Entities in an extrusion direction (0, 0, -1) are mirrored into the world
+frame. Annotation (TEXT, MTEXT, DIMENSION, POINT, HATCH...) is ignored;
+any other entity on a layer in use is an error. ``$INSUNITS`` gives the
+units (unitless or missing: mm). How pieces become a case is
+:mod:`sectiondeform.io.drawing`'s job.
+
+Writing
+-------
+:func:`write_case` puts ``lower``, ``upper`` and ``target`` on layers
+LOWER, UPPER, TARGET as native entities (polylines as LWPOLYLINE, arcs as
+ARC or CIRCLE, B-splines as SPLINE with their knots), and the law, name,
+options and start points in the header custom property ``sectiondeform``,
+so DXF -> case -> DXF loses nothing. :func:`write_result` writes the
+deformed section (layer DEFORMED, a closed LWPOLYLINE, or two SPLINEs fitted
+within the chordal error with ``spline=True``), the initial section
+(INITIAL), the deformed lower curve on the target (TARGET), and both meshes
+(MESH_INITIAL, MESH_FINAL; one closed LWPOLYLINE per element, in element
+order).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..curves import Arc, BSpline, Chain, Curve, Polyline
+from ..errors import CaseError, require
+from .chaining import fmt_point
+from .json import atomic_write
+from .pieces import Piece, transform_curve
+
+__all__ = ["read_drawing", "read_case", "write_case", "write_result", "UNITS", "fit_spline"]
+
+# $INSUNITS code -> (case units name, millimetres per unit)
+UNITS = {
+    1: ("in", 25.4), 2: ("ft", 304.8), 4: ("mm", 1.0), 5: ("cm", 10.0), 6: ("m", 1000.0),
+    7: ("km", 1e6), 8: ("uin", 25.4e-6), 9: ("mil", 0.0254), 10: ("yd", 914.4),
+    11: ("angstrom", 1e-7), 12: ("nm", 1e-6), 13: ("um", 1e-3), 14: ("dm", 100.0),
+}
+INSUNITS = {name: code for code, (name, _) in UNITS.items()}
+IGNORED = {"TEXT", "MTEXT", "DIMENSION", "ARC_DIMENSION", "LARGE_RADIAL_DIMENSION", "POINT", "HATCH",
+           "LEADER", "MULTILEADER", "MLEADER", "ATTDEF", "TOLERANCE", "IMAGE", "WIPEOUT", "VIEWPORT"}
+META_KEY = "sectiondeform"
+MIRROR_X = np.array([[-1.0, 0.0], [0.0, 1.0]])
+
+
+class Drawing:
+    """Pieces of a drawing with its units and stored case data.
+
+    Attributes
+    ----------
+    pieces : list of Piece
+    units : str
+        Length unit of the coordinates, e.g. ``"mm"``.
+    mm_per_unit : float
+    meta : dict
+        Case data stored in the file by :func:`write_case` (``law``,
+        ``name``, ``options``, ``lower_start``, ``target_start``), else {}.
+    ignored : list of str
+        Entities skipped (annotation).
+    path : Path
+    """
+
+    def __init__(self, pieces, units, mm_per_unit, meta, ignored, path, unitless=False):
+        self.pieces, self.units, self.mm_per_unit = pieces, units, mm_per_unit
+        self.meta, self.ignored, self.path, self.unitless = meta, ignored, path, unitless
+
+
+def _flat(p) -> np.ndarray:
+    return np.array([float(p[0]), float(p[1])])
+
+
+def _bulge_arc(p: np.ndarray, q: np.ndarray, bulge: float) -> Arc:
+    """The arc from ``p`` to ``q`` of a polyline segment with ``bulge`` = tan(θ/4)."""
+    chord = q - p
+    c = math.hypot(*chord)
+    d = 0.5 * c * (1.0 - bulge * bulge) / (2.0 * bulge)  # midpoint -> centre, along the left normal
+    normal = np.array([-chord[1], chord[0]]) / c
+    center = 0.5 * (p + q) + d * normal
+    radius = math.hypot(*(p - center))
+    a0 = math.degrees(math.atan2(p[1] - center[1], p[0] - center[0]))
+    return Arc(center, radius, a0, a0 + math.degrees(4.0 * math.atan(bulge)))
+
+
+def _polyline_pieces(points: np.ndarray, bulges: np.ndarray, closed: bool) -> list[Curve]:
+    """Curves of a (LW)POLYLINE: ``(N, 2)`` vertices, ``(N,)`` bulges."""
+    if closed:
+        points = np.vstack((points, points[:1]))
+    out: list[Curve] = []
+    run = [points[0]]
+    for i in range(len(points) - 1):
+        p, q, b = points[i], points[i + 1], float(bulges[i])
+        if np.array_equal(p, q):
+            continue
+        if b == 0.0:
+            run.append(q)
+            continue
+        if len(run) > 1:
+            out.append(Polyline(np.array(run)))
+        out.append(_bulge_arc(p, q, b))
+        run = [q]
+    if len(run) > 1:
+        out.append(Polyline(np.array(run)))
+    return out
+
+
+def _entity_curves(e, tol: float) -> list[Curve] | None:
+    """Curves of one entity, in the world XY plane; None if not a curve entity."""
+    kind = e.dxftype()
+    mirror = False
+    if e.dxf.hasattr("extrusion"):
+        z = tuple(e.dxf.extrusion)
+        if abs(z[0]) > 1e-12 or abs(z[1]) > 1e-12:
+            raise CaseError(f"layer {e.dxf.layer}", f"{kind} (handle {e.dxf.handle}) is not in the XY plane")
+        mirror = z[2] < 0 and kind in ("ARC", "CIRCLE", "LWPOLYLINE", "POLYLINE", "ELLIPSE")
+    if kind == "LINE":
+        curves = [Polyline(np.vstack((_flat(e.dxf.start), _flat(e.dxf.end))))]
+    elif kind == "ARC":
+        a0, a1 = float(e.dxf.start_angle), float(e.dxf.end_angle)
+        while a1 <= a0:
+            a1 += 360.0
+        curves = [Arc(_flat(e.dxf.center), float(e.dxf.radius), a0, a1)]
+    elif kind == "CIRCLE":
+        curves = [Arc(_flat(e.dxf.center), float(e.dxf.radius), 0.0, 360.0)]
+    elif kind == "LWPOLYLINE":
+        xyb = np.array(list(e.get_points("xyb")), dtype=np.float64).reshape(-1, 3)
+        curves = _polyline_pieces(xyb[:, :2], xyb[:, 2], e.closed)
+    elif kind == "POLYLINE":
+        if not (e.is_2d_polyline or e.is_3d_polyline):
+            return None
+        pts = np.array([_flat(v.dxf.location) for v in e.vertices]).reshape(-1, 2)
+        bul = np.array([float(v.dxf.bulge) if e.is_2d_polyline else 0.0 for v in e.vertices])
+        curves = _polyline_pieces(pts, bul, e.is_closed)
+    elif kind == "SPLINE":
+        ct = e.construction_tool()
+        cps = np.array([_flat(p) for p in ct.control_points])
+        knots = np.array(ct.knots(), dtype=np.float64)
+        w = np.array(ct.weights(), dtype=np.float64)
+        rational = len(w) and np.ptp(w) > 1e-12 * np.abs(w).max()
+        if ct.is_clamped and not rational:
+            curves = [BSpline(int(ct.degree), cps, (knots - knots[0]) / (knots[-1] - knots[0]))]
+        else:
+            curves = [Polyline(np.array([_flat(p) for p in ct.flattening(tol, segments=8)]))]
+    elif kind == "ELLIPSE":
+        curves = [Polyline(np.array([_flat(p) for p in e.flattening(tol, segments=8)]))]
+    else:
+        return None
+    if mirror:
+        curves = [transform_curve(c, MIRROR_X, tol=tol) for c in curves]
+    return curves
+
+
+def _extent(msp) -> float:
+    """Diagonal of the drawing's extents, for default tolerances."""
+    try:
+        from ezdxf import bbox
+
+        box = bbox.extents(msp, fast=True)
+        if box.has_data:
+            return float(math.hypot(box.size.x, box.size.y)) or 1.0
+    except Exception:  # pragma: no cover - extents are only a hint
+        pass
+    return 1.0
+
+
+def read_drawing(path, chordal_error: float | None = None) -> Drawing:
+    """Read the curve pieces of a DXF file's model space.
+
+    Parameters
+    ----------
+    path : str or Path
+    chordal_error : float, optional
+        Chordal error of the polylines standing for rational splines and
+        ellipses, drawing units; default 1e-4 of the drawing's diagonal.
+
+    Returns
+    -------
+    Drawing
+
+    Raises
+    ------
+    CaseError
+        Unreadable file; an unsupported entity (naming its layer, type and
+        handle); a zero-length piece (naming where it is).
+    """
+    ezdxf = require("ezdxf", "cad", "reading DXF")
+    path = Path(path)
+    try:
+        doc = ezdxf.readfile(str(path))
+    except IOError as exc:
+        raise CaseError(str(path), f"cannot read the DXF file ({exc})") from None
+    except ezdxf.DXFStructureError as exc:
+        raise CaseError(str(path), f"not a valid DXF file ({exc})") from None
+    msp = doc.modelspace()
+    tol = chordal_error or 1e-4 * _extent(msp)
+    code = int(doc.header.get("$INSUNITS", 0) or 0)
+    units, mm = UNITS.get(code, ("mm", 1.0))
+    meta = {}
+    if doc.header.custom_vars.has_tag(META_KEY):
+        try:
+            meta = json.loads(doc.header.custom_vars.get(META_KEY))
+        except (TypeError, ValueError):
+            meta = {}
+    pieces, ignored = [], []
+    for i, e in enumerate(msp):
+        kind = e.dxftype()
+        layer = e.dxf.layer
+        source = f"{kind} #{i} (handle {e.dxf.handle}, layer {layer})"
+        if kind in IGNORED:
+            ignored.append(source)
+            continue
+        curves = _entity_curves(e, tol)
+        tags = frozenset({layer.upper()})
+        if curves is None:
+            pieces.append(Piece(None, tags, source))  # unsupported: an error if its layer is used
+            continue
+        if not curves:
+            at = _flat(e.dxf.start) if kind == "LINE" else None
+            raise CaseError(f"layer {layer}", f"zero-length {source}" + (f" at {fmt_point(at)}" if at is not None else "") + "; delete it")
+        for c in curves:
+            if not c.length > 0:
+                raise CaseError(f"layer {layer}", f"zero-length {source} at {fmt_point(c.at_fractions(np.array([0.0]))[0])}; delete it")
+            pieces.append(Piece(c, tags, source))
+    return Drawing(pieces, units, mm, meta, ignored, path, unitless=code not in UNITS)
+
+
+def read_case(path, **options):
+    """Read a case from a DXF drawing; see :func:`sectiondeform.io.drawing.case_from_drawing`."""
+    from .drawing import case_from_drawing
+
+    return case_from_drawing(read_drawing(path, options.get("chordal_error")), **options)
+
+
+# --------------------------------------------------------------------------
+# Writing
+
+
+def _new_doc(units: str):
+    ezdxf = require("ezdxf", "cad", "writing DXF")
+    doc = ezdxf.new("R2010", setup=False)
+    doc.header["$INSUNITS"] = INSUNITS.get(units, 0)
+    doc.header["$MEASUREMENT"] = 1
+    return doc
+
+
+def _layer(doc, name: str, color: int) -> None:
+    if name not in doc.layers:
+        doc.layers.add(name, color=color)
+
+
+def _add_curve(msp, curve: Curve, layer: str) -> None:
+    attribs = {"layer": layer}
+    if isinstance(curve, Chain):
+        for p in curve.pieces:
+            _add_curve(msp, p, layer)
+    elif isinstance(curve, Polyline):
+        msp.add_lwpolyline(curve.vertices.tolist(), format="xy", dxfattribs=attribs)
+    elif isinstance(curve, Arc):
+        a0, a1 = sorted((float(curve.start_deg), float(curve.end_deg)))
+        if abs(a1 - a0) >= 360.0:
+            msp.add_circle(curve.center.tolist(), float(curve.radius), dxfattribs=attribs)
+        else:
+            msp.add_arc(curve.center.tolist(), float(curve.radius), a0, a1, dxfattribs=attribs)
+    elif isinstance(curve, BSpline):
+        msp.add_open_spline(curve.control_points.tolist(), degree=int(curve.degree),
+                            knots=_dxf_knots(curve.knots).tolist(), dxfattribs=attribs)
+    else:  # pragma: no cover - every curve kind is handled above
+        raise TypeError(type(curve).__name__)
+
+
+def _dxf_knots(t: np.ndarray) -> np.ndarray:
+    """Knots mapped onto [0, number of spans], whole numbers snapped exact.
+
+    ezdxf writes knots with 10 decimals; uniform knots written as whole
+    numbers survive exactly, and the reader maps them back onto [0, 1].
+    """
+    spans = max(len(np.unique(t)) - 1, 1)
+    u = (t - t[0]) / (t[-1] - t[0]) * spans
+    whole = np.round(u)
+    return np.where(np.abs(u - whole) < 1e-9, whole, u)
+
+
+def write_case(path, case) -> None:
+    """Write a case as a DXF drawing (layers LOWER, UPPER, TARGET), atomically.
+
+    Parameters
+    ----------
+    path : str or Path
+    case : Case
+    """
+    doc = _new_doc(case.units)
+    msp = doc.modelspace()
+    for name, color, curve in (("LOWER", 1, case.lower), ("UPPER", 7, case.upper), ("TARGET", 5, case.target)):
+        _layer(doc, name, color)
+        _add_curve(msp, curve, name)
+    meta = {
+        "law": case.law.to_json(), "name": case.name, "options": case.options,
+        "lower_start": case.lower.start.tolist(), "target_start": case.target.start.tolist(),
+    }
+    doc.header.custom_vars.append(META_KEY, json.dumps(meta, separators=(",", ":")))
+    atomic_write(path, lambda tmp: doc.saveas(str(tmp)))
+
+
+def fit_spline(points: np.ndarray, tol: float):
+    """A clamped cubic B-spline within ``tol`` of every point of a polyline.
+
+    Parameters
+    ----------
+    points : (N, 2) float64 ndarray
+        N >= 2, units.
+    tol : float
+        Largest distance allowed from a point to the spline at its
+        chord-length parameter, units.
+
+    Returns
+    -------
+    control_points : (K, 2) float64 ndarray
+    knots : (K + degree + 1,) float64 ndarray
+    degree : int
+
+    Examples
+    --------
+    >>> t = np.linspace(0, np.pi, 50)
+    >>> cp, knots, k = fit_spline(np.column_stack((np.cos(t), np.sin(t))), 1e-3)
+    >>> k, len(cp) < 50
+    (3, True)
+    """
+    from scipy.interpolate import splev, splprep
+
+    pts = np.asarray(points, dtype=np.float64)
+    keep = np.concatenate(([True], np.hypot(*np.diff(pts, axis=0).T) > 0))
+    pts = pts[keep]
+    k = min(3, len(pts) - 1)
+    u = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))))
+    u /= u[-1]
+    s = len(pts) * (0.25 * tol) ** 2
+    for attempt in range(10):
+        smooth = s / 4**attempt if attempt < 9 else 0.0
+        tck, _ = splprep(pts.T, u=u, k=k, s=smooth)
+        err = np.hypot(*(np.array(splev(u, tck)).T - pts).T).max()
+        if err <= tol:
+            break
+    t, c, k = tck
+    n = len(t) - k - 1
+    return np.column_stack((c[0][:n], c[1][:n])), np.asarray(t, dtype=np.float64), int(k)
+
+
+def _add_closed(msp, pts: np.ndarray, layer: str) -> None:
+    msp.add_lwpolyline(np.asarray(pts).tolist(), format="xy", close=True, dxfattribs={"layer": layer})
+
+
+def _add_mesh(msp, mesh, layer: str) -> None:
+    corners = {"quad": 4, "triangle": 3, "triangle6": 3}[mesh.kind]
+    pts = mesh.points
+    for cell in mesh.cells:
+        _add_closed(msp, pts[cell[:corners]], layer)
+
+
+def write_result(path, result, spline: bool = False, chordal_error: float | None = None, **_options) -> None:
+    """Write a deformed section as a DXF drawing, atomically.
+
+    Layers: DEFORMED (the deformed section), INITIAL (the section before),
+    TARGET (the deformed lower curve, on the target), MESH_INITIAL and
+    MESH_FINAL (one closed LWPOLYLINE per element, in element order).
+
+    Parameters
+    ----------
+    path : str or Path
+    result : Result
+    spline : bool
+        Write the deformed section as two SPLINEs (lower, then upper) fitted
+        within ``chordal_error`` instead of one closed LWPOLYLINE.
+    chordal_error : float, optional
+        Units; default 1e-4 of the section's diagonal.
+    """
+    doc = _new_doc(result.units)
+    msp = doc.modelspace()
+    for name, color in (("INITIAL", 8), ("TARGET", 5), ("MESH_INITIAL", 9), ("MESH_FINAL", 3), ("DEFORMED", 1)):
+        _layer(doc, name, color)
+    _add_mesh(msp, result.initial_mesh, "MESH_INITIAL")
+    _add_mesh(msp, result.final_mesh, "MESH_FINAL")
+    _add_closed(msp, result.initial_contour, "INITIAL")
+    msp.add_lwpolyline(result.lower.tolist(), format="xy", dxfattribs={"layer": "TARGET"})
+    if spline:
+        tol = chordal_error or 1e-4 * float(np.hypot(*np.ptp(result.contour, axis=0)))
+        for part in (result.lower, result.upper):
+            cp, knots, k = fit_spline(part, tol)
+            msp.add_open_spline(cp.tolist(), degree=k, knots=knots.tolist(), dxfattribs={"layer": "DEFORMED"})
+    else:
+        _add_closed(msp, result.contour, "DEFORMED")
+    atomic_write(path, lambda tmp: doc.saveas(str(tmp)))

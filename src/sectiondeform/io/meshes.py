@@ -1,0 +1,99 @@
+"""The meshes of a result through meshio: VTU, VTK, Gmsh MSH, Abaqus INP.
+
+``sectiondeform deform case.json -o result.vtu`` writes the *final* mesh;
+``--mesh-out FILE`` and ``--initial-mesh-out FILE`` write the final or the
+initial mesh beside any other output. Numbering is kept: node i of the
+file is row i of the result's ``points`` (1-based formats such as Gmsh and
+Abaqus number it i + 1), element j is row j of ``cells``, corners
+counter-clockwise as in :class:`~sectiondeform.models.base.MeshData`.
+Points are written with z = 0.
+
+Where the two meshes have the same nodes (the layered paper model), VTU,
+VTK and MSH files carry point data: the final mesh has ``initial`` (the
+initial coordinates) and ``displacement`` (final - initial), the initial
+mesh ``final`` and ``displacement``; every file has the cell data
+``element`` (0-based element number). Abaqus INP carries the mesh only.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import CaseError, require
+from .json import atomic_write
+
+__all__ = ["write_mesh", "write_result", "to_meshio", "FORMATS"]
+
+FORMATS = {".vtu": "vtu", ".vtk": "vtk", ".msh": "gmsh", ".inp": "abaqus"}
+
+
+def _xyz(points: np.ndarray) -> np.ndarray:
+    return np.column_stack((points, np.zeros(len(points))))
+
+
+def to_meshio(result, which: str = "final", data: bool = True):
+    """One mesh of a result as a :class:`meshio.Mesh`.
+
+    Parameters
+    ----------
+    result : Result
+    which : str
+        ``"final"`` or ``"initial"``.
+    data : bool
+        Attach the point and cell data described in the module docstring.
+
+    Returns
+    -------
+    meshio.Mesh
+        Points ``(N, 3)`` float64 (z = 0), one cell block in element order.
+    """
+    meshio = require("meshio", "cad", "writing meshes")
+    if which not in ("final", "initial"):
+        raise CaseError("mesh", f"unknown mesh {which!r}; use final or initial")
+    mesh, other = (result.final_mesh, result.initial_mesh) if which == "final" else (result.initial_mesh, result.final_mesh)
+    point_data, cell_data = {}, {}
+    if data:
+        cell_data["element"] = [np.arange(len(mesh.cells), dtype=np.int64)]
+        if other.points.shape == mesh.points.shape:
+            point_data["initial" if which == "final" else "final"] = _xyz(other.points)
+            point_data["displacement"] = _xyz(result.final_mesh.points - result.initial_mesh.points)
+    return meshio.Mesh(_xyz(mesh.points), [(mesh.kind, np.asarray(mesh.cells, dtype=np.int64))],
+                       point_data=point_data, cell_data=cell_data)
+
+
+def write_mesh(path, result, which: str = "final") -> None:
+    """Write one mesh of a result, format by extension, atomically.
+
+    Parameters
+    ----------
+    path : str or Path
+        ``.vtu``, ``.vtk``, ``.msh`` (Gmsh 4.1, binary: meshio 5.3 cannot re-read the data of ASCII files) or ``.inp`` (Abaqus).
+    result : Result
+    which : str
+        ``"final"`` or ``"initial"``.
+
+    Raises
+    ------
+    CaseError
+        For an unknown extension.
+    """
+    meshio = require("meshio", "cad", "writing meshes")
+    path = Path(path)
+    ext = path.suffix.lower()
+    if ext not in FORMATS:
+        raise CaseError(str(path), f"unknown mesh format {ext!r}; use one of {', '.join(FORMATS)}")
+    fmt = FORMATS[ext]
+    mesh = to_meshio(result, which, data=fmt != "abaqus")
+    kwargs = {"binary": True} if fmt in ("gmsh", "vtk") else {}
+    if fmt == "gmsh":
+        tags = np.zeros(len(mesh.cells[0].data), dtype=np.int32)
+        mesh.cell_data["gmsh:physical"] = [tags + 1]
+        mesh.cell_data["gmsh:geometrical"] = [tags + 1]
+    atomic_write(path, lambda tmp: meshio.write(str(tmp), mesh, file_format=fmt, **kwargs))
+
+
+def write_result(path, result, **_options) -> None:
+    """Write the final mesh of a result (see :func:`write_mesh`)."""
+    write_mesh(path, result, "final")

@@ -1,0 +1,390 @@
+"""SVG drawings: read a section from ids and classes, write cases and deformed sections.
+
+Reading
+-------
+Shapes (``path``, ``line``, ``polyline``, ``polygon``, ``rect``,
+``circle``, ``ellipse``) are tagged with their ``id``, their classes and
+those of their parent groups, so ``<path id="lower">``,
+``<g class="upper">...</g>`` or ``<path class="target profile">`` all
+work; a path of several segments gives several pieces, chained by
+:mod:`.drawing` like DXF pieces. Path segments become exact curves:
+
+- lines: polylines;
+- quadratic and cubic Béziers: B-splines of degree 2 and 3 with knots
+  ``[0]*(k+1) + [1]*(k+1)`` (a Bézier *is* that B-spline);
+- circular arcs (rx = ry): arcs; elliptical ones: polylines within the
+  chordal error.
+
+Transforms (``transform`` attributes) are applied; circular arcs stay
+arcs under similarities. Document units are honoured: with
+``width="100mm"`` and ``viewBox="0 0 200 100"`` one user unit is 0.5 mm;
+without physical sizes a user unit is a CSS pixel (1/96 in). The case is
+in mm (or in the units a file written by :func:`write_case` records), with
+the y axis flipped to point up; the viewBox origin is not subtracted, so
+user coordinates map to case coordinates by scale alone.
+
+Writing
+-------
+:func:`write_case` writes ``<path id="lower">``, ``upper``, ``target``
+(arcs as ``A``, cubic and quadratic B-splines as Bézier segments, others
+flattened within the chordal error), one user unit = one case unit, plus
+the law and options in the root's ``data-sectiondeform`` attribute.
+:func:`write_result` writes groups ``initial``, ``mesh-initial``,
+``target``, ``mesh-final``, ``deformed``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+
+from ..curves import Arc, BSpline, Chain, Curve, Polyline
+from ..errors import CaseError, require
+from .chaining import fmt_point
+from .drawing import MM_PER_UNIT
+from .json import atomic_write
+from .pieces import Piece, transform_curve
+
+__all__ = ["read_drawing", "read_case", "write_case", "write_result"]
+
+SVG_NS = "http://www.w3.org/2000/svg"
+META_ATTR = "data-sectiondeform"
+SHAPES = {"path", "line", "polyline", "polygon", "rect", "circle", "ellipse"}
+SKIP = {"defs", "clipPath", "mask", "symbol", "marker", "pattern", "title", "desc", "metadata", "style", "text",
+        "linearGradient", "radialGradient", "filter", "script", "tspan", "namedview"}
+CONTAINERS = {"svg", "g", "a", "switch"}
+CSS_UNITS = {"mm": 1.0, "cm": 10.0, "in": 25.4, "pt": 25.4 / 72, "pc": 25.4 / 6, "px": 25.4 / 96, "q": 0.25}
+
+
+def _local(tag: str) -> str:
+    return tag.rsplit("}", 1)[-1]
+
+
+def _length_mm(text: str | None) -> float | None:
+    """A CSS length in mm, or None for a missing or relative one."""
+    if not text:
+        return None
+    m = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([a-zA-Z%]*)\s*", text)
+    if not m or m.group(2) == "%":
+        return None
+    unit = m.group(2).lower() or "px"
+    if unit not in CSS_UNITS:
+        return None
+    return float(m.group(1)) * CSS_UNITS[unit]
+
+
+def _floats(text: str | None) -> list[float]:
+    return [float(v) for v in re.findall(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?", text or "")]
+
+
+def _document_scale(root) -> tuple[float, float]:
+    """Millimetres per user unit along x and y."""
+    vb = _floats(root.get("viewBox"))
+    w, h = _length_mm(root.get("width")), _length_mm(root.get("height"))
+    px = CSS_UNITS["px"]
+    if len(vb) == 4 and vb[2] > 0 and vb[3] > 0:
+        sx = w / vb[2] if w else (h / vb[3] if h else px)
+        sy = h / vb[3] if h else sx
+        return sx, sy
+    return px, px
+
+
+def _bezier(points) -> BSpline:
+    k = len(points) - 1
+    return BSpline(k, np.array(points, dtype=np.float64), np.array([0.0] * (k + 1) + [1.0] * (k + 1)))
+
+
+def _arc_curve(seg, tol: float) -> Curve:
+    start = np.array([seg.start.x, seg.start.y])
+    end = np.array([seg.end.x, seg.end.y])
+    rx, ry = float(seg.rx), float(seg.ry)
+    if abs(rx - ry) <= 1e-9 * max(rx, ry):
+        c = np.array([seg.center.x, seg.center.y])
+        a0 = math.degrees(math.atan2(start[1] - c[1], start[0] - c[0]))
+        return Arc(c, 0.5 * (rx + ry), a0, a0 + math.degrees(seg.sweep))
+    r = max(float(seg.rx), float(seg.ry))
+    step = 2.0 * math.acos(max(1.0 - tol / r, -1.0)) if tol < r else math.pi / 2
+    n = max(4, 2 * math.ceil(abs(seg.sweep) / step))
+    pts = np.array([[p.x, p.y] for p in (seg.point(t) for t in np.linspace(0.0, 1.0, n + 1))])
+    pts[0], pts[-1] = start, end
+    return Polyline(pts)
+
+
+def _path_curves(d: str, tol: float) -> list[Curve]:
+    svgelements = require("svgelements", "cad", "reading SVG")
+    out: list[Curve] = []
+    for seg in svgelements.Path(d):
+        name = type(seg).__name__
+        if name == "Move" or seg.start is None:
+            continue
+        p0 = (seg.start.x, seg.start.y)
+        p1 = (seg.end.x, seg.end.y)
+        if name in ("Line", "Close"):
+            if p0 != p1:
+                out.append(Polyline(np.array([p0, p1])))
+        elif name == "QuadraticBezier":
+            out.append(_bezier([p0, (seg.control.x, seg.control.y), p1]))
+        elif name == "CubicBezier":
+            out.append(_bezier([p0, (seg.control1.x, seg.control1.y), (seg.control2.x, seg.control2.y), p1]))
+        elif name == "Arc":
+            if p0 != p1:
+                out.append(_arc_curve(seg, tol))
+        else:  # pragma: no cover - svgelements yields only the kinds above
+            raise CaseError("svg path", f"unsupported path segment {name}")
+    return out
+
+
+def _shape_curves(el, name: str, tol: float) -> list[Curve]:
+    g = el.get
+    if name == "path":
+        return _path_curves(g("d", ""), tol)
+    if name == "line":
+        p = np.array([[float(g("x1", 0)), float(g("y1", 0))], [float(g("x2", 0)), float(g("y2", 0))]])
+        return [Polyline(p)]
+    if name in ("polyline", "polygon"):
+        v = np.array(_floats(g("points")), dtype=np.float64).reshape(-1, 2)
+        if name == "polygon" and len(v):
+            v = np.vstack((v, v[:1]))
+        return [Polyline(v)] if len(v) >= 2 else []
+    if name == "rect":
+        x, y, w, h = (float(g(k, 0)) for k in ("x", "y", "width", "height"))
+        return [Polyline(np.array([[x, y], [x + w, y], [x + w, y + h], [x, y + h], [x, y]]))]
+    if name == "circle":
+        return [Arc(np.array([float(g("cx", 0)), float(g("cy", 0))]), float(g("r", 0)), 0.0, 360.0)]
+    if name == "ellipse":
+        cx, cy, rx, ry = (float(g(k, 0)) for k in ("cx", "cy", "rx", "ry"))
+        if rx == ry:
+            return [Arc(np.array([cx, cy]), rx, 0.0, 360.0)]
+        n = max(16, int(math.ceil(2 * math.pi / (2 * math.acos(max(1 - tol / max(rx, ry), -1.0))))))
+        t = np.linspace(0, 2 * math.pi, n + 1)
+        pts = np.column_stack((cx + rx * np.cos(t), cy + ry * np.sin(t)))
+        pts[-1] = pts[0]
+        return [Polyline(pts)]
+    return []
+
+
+class _Drawing:
+    def __init__(self, pieces, units, meta, path):
+        self.pieces, self.units, self.meta, self.path = pieces, units, meta, path
+        self.mm_per_unit = MM_PER_UNIT.get(units, 1.0)
+        self.ignored, self.unitless = [], False
+
+
+def read_drawing(path, chordal_error: float | None = None):
+    """Read the shapes of an SVG file as pieces, in mm (or the units it records), y up.
+
+    Parameters
+    ----------
+    path : str or Path
+    chordal_error : float, optional
+        Chordal error of elliptical arcs flattened to polylines, in case
+        units; default 1e-4 of the document's size.
+
+    Returns
+    -------
+    Drawing-like object with ``pieces``, ``units``, ``meta``, ``path``.
+
+    Raises
+    ------
+    CaseError
+        Unreadable file, a zero-length piece, an unsupported element.
+    """
+    svgelements = require("svgelements", "cad", "reading SVG")
+    path = Path(path)
+    try:
+        root = ET.parse(path).getroot()
+    except OSError as exc:
+        raise CaseError(str(path), f"cannot read the SVG file ({exc.strerror})") from None
+    except ET.ParseError as exc:
+        raise CaseError(str(path), f"not a valid SVG file ({exc})") from None
+    meta = {}
+    if root.get(META_ATTR):
+        try:
+            meta = json.loads(root.get(META_ATTR))
+        except ValueError:
+            meta = {}
+    sx, sy = _document_scale(root)
+    units = meta.get("units", "mm")
+    k = 1.0 / MM_PER_UNIT.get(units, 1.0)
+    doc = np.array([[sx * k, 0.0], [0.0, -sy * k]])  # user units -> case units, y up
+    vb = _floats(root.get("viewBox"))
+    size = math.hypot(vb[2], vb[3]) * sx * k if len(vb) == 4 else 100.0
+    tol = chordal_error or 1e-4 * size
+    pieces: list[Piece] = []
+    count = 0
+
+    def visit(el, matrix, tags):
+        nonlocal count
+        name = _local(el.tag)
+        if name in SKIP:
+            return
+        own = set(tags)
+        if el.get("id"):
+            own.add(el.get("id").upper())
+        own.update(c.upper() for c in (el.get("class") or "").split())
+        if el.get("transform"):
+            matrix = svgelements.Matrix(el.get("transform")) * matrix
+        if name in CONTAINERS:
+            for child in el:
+                visit(child, matrix, frozenset(own))
+            return
+        count += 1
+        source = f"<{name}> #{count}" + (f" id={el.get('id')!r}" if el.get("id") else "")
+        if name not in SHAPES:
+            pieces.append(Piece(None, frozenset(own), source))
+            return
+        m = np.array([[matrix.a, matrix.c], [matrix.b, matrix.d]])
+        full = doc @ m
+        offset = doc @ np.array([matrix.e, matrix.f])
+        curves = _shape_curves(el, name, tol / max(np.abs(full).max(), 1e-300))
+        if not curves:
+            raise CaseError(source, "has zero length; delete it")
+        for c in curves:
+            c = transform_curve(c, full, offset, tol)
+            if not c.length > 0:
+                raise CaseError(source, f"zero-length piece at {fmt_point(c.at_fractions(np.array([0.0]))[0])}; delete it")
+            pieces.append(Piece(c, frozenset(own), source))
+
+    for child in root:
+        visit(child, svgelements.Matrix(), frozenset())
+    return _Drawing(pieces, units, meta, path)
+
+
+def read_case(path, **options):
+    """Read a case from an SVG drawing; see :func:`sectiondeform.io.drawing.case_from_drawing`."""
+    from .drawing import case_from_drawing
+
+    return case_from_drawing(read_drawing(path, options.get("chordal_error")), **options)
+
+
+# --------------------------------------------------------------------------
+# Writing
+
+
+def _num(v: float) -> str:
+    return repr(float(v))
+
+
+def _pt(p) -> str:
+    return f"{_num(p[0])},{_num(-p[1])}"
+
+
+def _curve_d(curve: Curve, tol: float, move: bool = True) -> str:
+    """SVG path data for a curve in case coordinates (y flipped)."""
+    out = []
+    if move:
+        out.append("M" + _pt(curve.start if not isinstance(curve, Polyline) else curve.vertices[0]))
+    if isinstance(curve, Chain):
+        out.extend(_curve_d(p, tol, move=False) for p in curve.pieces)
+    elif isinstance(curve, Polyline):
+        out.append("L" + " ".join(_pt(v) for v in curve.vertices[1:]))
+    elif isinstance(curve, Arc):
+        sweep = curve.end_deg - curve.start_deg
+        n = 2 if abs(sweep) >= 180.0 else 1
+        fr = np.linspace(0.0, 1.0, n + 1)[1:]
+        ends = curve.at_fractions(fr)
+        flag = 0 if sweep > 0 else 1  # y flipped: counter-clockwise becomes the negative-angle direction
+        r = _num(curve.radius)
+        out.extend(f"A{r},{r} 0 0 {flag} {_pt(e)}" for e in ends)
+    elif isinstance(curve, BSpline) and curve.degree in (2, 3):
+        from scipy.interpolate import BSpline as SciPy
+
+        k, t, c = curve.degree, curve.knots, curve.control_points
+        spl = SciPy(t, c, k)
+        for a in np.unique(t[k:-k])[1:-1]:  # raise every inner knot to multiplicity k: Bézier pieces
+            have = int(np.sum(t == a))
+            if have < k:
+                spl = spl.insert_knot(a, k - have) if hasattr(spl, "insert_knot") else _insert(spl, a, k - have)
+            t = spl.t
+        cp = spl.c[: len(spl.t) - k - 1]
+        letter = "C" if k == 3 else "Q"
+        for i in range(0, len(cp) - 1, k):
+            out.append(letter + " ".join(_pt(p) for p in cp[i + 1 : i + k + 1]))
+    else:
+        pts, _ = curve.discretise(tol)
+        out.append("L" + " ".join(_pt(v) for v in pts[1:]))
+    return " ".join(out)
+
+
+def _insert(spl, x: float, m: int):  # pragma: no cover - scipy < 1.13
+    from scipy.interpolate import BSpline as SciPy, insert
+
+    tck = (spl.t, spl.c.T, spl.k)
+    t, c, k = insert(x, (spl.t, [spl.c[:, 0], spl.c[:, 1]], spl.k), m)
+    c = np.column_stack(c)
+    return SciPy(t, c, k)
+
+
+def _svg(bounds: np.ndarray, units: str, body: list[str], meta: dict | None = None) -> str:
+    lo, hi = bounds.min(axis=0), bounds.max(axis=0)
+    pad = 0.05 * float(max(hi - lo)) or 1.0
+    x0, y0 = float(lo[0] - pad), float(-hi[1] - pad)
+    w, h = float(hi[0] - lo[0] + 2 * pad), float(hi[1] - lo[1] + 2 * pad)
+    css = units.lower() in CSS_UNITS
+    scale = 1.0 if css else MM_PER_UNIT.get(units, 1.0)
+    unit = units if css else "mm"
+    attrs = (f'xmlns="{SVG_NS}" width="{w * scale!r}{unit}" height="{h * scale!r}{unit}" '
+             f'viewBox="{x0!r} {y0!r} {w!r} {h!r}"')
+    if meta is not None:
+        attrs += f" {META_ATTR}='{json.dumps(meta, separators=(',', ':'))}'"
+    stroke = 0.003 * max(w, h)
+    style = f"<style>path{{fill:none;stroke-width:{stroke:.6g};stroke-linejoin:round}}</style>"
+    return f'<?xml version="1.0" encoding="UTF-8"?>\n<svg {attrs}>\n{style}\n' + "\n".join(body) + "\n</svg>\n"
+
+
+def write_case(path, case) -> None:
+    """Write a case as an SVG drawing (paths ``lower``, ``upper``, ``target``), atomically.
+
+    Parameters
+    ----------
+    path : str or Path
+    case : Case
+    """
+    pts = []
+    body = []
+    size = 0.0
+    for c in (case.lower, case.upper, case.target):
+        q, _ = c.discretise(max(c.length, 1e-300) * 1e-4)
+        pts.append(q)
+    allp = np.concatenate(pts)
+    size = float(np.hypot(*np.ptp(allp, axis=0))) or 1.0
+    tol = case.options.get("chordal_error", 1e-4 * size)
+    for name, color, c in (("lower", "#d62728", case.lower), ("upper", "#222222", case.upper), ("target", "#1f77b4", case.target)):
+        body.append(f'<path id="{name}" stroke="{color}" d="{_curve_d(c, tol)}"/>')
+    meta = {"law": case.law.to_json(), "name": case.name, "options": case.options, "units": case.units,
+            "lower_start": case.lower.start.tolist(), "target_start": case.target.start.tolist()}
+    text = _svg(allp, case.units, body, meta)
+    atomic_write(path, lambda tmp: tmp.write_text(text, encoding="utf-8"))
+
+
+def _poly_d(points: np.ndarray, close: bool) -> str:
+    return "M" + " L".join(_pt(p) for p in points) + (" Z" if close else "")
+
+
+def write_result(path, result, **_options) -> None:
+    """Write a deformed section as SVG: groups initial, mesh-initial, target, mesh-final, deformed.
+
+    Parameters
+    ----------
+    path : str or Path
+    result : Result
+    """
+    def mesh_d(mesh):
+        corners = {"quad": 4, "triangle": 3, "triangle6": 3}[mesh.kind]
+        return " ".join(_poly_d(mesh.points[c[:corners]], True) for c in mesh.cells)
+
+    body = [
+        f'<g id="mesh-initial" stroke="#bbbbbb"><path d="{mesh_d(result.initial_mesh)}"/></g>',
+        f'<g id="initial" stroke="#777777"><path d="{_poly_d(result.initial_contour, True)}"/></g>',
+        f'<g id="mesh-final" stroke="#2ca02c"><path d="{mesh_d(result.final_mesh)}"/></g>',
+        f'<g id="target" stroke="#1f77b4"><path d="{_poly_d(result.lower, False)}"/></g>',
+        f'<g id="deformed" stroke="#d62728"><path d="{_poly_d(result.contour, True)}"/></g>',
+    ]
+    bounds = np.vstack((result.contour, result.initial_contour))
+    text = _svg(bounds, result.units, body, {"units": result.units, "name": result.name})
+    atomic_write(path, lambda tmp: tmp.write_text(text, encoding="utf-8"))
