@@ -56,6 +56,7 @@ __all__ = ["HyperelasticModel", "HyperelasticPrepared", "MODEL", "DEFAULT_THROUG
 DEFAULT_THROUGH_THICKNESS = 4.0
 DEFAULT_BULK_TO_SHEAR = 1000.0
 DEFAULT_TOLERANCE = 1e-7
+CORRECTION_WARNING = 0.02
 
 
 def _option(options: dict, key: str, default: float) -> float:
@@ -176,7 +177,13 @@ class HyperelasticPrepared(Prepared):
             "area_correction": abs(correction),
             "out_of_plane_stretch": lz,
         }
-        return Placement(upper, MeshData(x.copy(), self.mesh.cells, "triangle6"), quality, info)
+        warnings = ()
+        if abs(correction) > CORRECTION_WARNING:
+            warnings = (
+                f"hyperelastic: the area correction moved the upper curve by {abs(correction):.3g} T; the coarse "
+                "mesh misses this deformation's physics (refine with options.elements_through_thickness)",
+            )
+        return Placement(upper, MeshData(x.copy(), self.mesh.cells, "triangle6"), quality, info, warnings)
 
     def _quality(self, state: State) -> dict:
         f = self.physics.fields(state.z, state.lz)
