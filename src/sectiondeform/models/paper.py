@@ -35,9 +35,16 @@ from .base import MeshData, Model, Placement, Prepared
 
 __all__ = ["PaperModel", "PaperPrepared", "MODEL", "solve_scale"]
 
+DENSE_MAP_MAX = 2**21  # entries of each (upper points x columns) placement matrix kept dense
+
 
 def _cross(a, b):
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def _next(a):
+    """``np.roll(a, -1, axis=0)``, without its overhead."""
+    return np.concatenate((a[1:], a[:1]))
 
 
 def solve_scale(fixed: np.ndarray, moving: np.ndarray, signed_area: float, guess: float) -> float:
@@ -69,7 +76,7 @@ def solve_scale(fixed: np.ndarray, moving: np.ndarray, signed_area: float, guess
     >>> solve_scale(sq - up, up, 0.8, 1.0)
     0.8
     """
-    f1, g1 = np.roll(fixed, -1, axis=0), np.roll(moving, -1, axis=0)
+    f1, g1 = _next(fixed), _next(moving)
     c0 = 0.5 * float(np.sum(_cross(fixed, f1))) - signed_area
     c1 = 0.5 * float(np.sum(_cross(fixed, g1) + _cross(moving, f1)))
     c2 = 0.5 * float(np.sum(_cross(moving, g1)))
@@ -89,6 +96,13 @@ def solve_scale(fixed: np.ndarray, moving: np.ndarray, signed_area: float, guess
             "this section under this law (check the target's direction and the area ratio)"
         )
     return min(roots, key=lambda r: abs(r - guess))
+
+
+def _column_matrix(weights: np.ndarray, columns: np.ndarray, n: int) -> np.ndarray:
+    """``(p, n)`` matrix whose row p sums ``weights[p]`` ``(p, 4)`` into the ``columns[p]`` of its corners."""
+    out = np.zeros((len(weights), n))
+    np.add.at(out, (np.arange(len(weights))[:, None], columns), weights)
+    return out
 
 
 def _frames_from_normals(normals: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndarray]:
@@ -114,10 +128,13 @@ class PaperPrepared(Prepared):
         self.b = np.einsum("ijd,jd->ij", rel, n0)
         n = nodes.shape[1]
         self.columns = self.location.nodes % n
-        # Per located point and corner: bilinear weight times the node's frame offset.
-        w = self.location.weights
-        self._wa = w * self.a.ravel()[self.location.nodes]
-        self._wb = w * self.b.ravel()[self.location.nodes]
+        # The upper points are linear in the target's nodes and frames:
+        # fixed_up = W T, moving_up = A t + B n, with (m, n) matrices of the
+        # bilinear weights (times the nodes' frame offsets) summed by column.
+        w, corners = self.location.weights, self.location.nodes
+        self._weights = (w, w * self.a.ravel()[corners], w * self.b.ravel()[corners])
+        dense = len(w) * n <= DENSE_MAP_MAX
+        self._maps = tuple(_column_matrix(c, self.columns, n) for c in self._weights) if dense else None
         self._smoother = _Smoother(n, end_weight=1.0)
         jac = mesh.jacobians()
         self.initial_mesh = MeshData(mesh.points, mesh.quads, "quad", (mesh.n_layers, mesh.n_columns))
@@ -133,19 +150,23 @@ class PaperPrepared(Prepared):
     def _offsets(self, t: np.ndarray, n: np.ndarray) -> np.ndarray:
         return self.a[..., None] * t[None] + self.b[..., None] * n[None]
 
+    def _map(self, i: int, x: np.ndarray) -> np.ndarray:
+        """Map ``i`` (0: W, 1: A, 2: B) applied to per-column values ``x`` ``(n, 2)``: ``(m, 2)``."""
+        if self._maps is not None:
+            return self._maps[i] @ x
+        return np.einsum("pk,pkd->pd", self._weights[i], x[self.columns])
+
     def _moving_up(self, t: np.ndarray, n: np.ndarray) -> np.ndarray:
         """Upper points' offsets from the target for a unit height scale, ``(m, 2)``."""
-        cols = self.columns
-        return np.einsum("pk,pkd->pd", self._wa, t[cols]) + np.einsum("pk,pkd->pd", self._wb, n[cols])
+        return self._map(1, t) + self._map(2, n)
 
     def place(self, target_nodes: np.ndarray, law: Law) -> Placement:
         sec = self.section
         target_area = law.target_area(sec.area)
         t, n = node_frames(target_nodes, sec.orientation)
-        loc = self.location
         lengths = np.hypot(*np.diff(target_nodes, axis=0).T).sum()
         guess = target_area / sec.area * sec.lower_length / lengths
-        fixed_up = np.einsum("pk,pkd->pd", loc.weights, target_nodes[self.columns])
+        fixed_up = self._map(0, target_nodes)
         fixed = np.concatenate((target_nodes, fixed_up[1:-1]))
         zeros = np.zeros_like(target_nodes)
         smoothing = 0.0
