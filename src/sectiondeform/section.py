@@ -68,7 +68,8 @@ def polygon_area(points: np.ndarray) -> float:
     2.0
     """
     x, y = points[:, 0], points[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+    x1, y1 = np.concatenate((x[1:], x[:1])), np.concatenate((y[1:], y[:1]))  # np.roll(., -1), cheaper
+    return 0.5 * float(np.dot(x, y1) - np.dot(x1, y))
 
 
 @dataclass(frozen=True, eq=False)
