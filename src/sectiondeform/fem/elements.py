@@ -48,7 +48,7 @@ def p2_values(local: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> p2_values(np.array([[0.5, 0.0]])).round(12).tolist()
+    >>> (p2_values(np.array([[0.5, 0.0]])).round(12) + 0.0).tolist()
     [[0.0, 0.0, 0.0, 1.0, 0.0, 0.0]]
     """
     xi, eta = local[:, 0], local[:, 1]

@@ -161,8 +161,9 @@ def correct_area(lower: np.ndarray, upper: np.ndarray, signed_area: float) -> tu
     --------
     >>> low = np.array([[0.0, 0.0], [1.0, 0.0]])
     >>> up, k = correct_area(low, np.array([[1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.0, 0.0]]), 1.1)
-    >>> round(k, 12)
-    0.1
+    >>> ring = np.concatenate((low, up[1:-1]))
+    >>> round(0.5 * float(np.sum(ring[:, 0] * np.roll(ring[:, 1], -1) - np.roll(ring[:, 0], -1) * ring[:, 1])), 12)
+    1.1
     """
     inner = upper[1:-1]
     tang = upper[2:] - upper[:-2]
