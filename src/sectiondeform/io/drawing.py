@@ -257,6 +257,8 @@ def case_from_drawing(drawing, *, layers=None, split=None, lower_side="shorter",
         _say(report, f"bbox: kept {sum(p.curve is not None for p in inside)} of {sum(p.curve is not None for p in pieces)} pieces")
         pieces = inside
     found = sorted({t for p in pieces for t in p.tags if t})
+    if getattr(drawing, "unitless", False):
+        _say(report, f"the drawing declares no units ($INSUNITS): taken as {drawing.units}")
 
     def select(role: str, where: str):
         chosen = [p for p in pieces if keys[role] in p.tags]

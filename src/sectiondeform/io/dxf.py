@@ -216,7 +216,10 @@ def read_drawing(path, chordal_error: float | None = None) -> Drawing:
         raise CaseError(str(path), f"not a valid DXF file ({exc})") from None
     msp = doc.modelspace()
     tol = chordal_error or 1e-4 * _extent(msp)
-    code = int(doc.header.get("$INSUNITS", 0) or 0)
+    # ezdxf fills a missing header with defaults ($INSUNITS 6, metres): look in the file itself.
+    with open(path, "rb") as fh:
+        declared = b"$INSUNITS" in fh.read(4_000_000)
+    code = int(doc.header.get("$INSUNITS", 0) or 0) if declared else 0
     units, mm = UNITS.get(code, ("mm", 1.0))
     meta = {}
     if doc.header.custom_vars.has_tag(META_KEY):

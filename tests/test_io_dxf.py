@@ -1,0 +1,283 @@
+"""DXF reading and writing: every entity kind, chaining, units, errors, the real seal scan."""
+
+from __future__ import annotations
+
+import math
+import random
+import time
+
+import numpy as np
+import pytest
+
+ezdxf = pytest.importorskip("ezdxf")
+
+from io_helpers import SEAL, same_curve, shared_case  # noqa: E402
+
+from sectiondeform.cli import main  # noqa: E402
+from sectiondeform.deform import Deformer  # noqa: E402
+from sectiondeform.errors import CaseError  # noqa: E402
+from sectiondeform.io import read_case, write_case, write_result  # noqa: E402
+from sectiondeform.laws import AreaRatio  # noqa: E402
+from sectiondeform.section import polygon_area  # noqa: E402
+
+
+def new_doc(units=4):
+    doc = ezdxf.new("R2010")
+    doc.header["$INSUNITS"] = units
+    return doc, doc.modelspace()
+
+
+def section_doc(shuffle_seed=None, reverse=False, units=4):
+    """A 100 x 40 section: LINE base, upper made of every entity kind, ARC target.
+
+    Upper from B (100, 0): LINE up, LWPOLYLINE with a bulge (half circle of
+    radius 5 bulging right), SPLINE across the top, POLYLINE down, ELLIPSE
+    quarter from (0, 30) to (-7.5, 15), LINE to A (0, 0).
+    """
+    doc, msp = new_doc(units)
+    L, U, T = {"layer": "LOWER"}, {"layer": "UPPER"}, {"layer": "TARGET"}
+    ents = []
+    ents.append(lambda: msp.add_line((0, 0), (100, 0), dxfattribs=L))
+    ents.append(lambda: msp.add_line((100, 0), (100, 10), dxfattribs=U))
+    # bulge +1: half circle from (100, 10) to (100, 20), counter-clockwise, bulging to +x
+    ents.append(lambda: msp.add_lwpolyline([(100, 10, 1.0), (100, 20, 0.0), (100, 30, 0.0)], format="xyb", dxfattribs=U))
+    ents.append(lambda: msp.add_open_spline([(100, 30), (90, 45), (60, 40), (40, 40)], degree=3, dxfattribs=U))
+    ents.append(lambda: msp.add_polyline2d([(40, 40), (20, 40)], dxfattribs=U))
+    ents.append(lambda: msp.add_arc((20, 30), 10, 90, 180, dxfattribs=U))
+    ents.append(lambda: msp.add_ellipse((0, 15), major_axis=(0, 15), ratio=0.5, start_param=0, end_param=math.pi / 2, dxfattribs=U))
+    ents.append(lambda: msp.add_line((10, 30), (0, 30), dxfattribs=U))
+    order = list(range(len(ents)))
+    if shuffle_seed is not None:
+        random.Random(shuffle_seed).shuffle(order)
+    for i in order:
+        ents[i]()
+    msp.add_arc((50, 200), 200, 255, 285, dxfattribs=T)
+    return doc
+
+
+def fix_section(doc):
+    """Close the ELLIPSE end to A with a LINE (the ellipse ends at (-7.5, 15))."""
+    doc.modelspace().add_line((-7.5, 15), (0, 0), dxfattribs={"layer": "UPPER"})
+    return doc
+
+
+@pytest.mark.parametrize("seed", [None, 1, 7])
+def test_every_entity_kind_shuffled(tmp_path, seed):
+    doc = fix_section(section_doc(seed))
+    if seed is not None:  # reverse some pieces too: re-add LINEs the other way
+        msp = doc.modelspace()
+        for e in list(msp.query("LINE[layer=='UPPER']")):
+            s, t = e.dxf.start, e.dxf.end
+            e.dxf.start, e.dxf.end = t, s
+    path = tmp_path / "profile.dxf"
+    doc.saveas(path)
+    report = []
+    case = read_case(path, law=AreaRatio(0.8), report=report)
+    assert case.units == "mm"
+    assert np.allclose(case.lower.start, [0, 0]) and np.allclose(case.lower.end, [100, 0])
+    assert np.allclose(case.upper.start, [100, 0]) and np.allclose(case.upper.end, [0, 0])
+    kinds = {p.kind for p in case.upper.pieces}
+    assert {"polyline", "arc", "bspline"} <= kinds
+    # The bulge became an exact half circle of radius 5 centred at (100, 15), bulging to +x.
+    arcs = [p for p in case.upper.pieces if p.kind == "arc" and abs(p.radius - 5) < 1e-12]
+    assert arcs and np.allclose(arcs[0].center, [100, 15])
+    assert arcs[0].at_fractions(np.array([0.5]))[0][0] == pytest.approx(105.0)
+    # Target runs A' -> B' the same way as A -> B.
+    assert case.target.start[0] < case.target.end[0]
+    result = Deformer(case).deform()
+    assert result.area_final == pytest.approx(0.8 * result.area_initial, rel=1e-9)
+
+
+def test_rational_spline_becomes_polyline_within_chordal_error(tmp_path):
+    doc, msp = new_doc()
+    msp.add_line((0, 0), (10, 0), dxfattribs={"layer": "LOWER"})
+    w = math.sqrt(0.5)  # exact quarter circles as rational quadratics
+    spline = msp.add_rational_spline([(10, 0), (10, 10), (0, 10)], [1, w, 1], degree=2, dxfattribs={"layer": "UPPER"})
+    msp.add_line((0, 10), (0, 0), dxfattribs={"layer": "UPPER"})
+    msp.add_line((0, 0), (10, 0), dxfattribs={"layer": "TARGET"})
+    doc.saveas(tmp_path / "r.dxf")
+    case = read_case(tmp_path / "r.dxf", law=AreaRatio(0.9), chordal_error=1e-4)
+    assert case.upper.kind == "polyline"  # the flattened spline and the LINE, merged
+    arc = case.upper.vertices[:-1]
+    assert np.allclose(np.hypot(*arc.T), 10.0, atol=1e-9)  # vertices on the exact circle
+    # chord midpoints within the chordal error
+    mids = 0.5 * (arc[1:] + arc[:-1])
+    assert (10.0 - np.hypot(*mids.T)).max() <= 1e-4 + 1e-12
+    assert spline.dxf.flags  # it really was rational
+
+
+def test_units_from_insunits_and_conversion(tmp_path):
+    doc = fix_section(section_doc(units=5))  # centimetres
+    doc.saveas(tmp_path / "cm.dxf")
+    case = read_case(tmp_path / "cm.dxf", law=AreaRatio(0.8))
+    assert case.units == "cm"
+    mm = read_case(tmp_path / "cm.dxf", law=AreaRatio(0.8), units="mm")
+    assert mm.units == "mm"
+    assert same_curve(mm.upper, type(case.upper)(tuple(p for p in case.upper.pieces))) > 0  # moved
+    assert mm.lower.length == pytest.approx(10 * case.lower.length)
+    assert np.allclose(mm.upper.at_fractions(np.linspace(0, 1, 50)), 10 * case.upper.at_fractions(np.linspace(0, 1, 50)))
+
+
+@pytest.mark.parametrize("name", ["paper-example", "grooved-tread", "thick-block-s-curve"])
+def test_case_round_trip_and_same_deformation(tmp_path, name):
+    case = shared_case(name)
+    write_case(tmp_path / "c.dxf", case)
+    back = read_case(tmp_path / "c.dxf")
+    for key in ("lower", "upper", "target"):
+        assert same_curve(getattr(case, key), getattr(back, key)) < 1e-9
+    assert back.law == case.law and back.name == case.name and back.options == case.options
+    r0, r1 = Deformer(case).deform(), Deformer(back).deform()
+    assert r0.contour.shape == r1.contour.shape
+    assert np.abs(r0.contour - r1.contour).max() < 1e-8
+
+
+def test_result_dxf_reread_gives_same_points(tmp_path):
+    result = Deformer(shared_case("paper-example")).deform()
+    write_result(tmp_path / "r.dxf", result)
+    doc = ezdxf.readfile(tmp_path / "r.dxf")
+    msp = doc.modelspace()
+    (deformed,) = msp.query("LWPOLYLINE[layer=='DEFORMED']")
+    assert np.array_equal(np.array(deformed.get_points("xy")), result.contour)
+    (initial,) = msp.query("LWPOLYLINE[layer=='INITIAL']")
+    assert np.array_equal(np.array(initial.get_points("xy")), result.initial_contour)
+    cells = msp.query("LWPOLYLINE[layer=='MESH_FINAL']")
+    assert len(cells) == len(result.final_mesh.cells)
+    first = np.array(cells[0].get_points("xy"))
+    assert np.array_equal(first, result.final_mesh.points[result.final_mesh.cells[0]])
+    assert len(msp.query("LWPOLYLINE[layer=='MESH_INITIAL']")) == len(result.initial_mesh.cells)
+    assert doc.header["$INSUNITS"] == 4
+
+
+def test_result_dxf_spline_within_chordal_error(tmp_path):
+    result = Deformer(shared_case("paper-example")).deform()
+    write_result(tmp_path / "s.dxf", result, spline=True, chordal_error=0.01)
+    doc = ezdxf.readfile(tmp_path / "s.dxf")
+    splines = doc.modelspace().query("SPLINE[layer=='DEFORMED']")
+    assert len(splines) == 2
+    curve = np.array([tuple(p)[:2] for p in splines[1].construction_tool().flattening(1e-4)])
+    import shapely
+
+    d = shapely.distance(shapely.points(result.upper), shapely.LineString(curve))
+    assert d.max() < 0.01 + 1e-4
+
+
+def bad_drawings():
+    def missing(msp):
+        msp.add_line((0, 0), (1, 0), dxfattribs={"layer": "LOWER"})
+
+    def gap(msp):
+        msp.add_line((0, 0), (10, 0), dxfattribs={"layer": "LOWER"})
+        msp.add_line((10, 0), (10, 5), dxfattribs={"layer": "UPPER"})
+        msp.add_line((10, 5.5), (0, 5), dxfattribs={"layer": "UPPER"})
+        msp.add_line((0, 5), (0, 0), dxfattribs={"layer": "UPPER"})
+
+    def branch(msp):
+        msp.add_line((0, 0), (10, 0), dxfattribs={"layer": "LOWER"})
+        msp.add_line((10, 0), (10, 5), dxfattribs={"layer": "UPPER"})
+        msp.add_lwpolyline([(10, 5), (0, 5), (0, 0)], dxfattribs={"layer": "UPPER"})
+        msp.add_line((10, 5), (5, 8), dxfattribs={"layer": "UPPER"})
+
+    def gap_free(msp):
+        msp.add_line((0, 0), (10, 0), dxfattribs={"layer": "LOWER"})
+        msp.add_lwpolyline([(10, 0), (10, 5), (0, 5), (0, 0)], dxfattribs={"layer": "UPPER"})
+        msp.add_line((0, 0), (10, 0), dxfattribs={"layer": "TARGET"})
+
+    def zero(msp):
+        gap_free(msp)
+        msp.add_line((3, 5), (3, 5), dxfattribs={"layer": "UPPER"})
+
+    def unsupported(msp):
+        gap_free(msp)
+        msp.add_solid([(0, 0), (1, 0), (1, 1)], dxfattribs={"layer": "UPPER"})
+
+    return {
+        "missing": (missing, "'UPPER' not found"),
+        "gap": (gap, "nearest gap is 0.5"),
+        "branch": (branch, "branch at (10, 5)"),
+        "zero": (zero, "zero-length LINE"),
+        "unsupported": (unsupported, "unsupported entity SOLID"),
+    }
+
+
+@pytest.mark.parametrize("kind", sorted(bad_drawings()))
+def test_bad_drawing_one_clear_error(tmp_path, capsys, kind):
+    build, message = bad_drawings()[kind]
+    doc, msp = new_doc()
+    build(msp)
+    doc.saveas(tmp_path / "bad.dxf")
+    with pytest.raises(CaseError) as info:
+        read_case(tmp_path / "bad.dxf", law=AreaRatio(0.8))
+    assert message in str(info.value)
+    out = tmp_path / "out.dxf"
+    assert main(["deform", str(tmp_path / "bad.dxf"), "--area-ratio", "0.8", "-o", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and message in err[0]
+    assert not out.exists() and not list(tmp_path.glob(".out*"))
+
+
+def test_no_law_and_no_target_errors(tmp_path):
+    doc, msp = new_doc()
+    msp.add_line((0, 0), (10, 0), dxfattribs={"layer": "LOWER"})
+    msp.add_lwpolyline([(10, 0), (10, 5), (0, 5), (0, 0)], dxfattribs={"layer": "UPPER"})
+    doc.saveas(tmp_path / "p.dxf")
+    with pytest.raises(CaseError, match="--area-ratio"):
+        read_case(tmp_path / "p.dxf", target_arc=1.0)
+    with pytest.raises(CaseError, match="no target"):
+        read_case(tmp_path / "p.dxf", law=AreaRatio(0.8))
+    case = read_case(tmp_path / "p.dxf", law=AreaRatio(0.8), target_arc=1.0)
+    assert case.target.length == pytest.approx(10.0)
+    mid = case.target.at_fractions(np.array([0.5]))[0]
+    assert np.allclose(mid, [5, 0])
+    assert case.target.start[1] == pytest.approx(1.0, rel=1e-9) and case.target.start[0] < case.target.end[0]
+
+
+def test_chaining_5600_lines_is_fast(tmp_path):
+    n = 5600
+    t = np.linspace(0, 2 * np.pi, n + 1)
+    ring = np.column_stack((20 + 5 * np.cos(t), 5 * np.sin(t)))
+    ring[-1] = ring[0]
+    doc, msp = new_doc()
+    order = np.random.default_rng(3).permutation(n)
+    for i in order:
+        a, b = ring[i], ring[i + 1]
+        if i % 3 == 0:
+            a, b = b, a
+        msp.add_line(tuple(a), tuple(b))
+    doc.saveas(tmp_path / "ring.dxf")
+    from sectiondeform.io.dxf import read_drawing
+    from sectiondeform.io.chaining import one_chain
+
+    drawing = read_drawing(tmp_path / "ring.dxf")
+    t0 = time.perf_counter()
+    path, report = one_chain(drawing.pieces, "layer 0", 1e-9, closed=True)
+    assert time.perf_counter() - t0 < 1.5
+    assert path.closed and len(path.curve.vertices) == n + 1
+    assert abs(polygon_area(path.curve.vertices[:-1])) == pytest.approx(25 * np.pi, rel=1e-5)
+
+
+@pytest.mark.skipif(not SEAL.exists(), reason="../shared/real is absent")
+def test_real_seal_scan_read_and_deformed(tmp_path, capsys):
+    report = []
+    opts = dict(bbox=(-21, -1, -12, 10), snap=0.05, close_gap=2.5, split=((-19.6, 0.0), (-18.4, 0.0)),
+                simplify=0.01, target_arc=0.05, law=AreaRatio(0.8), report=report)
+    t0 = time.perf_counter()
+    case = read_case(SEAL, **opts)
+    seconds = time.perf_counter() - t0
+    text = "\n".join(report)
+    assert "kept 1981 of 5632 pieces" in text
+    assert "snapped 1 gaps (largest 0.01849" in text
+    assert "closed a gap of 2.083" in text
+    assert case.units == "mm" and seconds < 5
+    assert case.lower.length == pytest.approx(1.167, abs=2e-3)
+    ring = np.vstack((case.lower.vertices, case.upper.vertices[1:-1]))
+    assert abs(polygon_area(ring)) == pytest.approx(27.6, abs=0.1)
+    # Without --close-gap the drawing is refused, naming the gap.
+    with pytest.raises(CaseError, match="not closed: a gap of 2.08"):
+        read_case(SEAL, **{**opts, "close_gap": 0.0, "report": None})
+    out = tmp_path / "seal.dxf"
+    argv = ["deform", str(SEAL), "--bbox=-21,-1,-12,10", "--snap", "0.05", "--close-gap", "2.5",
+            "--split", "-19.6,0", "-18.4,0", "--simplify", "0.01", "--target-arc", "0.05",
+            "--area-ratio", "0.8", "--model", "hyperelastic", "-o", str(out)]
+    assert main(argv) == 0, capsys.readouterr().err
+    doc = ezdxf.readfile(out)
+    assert len(doc.modelspace().query("LWPOLYLINE[layer=='DEFORMED']")) == 1
