@@ -129,10 +129,6 @@ def rigid_fit(src: np.ndarray, dst: np.ndarray, weights: np.ndarray | None = Non
     return q, cd - q @ cs
 
 
-def _cross(a, b):
-    return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
-
-
 def correct_area(lower: np.ndarray, upper: np.ndarray, signed_area: float) -> tuple[np.ndarray, float]:
     """Offset the inner upper points along their normals so the contour has ``signed_area``.
 
@@ -166,15 +162,16 @@ def correct_area(lower: np.ndarray, upper: np.ndarray, signed_area: float) -> tu
     1.1
     """
     inner = upper[1:-1]
-    tang = upper[2:] - upper[:-2]
-    nrm = np.column_stack((tang[:, 1], -tang[:, 0]))
-    nrm /= np.hypot(nrm[:, 0], nrm[:, 1])[:, None]
-    fixed = np.concatenate((lower, inner))
-    moving = np.concatenate((np.zeros_like(lower), nrm))
-    f1, g1 = np.roll(fixed, -1, axis=0), np.roll(moving, -1, axis=0)
-    c0 = 0.5 * float(np.sum(_cross(fixed, f1))) - signed_area
-    c1 = 0.5 * float(np.sum(_cross(fixed, g1) + _cross(moving, f1)))
-    c2 = 0.5 * float(np.sum(_cross(moving, g1)))
+    tang = upper[2:] - upper[:-2]  # ring neighbours of each inner point
+    length = np.sqrt(tang[:, 0] ** 2 + tang[:, 1] ** 2)
+    nrm = np.column_stack((tang[:, 1], -tang[:, 0])) / length[:, None]
+    ring = np.concatenate((lower, inner))
+    x, y = ring[:, 0], ring[:, 1]
+    area = 0.5 * float(x[:-1] @ y[1:] - x[1:] @ y[:-1] + x[-1] * y[0] - x[0] * y[-1])
+    # A(k) = area + k c1 + k^2 c2 with c1 = sum n_i x (P_i+1 - P_i-1) / 2 (summation by parts).
+    c0 = area - signed_area
+    c1 = 0.5 * float(length.sum())  # n x tang = |tang| for the normal (t_y, -t_x)
+    c2 = 0.5 * float(nrm[:-1, 0] @ nrm[1:, 1] - nrm[:-1, 1] @ nrm[1:, 0])
     if c1 == 0.0:
         raise LawError("law: the upper curve cannot be offset to meet the area (degenerate contour)")
     if abs(c2 * c0) <= 1e-12 * c1 * c1:
@@ -187,6 +184,5 @@ def correct_area(lower: np.ndarray, upper: np.ndarray, signed_area: float) -> tu
         k = c0 / q  # the root of smaller magnitude
     out = upper.copy()
     out[1:-1] = inner + k * nrm
-    # Sign convention: report the offset as positive when the area grows.
-    grow = 0.5 * float(np.sum(_cross(fixed, g1) + _cross(moving, f1)))
-    return out, float(k if grow * signed_area >= 0 else -k)
+    # Report the offset as positive when the area's magnitude grows.
+    return out, float(k if c1 * signed_area >= 0 else -k)

@@ -103,14 +103,17 @@ class State:
         Out-of-plane stretch.
     tangent : Tangent
         A factorised tangent at (or next to) this state.
-    iterations : int
-        Newton iterations it took (fresh factorisations, modified ones).
+    iterations : tuple of int
+        Newton iterations it took (fresh factorisations, modified ones[, load steps]).
+    fields : Fields or None
+        The kinematics at ``z``, if computed.
     """
 
     z: np.ndarray
     lz: float
     tangent: Tangent
     iterations: tuple = (0, 0)
+    fields: object = None
 
 
 class NewtonSolver:
@@ -166,7 +169,7 @@ class NewtonSolver:
         kff, kfd = self.pattern.matrices(self.physics.element_matrices(fields))
         self.factorisations += 1
         try:
-            lu = splu(kff, permc_spec=self.permc_spec)
+            lu = splu(kff, permc_spec=self.permc_spec, diag_pivot_thresh=0.01, options={"SymmetricMode": True})
         except RuntimeError as exc:  # exactly singular
             raise ConvergenceError(f"hyperelastic: singular tangent ({exc}); is a part of the mesh unconstrained?") from None
         return Tangent(lu, kfd, int(self.free_x.sum()))
@@ -233,7 +236,7 @@ class NewtonSolver:
             rate = step / prev
             left = step if (rate >= 1.0 or prev == math.inf) else step * rate / (1.0 - rate)
             if alpha == 1.0 and (step <= target or left <= target):
-                return State(zt, lz, last, tuple(counts))
+                return State(zt, lz, last, tuple(counts), ft)
             if modified and mt > MODIFIED_RATE * merit:
                 modified = False
             elif not modified and alpha == 1.0 and step <= SWITCH_STEP * self.length:
@@ -295,4 +298,4 @@ class NewtonSolver:
             total[1] += new.iterations[1]
             state, t, steps = new, t1, steps + 1
             dt = min(1.0 - t, 2.0 * dt) if t < 1.0 else dt
-        return State(state.z, state.lz, state.tangent, (total[0], total[1], steps))
+        return State(state.z, state.lz, state.tangent, (total[0], total[1], steps), state.fields)

@@ -1,0 +1,145 @@
+"""Accuracy-time curve of the hyperelastic model over its coarseness.
+
+For each shared case and each coarseness (elements through the mean
+thickness T), prints and writes:
+
+* ``unknowns``: free unknowns of the coarse problem;
+* ``prepare_ms``: mesh, pattern, factorised undeformed tangent, locations;
+* ``full_ms``: a cold ``place`` (Newton from the rigidly moved section);
+* ``redeform_ms``: ``place`` again after a small change of the target
+  (a bump of 0.5 % T), warm-started;
+* ``preview_ms`` and ``preview_err``: the drag preview for that change and
+  its largest distance to the full solve, relative to T;
+* ``mean``/``max``: distance of the upper curve to the truth, relative to T
+  (mean over the curve, and Hausdorff).
+
+The truth is the fine finite-element reference
+(:func:`sectiondeform.reference.solve_reference`) when it is installed, else
+the model itself at ``--fine`` elements through the thickness (a
+self-convergence check, labelled as such). Times are medians of
+``--repeat`` runs on this machine.
+
+Usage::
+
+    python benchmarks/hyperelastic_study.py [--levels 2 3 4 6 8 12] [--repeat 21]
+        [--out benchmarks/results/hyperelastic_study.json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import statistics
+import time
+from pathlib import Path
+
+import numpy as np
+import shapely
+
+import sectiondeform as sd
+
+ROOT = Path(__file__).resolve().parents[1]
+CASES = sorted((ROOT.parent / "shared" / "cases").glob("*.json")) or [sd.example_case_path()]
+
+
+def distances(a: np.ndarray, b: np.ndarray, T: float) -> tuple[float, float]:
+    """(mean, Hausdorff) distance between the polylines ``a`` and ``b``, relative to ``T``."""
+    la, lb = shapely.LineString(a), shapely.LineString(b)
+    pts = shapely.points(shapely.get_coordinates(shapely.segmentize(la, T / 50)))
+    return float(np.mean(shapely.distance(pts, lb))) / T, shapely.hausdorff_distance(la, lb, densify=0.02) / T
+
+
+def truth(case, fine: float):
+    """Upper curve of the reference solution, and its label."""
+    try:
+        from sectiondeform.reference import solve_reference  # type: ignore[attr-defined]
+    except ImportError:
+        solve_reference = None
+    if solve_reference is not None:
+        ref = solve_reference(case)
+        return np.asarray(ref.upper), "reference"
+    c = dataclasses.replace(case, options={**case.options, "elements_through_thickness": fine})
+    return sd.Deformer(c, model="hyperelastic").deform().upper, f"self (n={fine:g})"
+
+
+def _median_ms(fn, repeat: int) -> float:
+    fn()
+    times = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    return 1e3 * statistics.median(times)
+
+
+def study(path: Path, levels, repeat: int, fine: float) -> list[dict]:
+    case = sd.load_case(path)
+    upper_true, label = truth(case, fine)
+    rows = []
+    for n in levels:
+        c = dataclasses.replace(case, options={**case.options, "elements_through_thickness": n})
+        t0 = time.perf_counter()
+        deformer = sd.Deformer(c, model="hyperelastic", check=False)
+        prepare_ms = 1e3 * (time.perf_counter() - t0)
+        prep = deformer.prepared
+        sec = deformer.section
+        T = sec.thickness
+        nodes = deformer.target_nodes()
+        law = case.law
+
+        def cold():
+            prep.last = None
+            return prep.place(nodes, law)
+
+        full_ms = _median_ms(cold, repeat)
+        result = deformer.deform(nodes)
+        mean, worst = distances(result.upper, upper_true, T)
+        bump = 0.005 * T * np.sin(np.linspace(0.0, np.pi, len(nodes)))[:, None] * np.array([0.0, 1.0])
+        moved = [nodes + bump, nodes]
+
+        def warm():
+            target = moved[0]
+            moved.reverse()
+            return prep.place(target, law)
+
+        prep.place(nodes, law)
+        redeform_ms = _median_ms(warm, repeat)
+        prep.place(nodes, law)
+        preview_ms = _median_ms(lambda: prep.preview(nodes + bump, law), repeat)
+        exact = prep.place(nodes + bump, law).upper
+        prep.place(nodes, law)
+        preview_err = float(np.abs(prep.preview(nodes + bump, law).upper - exact).max()) / T
+        rows.append({
+            "case": case.name, "through_thickness": n, "truth": label,
+            "unknowns": prep.quality["unknowns"], "elements": prep.quality["elements"],
+            "prepare_ms": prepare_ms, "full_ms": full_ms, "redeform_ms": redeform_ms,
+            "preview_ms": preview_ms, "preview_err": preview_err, "mean": mean, "max": worst,
+            "area_correction": result.info["area_correction"],
+        })
+        r = rows[-1]
+        print(f"{case.name:22s} n={n:<4g} unknowns={r['unknowns']:5d} prepare={prepare_ms:7.2f}ms "
+              f"full={full_ms:6.2f}ms redeform={redeform_ms:5.2f}ms preview={preview_ms:5.3f}ms "
+              f"(err {preview_err:.1e} T)  mean={mean:.4f} T  max={worst:.4f} T  [{label}]", flush=True)
+    return rows
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--levels", type=float, nargs="+", default=[2, 3, 4, 6, 8, 12])
+    ap.add_argument("--repeat", type=int, default=21)
+    ap.add_argument("--fine", type=float, default=16.0, help="elements through T of the self-convergence truth")
+    ap.add_argument("--cases", nargs="*", help="case files (default: the shared cases)")
+    ap.add_argument("--out", type=Path, help="write the rows as JSON here")
+    args = ap.parse_args(argv)
+    rows = []
+    for path in [Path(p) for p in args.cases] if args.cases else CASES:
+        rows += study(path, args.levels, args.repeat, args.fine)
+    if args.out:
+        args.out.parent.mkdir(parents=True, exist_ok=True)
+        args.out.write_text(json.dumps(rows, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
