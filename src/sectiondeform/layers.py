@@ -42,6 +42,7 @@ __all__ = [
     "end_frames",
     "quad_jacobians",
     "grid_jacobians",
+    "corner_jacobians",
     "SMOOTHING_WEIGHTS",
 ]
 
@@ -149,14 +150,32 @@ def grid_jacobians(nodes: np.ndarray, orientation: int = 1) -> np.ndarray:
     >>> grid_jacobians(g).tolist()
     [[1.0, 1.0, 1.0, 1.0]]
     """
-    h = np.diff(nodes, axis=1)  # along the layers, (L + 1, n - 1, 2)
-    v = np.diff(nodes, axis=0)  # up the columns, (L, n, 2)
-    h0, h1, v0, v1 = h[:-1], h[1:], v[:, :-1], v[:, 1:]
+    return np.stack(corner_jacobians(nodes[..., 0], nodes[..., 1], orientation), axis=-1).reshape(-1, 4)
+
+
+def corner_jacobians(x: np.ndarray, y: np.ndarray, orientation: int = 1) -> tuple:
+    """The four corner Jacobians of a layered grid from its coordinate grids, in element corner order.
+
+    Parameters
+    ----------
+    x, y : (L + 1, n) float64 ndarray
+        Node coordinates by layer and column.
+    orientation : int
+
+    Returns
+    -------
+    tuple of four (L, n - 1) float64 ndarray
+        Corners 0 to 3 of each element, as :func:`grid_jacobians` orders them.
+    """
+    hx, hy = np.diff(x, axis=1), np.diff(y, axis=1)  # along the layers
+    vx, vy = np.diff(x, axis=0), np.diff(y, axis=0)  # up the columns
+
+    def cross(i, j):  # horizontal edge of row i (0 bottom, 1 top) x vertical edge of column j
+        return hx[i : len(hx) - 1 + i] * vy[:, j : vy.shape[1] - 1 + j] - hy[i : len(hy) - 1 + i] * vx[:, j : vx.shape[1] - 1 + j]
+
     if orientation < 0:
-        jac = (-_cross(h0, v1), -_cross(h0, v0), -_cross(h1, v0), -_cross(h1, v1))
-    else:
-        jac = (_cross(h0, v0), _cross(h0, v1), _cross(h1, v1), _cross(h1, v0))
-    return np.stack(jac, axis=-1).reshape(-1, 4)
+        return (-cross(0, 1), -cross(0, 0), -cross(1, 0), -cross(1, 1))
+    return (cross(0, 0), cross(0, 1), cross(1, 1), cross(1, 0))
 
 
 def node_frames(line: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndarray]:

@@ -27,7 +27,7 @@ import math
 import numpy as np
 
 from ..errors import LawError, MeshError
-from ..layers import SMOOTHING_WEIGHTS, _Smoother, grid_jacobians, grow_mesh, node_frames
+from ..layers import SMOOTHING_WEIGHTS, _Smoother, corner_jacobians, grow_mesh, node_frames
 from ..laws import Law
 from ..locate import locate
 from ..section import Section
@@ -147,8 +147,10 @@ class PaperPrepared(Prepared):
             "jacobian_max": float(jac.max()),
         }
 
-    def _offsets(self, t: np.ndarray, n: np.ndarray) -> np.ndarray:
-        return self.a[..., None] * t[None] + self.b[..., None] * n[None]
+    def _node_grids(self, target_nodes: np.ndarray, t: np.ndarray, n: np.ndarray, k: float) -> tuple:
+        """Final node coordinates ``T_j + k (a t_j + b n_j)`` as two ``(L + 1, n)`` grids, x and y."""
+        a, b = self.a, self.b
+        return tuple(target_nodes[:, d] + k * (a * t[:, d] + b * n[:, d]) for d in (0, 1))
 
     def _map(self, i: int, x: np.ndarray) -> np.ndarray:
         """Map ``i`` (0: W, 1: A, 2: B) applied to per-column values ``x`` ``(n, 2)``: ``(m, 2)``."""
@@ -176,13 +178,13 @@ class PaperPrepared(Prepared):
             moving_up = self._moving_up(t, n)
             moving = np.concatenate((zeros, moving_up[1:-1]))
             k = solve_scale(fixed, moving, sec.orientation * target_area, guess)
-            nodes = target_nodes[None] + k * self._offsets(t, n)
-            jac = grid_jacobians(nodes, sec.orientation)
-            if jac.min() > 0:
+            x, y = self._node_grids(target_nodes, t, n, k)
+            jac = corner_jacobians(x, y, sec.orientation)
+            if min(float(j.min()) for j in jac) > 0:
                 smoothing = lam
                 break
         else:
-            e = int(np.argmin(jac.min(axis=1)))
+            e = int(np.argmin(np.minimum.reduce(jac).ravel()))
             cols = self.mesh.n_columns
             raise MeshError(
                 f"target: the final mesh has an inverted element (layer {e // cols}, column {e % cols}) "
@@ -190,11 +192,12 @@ class PaperPrepared(Prepared):
             )
         upper = fixed_up + k * moving_up
         upper[0], upper[-1] = target_nodes[-1], target_nodes[0]
+        nodes = np.stack((x, y), axis=-1)
         final = MeshData(nodes.reshape(-1, 2), self.quads, "quad", self.initial_mesh.shape)
         return Placement(
             upper=upper,
             final_mesh=final,
-            quality={"jacobian_min": float(jac.min()), "jacobian_max": float(jac.max())},
+            quality={"jacobian_min": min(float(j.min()) for j in jac), "jacobian_max": max(float(j.max()) for j in jac)},
             info={"height_scale": k, "normal_smoothing": smoothing},
         )
 
