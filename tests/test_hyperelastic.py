@@ -173,3 +173,16 @@ def test_shape_error_converges_as_the_mesh_is_refined(fine_truth):
     slope = np.polyfit(np.log(1.0 / ns), np.log(errors), 1)[0]
     assert slope > 1.0
     assert errors[-1] < errors[0]
+
+
+def test_clockwise_section_gives_the_same_shape_as_its_counter_clockwise_twin():
+    arc = {"center": [5.0, -20.0], "radius": 20.0, "start_deg": 104.0, "end_deg": 76.0}
+    ccw = sd.case_from_dict(box_case(10.0, 4.0, {"arc": arc}, 0.9))
+    cw_dict = box_case(10.0, 4.0, {"arc": {**arc, "start_deg": 76.0, "end_deg": 104.0}}, 0.9)
+    cw_dict["lower"] = {"polyline": [[10.0, 0.0], [0.0, 0.0]]}
+    cw_dict["upper"] = {"polyline": [[0.0, 0.0], [0.0, 4.0], [10.0, 4.0], [10.0, 0.0]]}
+    d_cw = sd.Deformer(sd.case_from_dict(cw_dict), model="hyperelastic")
+    assert d_cw.section.orientation == -1
+    a = sd.Deformer(ccw, model="hyperelastic").deform().upper
+    b = d_cw.deform().upper
+    assert np.abs(a[::-1] - b).max() <= 1e-9 * 10.0
