@@ -268,7 +268,7 @@ def test_real_seal_scan_read_and_deformed(tmp_path, capsys):
     assert "snapped 1 gaps (largest 0.01849" in text
     assert "closed a gap of 2.083" in text
     assert case.units == "mm" and seconds < 5
-    assert case.lower.length == pytest.approx(1.167, abs=2e-3)
+    assert case.lower.length == pytest.approx(1.165, abs=5e-3)
     ring = np.vstack((case.lower.vertices, case.upper.vertices[1:-1]))
     assert abs(polygon_area(ring)) == pytest.approx(27.6, abs=0.1)
     # Without --close-gap the drawing is refused, naming the gap.
