@@ -115,7 +115,7 @@ def transform_curve(curve: Curve, matrix, offset=(0.0, 0.0), tol: float = 1e-3) 
     >>> flip = [[1.0, 0.0], [0.0, -1.0]]
     >>> a = transform_curve(Arc([0, 1], 1.0, 0.0, 90.0), flip)
     >>> a.center.tolist(), a.start_deg, a.end_deg
-    ([0.0, -1.0], -0.0, -90.0)
+    ([0.0, -1.0], 0.0, -90.0)
     """
     m = np.asarray(matrix, dtype=np.float64).reshape(2, 2)
     b = np.asarray(offset, dtype=np.float64).reshape(2)
