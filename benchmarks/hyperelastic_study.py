@@ -11,11 +11,12 @@ thickness T), prints and writes:
 * ``preview_ms`` and ``preview_err``: the drag preview for that change and
   its largest distance to the full solve, relative to T;
 * ``mean``/``max``: distance of the upper curve to the truth, relative to T
-  (mean over the curve, and Hausdorff).
+  (mean over the curve, and Hausdorff); ``raw_mean``/``raw_max`` the same
+  before the area correction (the reference's points are not corrected).
 
-The truth is the fine finite-element reference
-(:func:`sectiondeform.reference.solve_reference`) when it is installed, else
-the model itself at ``--fine`` elements through the thickness (a
+The truth is the fine finite-element reference (:mod:`sectiondeform.reference`,
+extra ``[fem]``, element size ``T / --reference-div``) when it is installed,
+else the model itself at ``--fine`` elements through the thickness (a
 self-convergence check, labelled as such). Times are medians of
 ``--repeat`` runs on this machine.
 
@@ -50,17 +51,34 @@ def distances(a: np.ndarray, b: np.ndarray, T: float) -> tuple[float, float]:
     return float(np.mean(shapely.distance(pts, lb))) / T, shapely.hausdorff_distance(la, lb, densify=0.02) / T
 
 
-def truth(case, fine: float):
-    """Upper curve of the reference solution, and its label."""
+def _reference_upper(case, div: float) -> np.ndarray:
+    """Upper points of the fine reference (Triangle mesh of size T / div, scikit-fem, no area correction)."""
     try:
         from sectiondeform.reference import solve_reference  # type: ignore[attr-defined]
     except ImportError:
         solve_reference = None
     if solve_reference is not None:
-        ref = solve_reference(case)
-        return np.asarray(ref.upper), "reference"
-    c = dataclasses.replace(case, options={**case.options, "elements_through_thickness": fine})
-    return sd.Deformer(c, model="hyperelastic").deform().upper, f"self (n={fine:g})"
+        return np.asarray(solve_reference(case).upper)
+    from sectiondeform.reference.mesh import triangulate_section
+    from sectiondeform.reference.solver import MixedProblem, solve_mixed
+
+    sec = sd.build_section(case)
+    T = sec.thickness
+    mesh = triangulate_section(sec, T / div, lower_curve=case.lower)
+    pr = MixedProblem(mesh, bulk_to_shear=float(case.options.get("bulk_to_shear", 1000.0)))
+    support = case.target.at_fractions(pr.dirichlet_fractions)
+    x, _ = solve_mixed(pr, support, case.law.out_of_plane_stretch(sec.area), length_scale=T)
+    nd = pr.ubasis.nodal_dofs[:, mesh.upper_nodes]
+    return mesh.points[mesh.upper_nodes] + np.column_stack((x[nd[0]], x[nd[1]]))
+
+
+def truth(case, fine: float, reference_div: float):
+    """Upper curve of the reference solution (or, without it, of a fine run of the model), and its label."""
+    try:
+        return _reference_upper(case, reference_div), f"reference (h = T/{reference_div:g})"
+    except ImportError:
+        c = dataclasses.replace(case, options={**case.options, "elements_through_thickness": fine})
+        return sd.Deformer(c, model="hyperelastic").deform().upper, f"self (n={fine:g})"
 
 
 def _median_ms(fn, repeat: int) -> float:
@@ -73,9 +91,9 @@ def _median_ms(fn, repeat: int) -> float:
     return 1e3 * statistics.median(times)
 
 
-def study(path: Path, levels, repeat: int, fine: float) -> list[dict]:
+def study(path: Path, levels, repeat: int, fine: float, reference_div: float) -> list[dict]:
     case = sd.load_case(path)
-    upper_true, label = truth(case, fine)
+    upper_true, label = truth(case, fine, reference_div)
     rows = []
     for n in levels:
         c = dataclasses.replace(case, options={**case.options, "elements_through_thickness": n})
@@ -95,6 +113,8 @@ def study(path: Path, levels, repeat: int, fine: float) -> list[dict]:
         full_ms = _median_ms(cold, repeat)
         result = deformer.deform(nodes)
         mean, worst = distances(result.upper, upper_true, T)
+        x = prep.last.z[: 2 * len(prep.mesh.nodes)].reshape(-1, 2)
+        raw_mean, raw_max = distances(prep.upper_weights @ x, upper_true, T)
         bump = 0.005 * T * np.sin(np.linspace(0.0, np.pi, len(nodes)))[:, None] * np.array([0.0, 1.0])
         moved = [nodes + bump, nodes]
 
@@ -115,12 +135,14 @@ def study(path: Path, levels, repeat: int, fine: float) -> list[dict]:
             "unknowns": prep.quality["unknowns"], "elements": prep.quality["elements"],
             "prepare_ms": prepare_ms, "full_ms": full_ms, "redeform_ms": redeform_ms,
             "preview_ms": preview_ms, "preview_err": preview_err, "mean": mean, "max": worst,
+            "raw_mean": raw_mean, "raw_max": raw_max,
             "area_correction": result.info["area_correction"],
         })
         r = rows[-1]
         print(f"{case.name:22s} n={n:<4g} unknowns={r['unknowns']:5d} prepare={prepare_ms:7.2f}ms "
               f"full={full_ms:6.2f}ms redeform={redeform_ms:5.2f}ms preview={preview_ms:5.3f}ms "
-              f"(err {preview_err:.1e} T)  mean={mean:.4f} T  max={worst:.4f} T  [{label}]", flush=True)
+              f"(err {preview_err:.1e} T)  mean={mean:.4f} T  max={worst:.4f} T  "
+              f"(before area correction {raw_mean:.4f} / {raw_max:.4f})  [{label}]", flush=True)
     return rows
 
 
@@ -129,12 +151,13 @@ def main(argv=None) -> int:
     ap.add_argument("--levels", type=float, nargs="+", default=[2, 3, 4, 6, 8, 12])
     ap.add_argument("--repeat", type=int, default=21)
     ap.add_argument("--fine", type=float, default=16.0, help="elements through T of the self-convergence truth")
+    ap.add_argument("--reference-div", type=float, default=16.0, help="reference element size T / this")
     ap.add_argument("--cases", nargs="*", help="case files (default: the shared cases)")
     ap.add_argument("--out", type=Path, help="write the rows as JSON here")
     args = ap.parse_args(argv)
     rows = []
     for path in [Path(p) for p in args.cases] if args.cases else CASES:
-        rows += study(path, args.levels, args.repeat, args.fine)
+        rows += study(path, args.levels, args.repeat, args.fine, args.reference_div)
     if args.out:
         args.out.parent.mkdir(parents=True, exist_ok=True)
         args.out.write_text(json.dumps(rows, indent=1))

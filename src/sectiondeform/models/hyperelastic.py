@@ -36,7 +36,7 @@ matrix-vector product.
 from __future__ import annotations
 
 import math
-import time
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
@@ -136,7 +136,7 @@ class HyperelasticPrepared(Prepared):
         z = np.concatenate(((nodes @ q.T + t).ravel(), np.zeros(self.mesh.n_vertices)))
         return State(z, 1.0, self.reference.tangent.rotated(q)), q, t
 
-    def _finish(self, x: np.ndarray, target_nodes: np.ndarray, law: Law, upper: np.ndarray):
+    def _finish(self, target_nodes: np.ndarray, law: Law, upper: np.ndarray):
         sec = self.section
         upper[0], upper[-1] = target_nodes[-1], target_nodes[0]
         wanted = sec.orientation * law.target_area(sec.area)
@@ -165,7 +165,7 @@ class HyperelasticPrepared(Prepared):
         self._preview_base = None
         n = len(self.mesh.nodes)
         x = state.z[: 2 * n].reshape(n, 2)
-        upper, correction = self._finish(x, target_nodes, law, self.upper_weights @ x)
+        upper, correction = self._finish(target_nodes, law, self.upper_weights @ x)
         quality = self._quality(state)
         info = {
             "newton_full": int(state.iterations[0]),
@@ -194,11 +194,13 @@ class HyperelasticPrepared(Prepared):
         """Drag preview: one linear step from the last solved state, no new factorisation.
 
         The first call after a solve builds the linear map from the target to
-        the upper points (a few back-substitutions); later calls are one
+        the upper points (one back-substitution per prescribed dof, with the
+        factorisation the solve left); later calls are one dense
         matrix-vector product and the area correction. Before any solve, the
-        step starts from the undeformed section moved rigidly onto the target.
-        The result meets the area law exactly but is only first-order accurate
-        in the change of target: call :meth:`place` when the drag ends.
+        step starts from the undeformed section moved rigidly onto the target
+        (best-fit rotation; the map is the undeformed one, rotated). The
+        result meets the area law exactly but is only first-order accurate in
+        the change of target: call :meth:`place` when the drag ends.
 
         Parameters
         ----------
@@ -214,51 +216,56 @@ class HyperelasticPrepared(Prepared):
         """
         target_nodes = np.asarray(target_nodes, dtype=np.float64)
         xd = self._fixed_values(target_nodes)
+        if self._preview_base is None:
+            self._preview_base = self._build_preview()
         base = self._preview_base
-        if base is None:
-            base = self._build_preview(xd)
-            self._preview_base = base
-        state, upper0, xd0, h_d, h_lz, q, t = base
-        if q is not None:  # before any solve: the base is the rigid fit of this target
+        upper0, xd0, q = base.upper, base.xd, None
+        if base.rigid:  # before any solve: linearise about the rigid fit of this target
             q, t = rigid_fit(self.mesh.nodes[self.lower_ids], xd)
-            upper0 = self.upper_ref @ q.T + t
-            xd0 = self.mesh.nodes[self.lower_ids] @ q.T + t
+            upper0, xd0 = upper0 @ q.T + t, xd0 @ q.T + t
         dxd = xd - xd0
-        dlnl = math.log(law.out_of_plane_stretch(self.section.area)) - math.log(state.lz)
         if q is not None:
-            dxd = dxd @ q
-        du = (h_d @ dxd.ravel() + h_lz * dlnl).reshape(-1, 2)
+            dxd = dxd @ q  # back to the unrotated frame
+        dlnl = math.log(law.out_of_plane_stretch(self.section.area)) - math.log(base.lz)
+        du = (base.h_d @ dxd.ravel() + base.h_lz * dlnl).reshape(-1, 2)
         if q is not None:
             du = du @ q.T
-        upper, correction = self._finish(None, target_nodes, law, upper0 + du)
-        final = MeshData(state.z[: 2 * len(self.mesh.nodes)].reshape(-1, 2), self.mesh.cells, "triangle6")
+        upper, correction = self._finish(target_nodes, law, upper0 + du)
+        final = MeshData(base.nodes, self.mesh.cells, "triangle6")
         return Placement(upper, final, {}, {"preview": True, "area_correction": abs(correction)})
 
-    def _build_preview(self, xd: np.ndarray):
-        solver = self.solver
-        pat = solver.pattern
+    def _build_preview(self) -> "_PreviewBase":
+        solver, pat = self.solver, self.solver.pattern
         n = len(self.mesh.nodes)
         state = self.last if self.last is not None else self.reference
         tan = state.tangent
-        kfd = tan.kfd.toarray()
-        if tan.rotation is not None:  # a warm state whose tangent is a rotated reference one
-            k = len(pat.fixed)
-            kfd = np.column_stack([tan.kfd_dot(np.eye(k)[:, i]) for i in range(k)])
-        sens = -tan.solve(np.column_stack((kfd, solver.dres_dlnlz))) if tan.rotation is None else -np.column_stack(
-            [tan.solve(c) for c in np.column_stack((kfd, solver.dres_dlnlz)).T]
-        )
+        k = len(pat.fixed)
+        # Sensitivity of the free dofs to each fixed dof and to ln lz: -K_ff^-1 [K_fd, dR/dln lz].
+        rhs = np.column_stack([tan.kfd_dot(e) for e in np.eye(k)] + [solver.dres_dlnlz])
+        sens = -(tan.solve(rhs) if tan.rotation is None else np.column_stack([tan.solve(c) for c in rhs.T]))
         wx = sp.kron(self.upper_weights, sp.eye(2), format="csr")  # (2m, 2N) on position dofs
         free_x = pat.free[solver.free_x]
-        resp = wx[:, free_x] @ sens[: len(free_x)] + np.column_stack((wx[:, pat.fixed].toarray(), np.zeros(wx.shape[0])))
-        h_d, h_lz = np.ascontiguousarray(resp[:, :-1]), resp[:, -1].copy()
+        resp = wx[:, free_x] @ sens[: len(free_x)]
+        resp[:, :-1] += wx[:, pat.fixed].toarray()
         x = state.z[: 2 * n].reshape(n, 2)
-        upper0 = self.upper_weights @ x
-        xd0 = state.z[pat.fixed].reshape(-1, 2)
-        rigid = self.last is None
-        if rigid:
-            self.upper_ref = upper0
-        q = np.eye(2) if rigid else None
-        return state, upper0, xd0, h_d, h_lz, q, None
+        return _PreviewBase(
+            upper=self.upper_weights @ x, xd=state.z[pat.fixed].reshape(-1, 2), lz=state.lz,
+            h_d=np.ascontiguousarray(resp[:, :-1]), h_lz=resp[:, -1].copy(), nodes=x.copy(),
+            rigid=self.last is None,
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class _PreviewBase:
+    """The linear map of a preview: upper points ``upper + h_d (xd - xd0) + h_lz d(ln lz)``."""
+
+    upper: np.ndarray  # (m, 2) upper points at the base state
+    xd: np.ndarray  # (k, 2) prescribed positions at the base state
+    lz: float
+    h_d: np.ndarray  # (2m, 2k)
+    h_lz: np.ndarray  # (2m,)
+    nodes: np.ndarray  # (N, 2) base state's node positions
+    rigid: bool  # the base is the undeformed state, to be moved rigidly onto each target
 
 
 class HyperelasticModel(Model):
