@@ -69,3 +69,17 @@ def test_node_frames_bisect_corners():
     assert np.allclose(t[1], [np.sqrt(0.5), np.sqrt(0.5)])
     assert np.allclose(n[1], [-np.sqrt(0.5), np.sqrt(0.5)])
     assert np.allclose(np.hypot(*n.T), 1.0)
+
+
+def test_far_overhang_extends_the_base():
+    from sectiondeform.layers import extend_base, plan_extension
+
+    # a mushroom: 2 wide foot, 12 wide cap
+    base = np.column_stack((np.linspace(0, 2, 5), np.zeros(5)))
+    cover = np.array([[2, 0], [2, 1], [7, 1.2], [7, 4], [-5, 4], [-5, 1.2], [0, 1], [0, 0]], float)
+    before, after = plan_extension(base, 1, cover, 0.5)
+    assert before.max() >= 5 and after.max() >= 5
+    ext = extend_base(base, before, after)
+    mesh = grow_mesh(ext, 0.5, 1, cover, 1e-9)
+    assert mesh.jacobians().min() > 0
+    assert _covered(mesh, cover)

@@ -123,3 +123,18 @@ def test_solve_scale_picks_the_root_near_the_guess():
     assert solve_scale(sq - up, up, 2.0, 1.0) == pytest.approx(2.0)
     with pytest.raises(LawError, match="no height scale"):
         solve_scale(sq - up, up, -1.0, 1.0)
+
+
+def test_mushroom_section_with_far_overhangs():
+    """A cap five times wider than its foot: the base is prolonged by virtual columns."""
+    upper = [[2, 0], [2, 1], [7, 1.2], [7, 4], [-5, 4], [-5, 1.2], [0, 1], [0, 0]]
+    case = sd.case_from_dict(box_case(2, 4, upper=upper, ratio=0.8,
+                                      target={"arc": {"center": [1, 5], "radius": 5, "start_deg": -101.5, "end_deg": -78.5}}))
+    deformer = sd.Deformer(case)
+    assert min(deformer.prepared.quality["virtual_columns"]) > 0
+    r = deformer.deform()
+    assert abs(r.relative_error) <= 1e-9 and r.quality["final_jacobian_min"] > 0
+    ident = deformer.deform(deformer.section.lower, law=AreaRatio(1.0))
+    assert np.abs(ident.upper - deformer.section.upper).max() < 1e-12
+    moved = deformer.deform(rigid(deformer.section.lower, 70, (1, 2)), law=AreaRatio(1.0))
+    assert np.abs(moved.upper - rigid(deformer.section.upper, 70, (1, 2))).max() < 1e-12

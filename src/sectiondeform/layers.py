@@ -40,6 +40,8 @@ __all__ = [
     "grow_mesh",
     "node_frames",
     "end_frames",
+    "extend_base",
+    "plan_extension",
     "quad_jacobians",
     "grid_jacobians",
     "corner_jacobians",
@@ -49,6 +51,7 @@ __all__ = [
 SMOOTHING_WEIGHTS = (0.05, 0.5, 5.0, 50.0, 500.0, 5e3, 5e4, 5e5)
 SPLAY_STEP_DEG = 10.0
 SPLAY_MAX_DEG = 80.0
+SPLAY_EXTEND_DEG = 45.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -273,10 +276,12 @@ class _Smoother:
 def end_frames(base: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndarray]:
     """Directions of the two end columns and their outward perpendiculars.
 
-    An end column leaves the base along the bisector of the base's end
-    normal and the normal of the chord A-B: straight up for a flat base, and
-    converging or diverging only half as much as the end normals where the
-    base is curved, so a concave base leaves room for many layers.
+    An end column leaves the base along the base's end normal where that
+    normal leans outward (a convex end: the column fans out with its
+    neighbours), and along the bisector of the end normal and the normal of
+    the chord A-B where it leans inward (a concave end: the column converges
+    only half as much as its neighbours, so they never cross it and a
+    concave base leaves room for many layers).
 
     Returns
     -------
@@ -286,10 +291,70 @@ def end_frames(base: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndarr
     _, n = node_frames(base, orientation)
     chord = base[-1] - base[0]
     nc = orientation * np.array([-chord[1], chord[0]]) / math.hypot(*chord)
-    dirs = n[[0, -1]] + nc
+    ends = n[[0, -1]]
+    along = chord / math.hypot(*chord)
+    leans_in = np.array([ends[0] @ along > 0, ends[1] @ along < 0])
+    dirs = np.where(leans_in[:, None], ends + nc, ends)
     dirs /= np.hypot(dirs[:, 0], dirs[:, 1])[:, None]
     perp = orientation * np.column_stack((dirs[:, 1], -dirs[:, 0]))  # along the base, A to B
     return dirs, perp * np.array([[-1.0], [1.0]])
+
+
+def extend_base(line: np.ndarray, before: np.ndarray, after: np.ndarray) -> np.ndarray:
+    """Prolong a polyline along its end tangents by virtual nodes.
+
+    Parameters
+    ----------
+    line : (n, 2) float64 ndarray
+        The base, A to B.
+    before, after : (p,) and (q,) float64 ndarray
+        Distances of the virtual nodes beyond A (listed from farthest to
+        nearest) and beyond B (nearest to farthest), units.
+
+    Returns
+    -------
+    (p + n + q, 2) float64 ndarray
+
+    Examples
+    --------
+    >>> extend_base(np.array([[0.0, 0.0], [1.0, 0.0]]), np.array([1.0]), np.array([0.5, 1.0])).tolist()
+    [[-1.0, 0.0], [0.0, 0.0], [1.0, 0.0], [1.5, 0.0], [2.0, 0.0]]
+    """
+    if not len(before) and not len(after):
+        return line
+    ta, tb = line[1] - line[0], line[-1] - line[-2]
+    ta, tb = ta / math.hypot(*ta), tb / math.hypot(*tb)
+    return np.concatenate((line[0] - before[:, None] * ta, line, line[-1] + after[:, None] * tb))
+
+
+def plan_extension(base: np.ndarray, orientation: int, points: np.ndarray, height: float) -> tuple[np.ndarray, np.ndarray]:
+    """Virtual nodes beyond A and B for points that overhang the base too far for a splay.
+
+    Where a point lies beyond an end column at more than
+    ``SPLAY_EXTEND_DEG`` from it, the base is prolonged along its end
+    tangent past the farthest such point (plus one element), in steps of
+    about ``height``; the remaining overhang is left to the splay.
+
+    Returns
+    -------
+    before, after : (p,), (q,) float64 ndarray
+        Distances for :func:`extend_base`, units.
+    """
+    out = []
+    for end, sign in ((0, -1.0), (-1, 1.0)):
+        t = base[1] - base[0] if end == 0 else base[-1] - base[-2]
+        t = sign * t / math.hypot(*t)
+        n = orientation * np.array([-t[1], t[0]]) * sign
+        rel = points - base[end]
+        u, v = rel @ t, rel @ n
+        far = (u > 0) & (np.degrees(np.arctan2(u, np.maximum(v, 0.0))) > SPLAY_EXTEND_DEG)
+        if far.any():
+            reach = float(u[far].max()) + height
+            count = max(1, math.ceil(reach / height))
+            out.append(np.linspace(reach, 0.0, count + 1)[:-1] if end == 0 else np.linspace(0.0, reach, count + 1)[1:])
+        else:
+            out.append(np.zeros(0))
+    return out[0], out[1]
 
 
 def _splay_needed(base: np.ndarray, orientation: int, points: np.ndarray) -> tuple[float, float]:

@@ -15,8 +15,9 @@ into a :class:`Section`:
    at which the *target* needs vertices to stay within ``tol`` are added, so
    the deformed lower curve is resolved too (a target vertex closer than
    half the smallest element to a lower vertex is merged into it);
-4. no step may exceed ``STEP_CAP_FRACTION`` (1/4) of the mean thickness
-   T = area / lower length, so the mesh can follow a bent target even where
+4. no step may exceed ``STEP_CAP_FRACTION`` (1/4) of the mesh scale
+   (the mean thickness T = area / lower length, or the square root of the
+   area where that is smaller), so the mesh can follow a bent target even where
    the lower curve is one straight chord;
 5. the element size is the smallest step S_min (paper §3.4), kept within
    [T / 32, T / 4] unless ``options.element_size`` sets it, and divided by
@@ -203,7 +204,9 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
         raise GeometryError("section: lower and upper enclose no area; check that upper is not the lower curve retraced")
 
     length = case.lower.length
-    thickness = abs(signed) / length
+    # Mesh scale: the mean thickness, or the square root of the area for a
+    # section much wider than its lower curve (a mushroom on a short foot).
+    thickness = min(abs(signed) / length, math.sqrt(abs(signed)))
     floor = ELEMENT_FLOOR_FRACTION * thickness
     _, tgt_s = case.target.discretise(tol)
     s = _merge_fractions(low_s, tgt_s, 0.5 * floor / length)

@@ -27,7 +27,15 @@ import math
 import numpy as np
 
 from ..errors import LawError, MeshError
-from ..layers import SMOOTHING_WEIGHTS, _Smoother, corner_jacobians, grow_mesh, node_frames
+from ..layers import (
+    SMOOTHING_WEIGHTS,
+    _Smoother,
+    corner_jacobians,
+    extend_base,
+    grow_mesh,
+    node_frames,
+    plan_extension,
+)
 from ..laws import Law
 from ..locate import locate
 from ..section import Section
@@ -116,8 +124,12 @@ class PaperPrepared(Prepared):
 
     def __init__(self, section: Section):
         self.section = section
+        self._lower_polyline_length = float(np.hypot(*np.diff(section.lower, axis=0).T).sum())
         size = section.size
-        mesh = grow_mesh(section.lower, section.element_size, section.orientation, section.upper, tol=1e-9 * size)
+        h = section.element_size
+        self.extension = plan_extension(section.lower, section.orientation, section.upper, h)
+        base = extend_base(section.lower, *self.extension)
+        mesh = grow_mesh(base, h, section.orientation, section.upper, tol=1e-9 * size)
         self.mesh = mesh
         self.quads = mesh.quads
         self.location = locate(mesh.points, mesh.quads, section.upper)
@@ -145,7 +157,21 @@ class PaperPrepared(Prepared):
             "element_size": section.element_size,
             "jacobian_min": float(jac.min()),
             "jacobian_max": float(jac.max()),
+            "virtual_columns": [len(self.extension[0]), len(self.extension[1])],
         }
+
+    def extended_target(self, target_nodes: np.ndarray) -> np.ndarray:
+        """The target nodes with the virtual base nodes beyond A' and B', ``(n + p + q, 2)``.
+
+        Virtual nodes prolong the target along its end tangents, at the
+        initial distances times the target's stretch (its length over the
+        lower curve's).
+        """
+        before, after = self.extension
+        if not len(before) and not len(after):
+            return target_nodes
+        stretch = np.hypot(*np.diff(target_nodes, axis=0).T).sum() / self._lower_polyline_length
+        return extend_base(target_nodes, before * stretch, after * stretch)
 
     def _node_grids(self, target_nodes: np.ndarray, t: np.ndarray, n: np.ndarray, k: float) -> tuple:
         """Final node coordinates ``T_j + k (a t_j + b n_j)`` as two ``(L + 1, n)`` grids, x and y."""
@@ -165,12 +191,14 @@ class PaperPrepared(Prepared):
     def place(self, target_nodes: np.ndarray, law: Law) -> Placement:
         sec = self.section
         target_area = law.target_area(sec.area)
+        real = target_nodes
+        target_nodes = self.extended_target(real)
         t, n = node_frames(target_nodes, sec.orientation)
-        lengths = np.hypot(*np.diff(target_nodes, axis=0).T).sum()
+        lengths = np.hypot(*np.diff(real, axis=0).T).sum()
         guess = target_area / sec.area * sec.lower_length / lengths
         fixed_up = self._map(0, target_nodes)
-        fixed = np.concatenate((target_nodes, fixed_up[1:-1]))
-        zeros = np.zeros_like(target_nodes)
+        fixed = np.concatenate((real, fixed_up[1:-1]))
+        zeros = np.zeros_like(real)
         smoothing = 0.0
         for lam in (0.0,) + SMOOTHING_WEIGHTS:
             if lam:
@@ -191,7 +219,7 @@ class PaperPrepared(Prepared):
                 "even with its normals smoothed; the target bends too sharply for this section's thickness"
             )
         upper = fixed_up + k * moving_up
-        upper[0], upper[-1] = target_nodes[-1], target_nodes[0]
+        upper[0], upper[-1] = real[-1], real[0]
         nodes = np.stack((x, y), axis=-1)
         final = MeshData(nodes.reshape(-1, 2), self.quads, "quad", self.initial_mesh.shape)
         return Placement(
