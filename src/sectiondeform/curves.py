@@ -21,7 +21,6 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
-from scipy.interpolate import BSpline as _SciPyBSpline
 
 from .errors import CaseError
 
@@ -312,7 +311,7 @@ class BSpline(Curve):
             t = np.array(self.knots, dtype=np.float64)
         t.setflags(write=False)
         object.__setattr__(self, "knots", t)
-        object.__setattr__(self, "_spline", _SciPyBSpline(t, c, p))
+        object.__setattr__(self, "_spline", _Spline(t, c, p))
 
     @cached_property
     def _table(self) -> tuple[np.ndarray, np.ndarray]:
@@ -348,7 +347,8 @@ class BSpline(Curve):
         for _ in range(40):
             a, b = u[:-1], u[1:]
             probe = np.stack([a + f * (b - a) for f in (0.25, 0.5, 0.75)], axis=1)
-            pa, pb, pm = self._spline(a), self._spline(b), self._spline(probe.ravel()).reshape(-1, 3, 2)
+            pu = self._spline(u)
+            pa, pb, pm = pu[:-1], pu[1:], self._spline(probe.ravel()).reshape(-1, 3, 2)
             d = pb - pa
             norm = np.hypot(d[:, 0], d[:, 1])
             rel = pm - pa[:, None, :]
@@ -439,6 +439,76 @@ class Chain(Curve):
 
     def to_json(self):
         return {"chain": [p.to_json() for p in self.pieces]}
+
+
+def _de_boor(t: np.ndarray, c: np.ndarray, k: int, i: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """de Boor's algorithm: the spline ``(t, c, k)`` at ``x`` ``(K,)``, in knot intervals ``i``, ``(K, 2)``."""
+    d = c[i[:, None] + np.arange(-k, 1)]  # (K, k + 1, 2)
+    for r in range(1, k + 1):
+        j = i[:, None] + np.arange(r, k + 1)  # every j of this round at once, from the old values
+        lo, hi = t[j - k], t[j + 1 - r]
+        alpha = ((x[:, None] - lo) / (hi - lo))[..., None]
+        d[:, r:] = (1.0 - alpha) * d[:, r - 1 : k] + alpha * d[:, r:]
+    return d[:, k]
+
+
+class _Spline:
+    """A clamped B-spline ``(t, c, k)`` as polynomial pieces, evaluated in numpy.
+
+    The same map as ``scipy.interpolate.BSpline(t, c, k)`` (to rounding),
+    kept here so that reading and discretising a case does not import
+    scipy.interpolate (most of a command's start-up time). Each knot
+    interval holds the Taylor coefficients of its piece at its left knot
+    (computed once by de Boor's algorithm); a call is a search and Horner's
+    rule.
+
+    Examples
+    --------
+    >>> s = _Spline(np.array([0.0, 0.0, 1.0, 1.0]), np.array([[0.0, 0.0], [2.0, 4.0]]), 1)
+    >>> s(np.array([0.25])).tolist(), s.derivative()(np.array([0.5])).tolist()
+    ([[0.5, 1.0]], [[2.0, 4.0]])
+    """
+
+    def __init__(self, t: np.ndarray, c: np.ndarray, k: int, pieces=None):
+        self.t, self.c, self.k = t, c, k
+        if pieces is None:
+            pieces = _taylor_pieces(t, c, k)
+        self._x0, self._coef = pieces  # (P,) left knots, (P, k + 1, 2) highest power first
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        """Points at parameters ``x`` ``(K,)``, ``(K, 2)``."""
+        x = np.asarray(x, dtype=np.float64)
+        i = np.clip(np.searchsorted(self._x0, x, side="right") - 1, 0, len(self._x0) - 1)
+        dx = (x - self._x0[i])[:, None]
+        coef = self._coef[i]
+        out = coef[:, 0]
+        for m in range(1, self.k + 1):
+            out = out * dx + coef[:, m]
+        return out
+
+    def derivative(self) -> "_Spline":
+        """The derivative, a spline of degree ``k - 1``."""
+        t, c, k = self.t, self.c, self.k
+        span = t[k + 1 : len(c) + k] - t[1 : len(c)]
+        dc = k * np.diff(c, axis=0) / np.where(span > 0, span, 1.0)[:, None]
+        powers = np.arange(k, 0, -1)[None, :, None]
+        return _Spline(t[1:-1], dc, k - 1, (self._x0, self._coef[:, :k] * powers))
+
+
+def _taylor_pieces(t: np.ndarray, c: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """Left knot and Taylor coefficients (highest power first) of each piece of ``(t, c, k)``."""
+    i = np.arange(k, len(c))
+    x0 = t[i]
+    coef = np.empty((len(i), k + 1, 2))
+    tm, cm, fact = t, c, 1.0
+    for m in range(k + 1):  # m-th derivative: knots t[m:-m], degree k - m, interval i - m
+        with np.errstate(invalid="ignore", divide="ignore"):  # empty pieces (repeated knots) are never used
+            coef[:, k - m] = _de_boor(tm, cm, k - m, i - m, x0) / fact
+        if m < k:
+            span = tm[k - m + 1 : len(cm) + k - m] - tm[1 : len(cm)]
+            cm = (k - m) * np.diff(cm, axis=0) / np.where(span > 0, span, 1.0)[:, None]
+            tm, fact = tm[1:-1], fact * (m + 1)
+    return x0, coef
 
 
 # --------------------------------------------------------------------------
