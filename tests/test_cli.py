@@ -88,3 +88,13 @@ def test_help_on_every_command(capsys):
             main([name, "--help"])
         assert info.value.code == 0
         assert "usage: sectiondeform" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("extra", [["--plot", "fig.gif"], ["--mesh-out", "m.stl"]])
+def test_bad_secondary_output_writes_nothing(extra, tmp_path, capsys):
+    case = _write(tmp_path, box_case())
+    out = tmp_path / "r.json"
+    args = ["deform", str(case), "-o", str(out)] + [str(tmp_path / a) if "." in a else a for a in extra]
+    assert main(args) == 2
+    assert "unknown" in capsys.readouterr().err
+    assert [p.name for p in tmp_path.iterdir()] == ["case.json"]

@@ -12,11 +12,11 @@ from pathlib import Path
 import numpy as np
 
 from .errors import CaseError, require
+from .io import FIGURE_FORMATS as FORMATS
 from .models.base import MeshData
 
 __all__ = ["save_figure", "draw_result", "draw_mesh"]
 
-FORMATS = (".png", ".svg", ".pdf")
 
 
 def _pyplot():

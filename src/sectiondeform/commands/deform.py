@@ -13,7 +13,16 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..deform import Deformer
-from ..io import add_input_args, add_output_args, input_options, output_options, read_case, write_meshes, write_result
+from ..io import (
+    add_input_args,
+    add_output_args,
+    check_outputs,
+    input_options,
+    output_options,
+    read_case,
+    write_meshes,
+    write_result,
+)
 from ._common import add_model_args, apply_overrides, summary
 
 
@@ -29,6 +38,7 @@ def add_args(parser) -> None:
 
 
 def run(args) -> int:
+    check_outputs(args)
     report: list[str] = []
     case = apply_overrides(read_case(args.case, **input_options(args, report)), args)
     result = Deformer(case, element_size=args.element_size).deform()

@@ -39,6 +39,7 @@ __all__ = [
     "add_input_args",
     "input_options",
     "add_output_args",
+    "check_outputs",
     "output_options",
 ]
 
@@ -88,6 +89,30 @@ def write_result(path, result, **options) -> None:
     """Write a result in the format its extension names, atomically."""
     path = Path(path)
     _resolve(RESULT_WRITERS, path, "output")(path, result, **options)
+
+
+MESH_FORMATS = (".vtu", ".vtk", ".msh", ".inp")
+FIGURE_FORMATS = (".png", ".svg", ".pdf")
+
+
+def check_outputs(args) -> None:
+    """Check every output path's format before any work is done.
+
+    Raises
+    ------
+    CaseError
+        Naming the option and the formats it accepts, so that a bad name
+        never leaves the other outputs half written.
+    """
+    if getattr(args, "output", None) is not None and args.output.suffix.lower() not in RESULT_WRITERS:
+        _resolve(RESULT_WRITERS, args.output, "output")
+    for option in ("mesh_out", "initial_mesh_out"):
+        for p in getattr(args, option, None) or []:
+            if p.suffix.lower() not in MESH_FORMATS:
+                raise CaseError(f"--{option.replace('_', '-')}", f"unknown mesh format {p.suffix or '(none)'!r}; use one of {', '.join(MESH_FORMATS)}")
+    plot = getattr(args, "plot", None)
+    if plot is not None and plot.suffix.lower() not in FIGURE_FORMATS:
+        raise CaseError("--plot", f"unknown figure format {plot.suffix or '(none)'!r}; use one of {', '.join(FIGURE_FORMATS)}")
 
 
 def add_output_args(parser) -> None:
