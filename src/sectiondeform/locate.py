@@ -6,9 +6,13 @@ in [0, 1]² under the bilinear map of that element::
     x = (1-xi)(1-eta) p0 + xi(1-eta) p1 + xi eta p2 + (1-xi) eta p3
 
 The inverse is solved in closed form (a quadratic in ``eta``), for all
-points at once. Candidate elements come from a k-d tree of element centres
-(scipy), tried nearest first; points still unlocated are tried against every
-element, so a point on an edge or a node is always found.
+points at once. Candidate elements come from a uniform grid of buckets over
+the mesh, each bucket listing the elements whose bounding box meets it: a
+point inside an element is always among its bucket's candidates. Points
+strictly inside a candidate are taken first, then those within the
+tolerance of one (on an edge or a node); points still unlocated are tried
+against every element. Points go through in chunks, so memory stays
+bounded whatever their number.
 """
 
 from __future__ import annotations
@@ -16,14 +20,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import cKDTree
-
 from .errors import LocateError
 
 __all__ = ["Location", "locate", "place", "bilinear_weights", "inverse_bilinear"]
 
 LOCAL_TOL = 1e-6
-CANDIDATES = 6
+CHUNK = 1 << 16  # points located at once
 
 
 @dataclass(frozen=True, eq=False)
@@ -129,6 +131,60 @@ def _try(quad_pts, x, tol):
     return ok, local
 
 
+class _Buckets:
+    """A uniform grid over the elements' bounding boxes, about one element per bucket.
+
+    ``members[start[b]:start[b + 1]]`` are the elements whose bounding box
+    (widened by a millionth of the mesh size) meets bucket ``b``, by index.
+    """
+
+    def __init__(self, quad_pts: np.ndarray):
+        lo, hi = quad_pts.min(axis=1), quad_pts.max(axis=1)
+        self.origin = lo.min(axis=0)
+        extent = hi.max(axis=0) - self.origin
+        pad = 1e-6 * float(np.hypot(*extent)) + 1e-300
+        self.cell = max(float(np.sqrt(np.prod(extent + pad) / len(quad_pts))), pad)
+        self.shape = np.maximum(1, np.ceil((extent + pad) / self.cell).astype(np.int64))
+        i0, i1 = self._cells(lo - pad), self._cells(hi + pad)
+        span = i1 - i0 + 1
+        count = span[:, 0] * span[:, 1]
+        el = np.repeat(np.arange(len(quad_pts)), count)
+        k = np.arange(len(el)) - np.repeat(np.cumsum(count) - count, count)
+        ix, iy = i0[el, 0] + k % span[el, 0], i0[el, 1] + k // span[el, 0]
+        bucket = iy * self.shape[0] + ix
+        order = np.argsort(bucket, kind="stable")
+        self.members = el[order]
+        self.start = np.searchsorted(bucket[order], np.arange(self.shape[0] * self.shape[1] + 1))
+
+    def _cells(self, x: np.ndarray) -> np.ndarray:
+        return np.clip(np.floor((x - self.origin) / self.cell).astype(np.int64), 0, self.shape - 1)
+
+    def of(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """First member index and member count of each point's bucket, ``(p,)`` each."""
+        c = self._cells(x)
+        b = c[:, 1] * self.shape[0] + c[:, 0]
+        outside = np.any((x < self.origin) | (x >= self.origin + self.shape * self.cell), axis=1)
+        count = np.where(outside, 0, self.start[b + 1] - self.start[b])
+        return self.start[b], count
+
+
+def _locate_chunk(quad_pts, grid, x, tol):
+    """Element (-1 if none) and local coordinates of each point, among its bucket's candidates."""
+    first, count = grid.of(x)
+    elements = np.full(len(x), -1, dtype=np.int64)
+    local = np.zeros((len(x), 2))
+    for t in (0.0, tol):  # strictly inside first, then within the tolerance
+        for c in range(int(count.max(initial=0))):
+            todo = np.flatnonzero((elements < 0) & (count > c))
+            if not todo.size:
+                continue
+            el = grid.members[first[todo] + c]
+            ok, loc = _try(quad_pts[el], x[todo], t)
+            elements[todo[ok]] = el[ok]
+            local[todo[ok]] = loc[ok]
+    return elements, local
+
+
 def locate(points: np.ndarray, quads: np.ndarray, x: np.ndarray, tol: float = LOCAL_TOL) -> Location:
     """Locate each point of ``x`` in the mesh ``(points, quads)``.
 
@@ -156,28 +212,20 @@ def locate(points: np.ndarray, quads: np.ndarray, x: np.ndarray, tol: float = LO
     Examples
     --------
     >>> pts = np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [0.0, 1.0], [1.0, 1.0], [2.0, 1.0]])
-    >>> loc = locate(pts, np.array([[0, 1, 4, 3], [1, 2, 5, 4]]), np.array([[1.5, 0.5], [1.0, 1.0]]))
+    >>> loc = locate(pts, np.array([[0, 1, 4, 3], [1, 2, 5, 4]]), np.array([[1.5, 0.5], [0.5, 1.0]]))
     >>> loc.elements.tolist(), place(pts, loc).tolist()
-    ([1, 0], [[1.5, 0.5], [1.0, 1.0]])
+    ([1, 0], [[1.5, 0.5], [0.5, 1.0]])
     """
     x = np.asarray(x, dtype=np.float64)
     quad_pts_all = points[quads]
-    centres = quad_pts_all.mean(axis=1)
-    k = min(CANDIDATES, len(quads))
-    _, cand = cKDTree(centres).query(x, k=k)
-    cand = cand.reshape(len(x), k)
+    grid = _Buckets(quad_pts_all)
     elements = np.full(len(x), -1, dtype=np.int64)
     local = np.zeros((len(x), 2))
-    todo = np.arange(len(x))
-    for c in range(k):
-        if not todo.size:
-            break
-        el = cand[todo, c]
-        ok, loc = _try(quad_pts_all[el], x[todo], tol)
-        elements[todo[ok]] = el[ok]
-        local[todo[ok]] = loc[ok]
-        todo = todo[~ok]
-    if todo.size:  # exhaustive pass for the few points the nearest centres missed
+    for lo in range(0, len(x), CHUNK):
+        part = slice(lo, lo + CHUNK)
+        elements[part], local[part] = _locate_chunk(quad_pts_all, grid, x[part], tol)
+    todo = np.flatnonzero(elements < 0)
+    if todo.size:  # exhaustive pass for the few points just outside every bucket
         for i in todo:
             ok, loc = _try(quad_pts_all, np.broadcast_to(x[i], (len(quads), 2)), tol)
             if ok.any():
