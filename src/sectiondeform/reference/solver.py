@@ -1,0 +1,459 @@
+"""Mixed finite-element solve of the bonded section (scikit-fem, extra ``[fem]``).
+
+Model
+-----
+Generalised plane strain: the deformation gradient is
+
+    F = [[F2D, 0], [0, λz]],   F2D = I + ∇u,   λz prescribed,
+
+so the section may change area while the body keeps its volume: with
+λz = 1 / r an incompressible section ends with area r × A0, the law.
+
+Material: compressible neo-Hookean with a decoupled volumetric part,
+
+    Ψ(F) = μ/2 (J^(-2/3) tr(FᵀF) − 3) + κ/2 (J − 1)²,   J = det F = λz det F2D,
+
+written in mixed displacement–pressure form (perturbed Lagrangian) so the
+nearly incompressible material (κ/μ ≥ 100) does not lock:
+
+    Π(u, p) = ∫ μ/2 (J^(-2/3) tr(FᵀF) − 3) + p (J − 1) − p² / (2κ) dA.
+
+Eliminating p (p = κ (J − 1)) gives back Ψ. Elements: Taylor–Hood, P2
+displacement with continuous P1 pressure, inf-sup stable.
+
+Boundary conditions: every lower node (vertices and mid-edge nodes) at
+arc-length fraction s goes to the target point at s; the rest is traction
+free.
+
+Solution: full Newton on (u, p), with the support displacement and λz
+ramped together. The load path splits the support's motion into a rigid
+part (the best-fitting rotation and translation, Kabsch) and a remainder;
+each load step first moves the whole body by the step's rigid increment
+(exact, stress free), then imposes the remainder's increment through the
+tangent. A step that does not converge, or that would invert an element,
+is cut in half; a backtracking line search on the residual guards each
+Newton update. The weak forms are evaluated on scikit-fem's bases (shape
+functions, quadrature, degree-of-freedom numbering) and assembled in a few
+vectorised ``einsum`` calls.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ConvergenceError, require
+from .mesh import SectionMesh
+
+__all__ = ["MixedProblem", "NewtonReport", "neo_hookean", "kabsch", "solve_mixed"]
+
+
+def neo_hookean(grad_u: np.ndarray, stretch_z: float, p: np.ndarray, mu: float, kappa: float, tangent: bool = True):
+    """Stress and tangent of the mixed neo-Hookean model in generalised plane strain.
+
+    Parameters
+    ----------
+    grad_u : (2, 2, ...) float64 ndarray
+        Displacement gradient ∂u_i/∂X_J at each point.
+    stretch_z : float
+        Out-of-plane stretch λz.
+    p : (...) float64 ndarray
+        Pressure at each point, units of μ.
+    mu, kappa : float
+        Shear and bulk moduli.
+    tangent : bool
+        Also compute the tangent moduli.
+
+    Returns
+    -------
+    dict
+        ``P`` (2, 2, ...) first Piola stress, in-plane block; ``A``
+        (2, 2, 2, 2, ...) ∂P/∂F (if ``tangent``); ``dPdp`` (2, 2, ...);
+        ``J`` (...) volume ratio; ``det2`` (...) det F2D; ``psi_iso`` (...)
+        isochoric energy density μ/2 (J^(-2/3) tr(FᵀF) − 3); ``psi_mixed``
+        (...) the mixed density ``psi_iso + p (J − 1) − p² / (2κ)``, which
+        equals Ψ when p = κ (J − 1).
+
+    Examples
+    --------
+    >>> out = neo_hookean(np.zeros((2, 2, 1)), 1.0, np.zeros(1), 1.0, 1000.0)
+    >>> float(abs(out["P"]).max()), float(out["psi_mixed"][0])
+    (0.0, 0.0)
+    """
+    F = grad_u + np.eye(2).reshape((2, 2) + (1,) * (grad_u.ndim - 2))
+    det2 = F[0, 0] * F[1, 1] - F[0, 1] * F[1, 0]
+    # F^-T: cofactor over determinant.
+    Fit = np.stack((np.stack((F[1, 1], -F[1, 0])), np.stack((-F[0, 1], F[0, 0])))) / det2
+    J = stretch_z * det2
+    I1 = np.einsum("ij...,ij...->...", F, F) + stretch_z**2
+    c = mu * J ** (-2.0 / 3.0)
+    P = c * (F - I1 / 3.0 * Fit) + p * J * Fit
+    out = {
+        "P": P,
+        "dPdp": J * Fit,
+        "J": J,
+        "det2": det2,
+        "psi_iso": 0.5 * mu * (J ** (-2.0 / 3.0) * I1 - 3.0),
+    }
+    out["psi_mixed"] = out["psi_iso"] + p * (J - 1.0) - p * p / (2.0 * kappa)
+    if tangent:
+        d = np.eye(2)
+        idil = np.einsum("ik,jl->ijkl", d, d).reshape((2, 2, 2, 2) + (1,) * (grad_u.ndim - 2))
+        FiFi = np.einsum("ij...,kl...->ijkl...", Fit, Fit)
+        FiFi_t = np.einsum("il...,kj...->ijkl...", Fit, Fit)
+        FFi = np.einsum("kl...,ij...->ijkl...", F, Fit)
+        A = c * (idil - 2.0 / 3.0 * (FFi + np.swapaxes(np.swapaxes(FFi, 0, 2), 1, 3))
+                 + 2.0 / 9.0 * I1 * FiFi + I1 / 3.0 * FiFi_t)
+        A += p * J * (FiFi - FiFi_t)
+        out["A"] = A
+    return out
+
+
+def kabsch(source: np.ndarray, target: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
+    """Rigid motion closest to ``source -> target`` in least squares.
+
+    Parameters
+    ----------
+    source, target : (n, 2) float64 ndarray
+
+    Returns
+    -------
+    angle : float
+        Rotation, radians, counter-clockwise.
+    source_centre, target_centre : (2,) float64 ndarray
+        Centroids; the motion is x -> R(angle) (x - source_centre) + target_centre.
+
+    Examples
+    --------
+    >>> a = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]])
+    >>> b = a @ np.array([[0.0, 1.0], [-1.0, 0.0]]) + 5.0   # rotated by +90 degrees
+    >>> round(math.degrees(kabsch(a, b)[0]), 9)
+    90.0
+    """
+    cs, ct = source.mean(axis=0), target.mean(axis=0)
+    a, b = source - cs, target - ct
+    h = a.T @ b
+    angle = math.atan2(h[0, 1] - h[1, 0], h[0, 0] + h[1, 1])
+    return angle, cs, ct
+
+
+def _rotation(angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s], [s, c]])
+
+
+@dataclass(frozen=True)
+class NewtonReport:
+    """How the incremental Newton solve went.
+
+    Attributes
+    ----------
+    iterations : int
+        Newton iterations over all load steps (failed attempts included).
+    steps : int
+        Load steps accepted.
+    cuts : int
+        Load steps cut in half after a failure.
+    residual : float
+        Norm of the last residual on the free degrees of freedom.
+    """
+
+    iterations: int
+    steps: int
+    cuts: int
+    residual: float
+
+
+class MixedProblem:
+    """The discrete Taylor–Hood problem on one mesh: bases, Dirichlet data, assembly.
+
+    Parameters
+    ----------
+    mesh : SectionMesh
+    shear_modulus : float
+        μ, in any stress unit; the shape does not depend on it.
+    bulk_to_shear : float
+        κ / μ.
+
+    Attributes
+    ----------
+    n_u, n_p : int
+        Number of displacement and pressure degrees of freedom.
+    dirichlet : (d,) int64 ndarray
+        Displacement dofs of the lower nodes (x and y of vertices and
+        mid-edge nodes).
+    dirichlet_points : (d / 2, 2) float64 ndarray
+        Initial position of each Dirichlet node.
+    dirichlet_fractions : (d / 2,) float64 ndarray
+        Arc-length fraction of each Dirichlet node on the lower curve.
+    """
+
+    def __init__(self, mesh: SectionMesh, shear_modulus: float = 1.0, bulk_to_shear: float = 1000.0):
+        skfem = require("skfem", "fem", "the finite-element reference")
+        self.section_mesh = mesh
+        self.mu = float(shear_modulus)
+        self.kappa = float(bulk_to_shear) * self.mu
+        m = skfem.MeshTri(np.ascontiguousarray(mesh.points.T), np.ascontiguousarray(mesh.triangles.T))
+        self.skmesh = m
+        self.ubasis = skfem.Basis(m, skfem.ElementVector(skfem.ElementTriP2()), intorder=4)
+        self.pbasis = self.ubasis.with_element(skfem.ElementTriP1())
+        ub, pb = self.ubasis, self.pbasis
+        self.n_u, self.n_p = ub.N, pb.N
+        self.dx = ub.dx  # (nel, nq)
+        self.G = np.stack([ub.basis[a][0].grad for a in range(ub.Nbfun)])  # (12, 2, 2, nel, nq)
+        self.Nq = np.stack([pb.basis[c][0] for c in range(pb.Nbfun)])  # (3, nel, nq)
+        self.udofs = ub.element_dofs  # (12, nel)
+        self.pdofs = pb.element_dofs  # (3, nel)
+        # Initial position of every displacement dof's node (x and y rows repeat the node).
+        self.doflocs = ub.doflocs.T  # (n_u, 2)
+
+        # Dirichlet nodes: lower vertices, and the mid-edge nodes of lower edges.
+        pos = np.full(len(mesh.points), -1, dtype=np.int64)
+        pos[mesh.lower_nodes] = np.arange(len(mesh.lower_nodes))
+        f0, f1 = pos[m.facets[0]], pos[m.facets[1]]
+        lower_facets = np.flatnonzero((f0 >= 0) & (f1 >= 0) & (np.abs(f0 - f1) == 1))
+        s_v = mesh.lower_fractions
+        s_f = 0.5 * (s_v[f0[lower_facets]] + s_v[f1[lower_facets]])
+        nodes = np.concatenate((ub.nodal_dofs[:, mesh.lower_nodes], ub.facet_dofs[:, lower_facets]), axis=1)
+        self.dirichlet_nodes = nodes  # (2, d/2): x dof, y dof
+        self.dirichlet = nodes.T.ravel()
+        self.dirichlet_fractions = np.concatenate((s_v, s_f))
+        self.dirichlet_points = self.doflocs[nodes[0]]
+        self.free = np.setdiff1d(np.arange(self.n_u + self.n_p), self.dirichlet)
+
+        # Sparsity pattern once: COO entry -> CSR slot.
+        dofs = np.concatenate((self.udofs, self.pdofs + self.n_u)).astype(np.int64)  # (15, nel)
+        nb = dofs.shape[0]
+        rows = np.repeat(dofs[:, None, :], nb, axis=1).ravel()  # [a, b, e] -> dofs[a, e]
+        cols = np.repeat(dofs[None, :, :], nb, axis=0).ravel()  # [a, b, e] -> dofs[b, e]
+        n = self.n_u + self.n_p
+        key = rows * n + cols
+        uniq, self._slot = np.unique(key, return_inverse=True)
+        r, c = np.divmod(uniq, n)
+        self._indices = c.astype(np.int32)
+        self._indptr = np.concatenate(([0], np.cumsum(np.bincount(r, minlength=n)))).astype(np.int32)
+        self._nb = nb
+        self._dofs = dofs
+
+    # --- fields ---------------------------------------------------------------
+
+    def grad_u(self, u: np.ndarray) -> np.ndarray:
+        """Displacement gradient at the quadrature points, ``(2, 2, nel, nq)``."""
+        return np.einsum("ae,aijeq->ijeq", u[self.udofs], self.G)
+
+    def pressure(self, p: np.ndarray) -> np.ndarray:
+        """Pressure at the quadrature points, ``(nel, nq)``."""
+        return np.einsum("ce,ceq->eq", p[self.pdofs], self.Nq)
+
+    def material(self, x: np.ndarray, stretch_z: float, tangent: bool = True) -> dict:
+        """:func:`neo_hookean` at every quadrature point for the state ``x = [u, p]``."""
+        u, p = x[: self.n_u], x[self.n_u:]
+        return neo_hookean(self.grad_u(u), stretch_z, self.pressure(p), self.mu, self.kappa, tangent)
+
+    # --- assembly -------------------------------------------------------------
+
+    def residual(self, x: np.ndarray, stretch_z: float, mat: dict | None = None) -> np.ndarray:
+        """Residual ``[∫ P : ∇v, ∫ q (J − 1 − p/κ)]``, ``(n_u + n_p,)``."""
+        if mat is None:
+            mat = self.material(x, stretch_z, tangent=False)
+        p = self.pressure(x[self.n_u:])
+        r_u = np.einsum("aijeq,ijeq->ae", self.G, mat["P"] * self.dx)
+        r_p = np.einsum("ceq,eq->ce", self.Nq, (mat["J"] - 1.0 - p / self.kappa) * self.dx)
+        out = np.bincount(self.udofs.ravel(), r_u.ravel(), minlength=self.n_u)
+        return np.concatenate((out, np.bincount(self.pdofs.ravel(), r_p.ravel(), minlength=self.n_p)))
+
+    def tangent(self, mat: dict):
+        """Tangent matrix of the residual, CSR ``(n_u + n_p, n_u + n_p)``, symmetric indefinite."""
+        from scipy import sparse
+
+        G, Nq, dx = self.G, self.Nq, self.dx
+        AG = np.einsum("ijkleq,bkleq->bijeq", mat["A"] * dx, G)
+        k_uu = np.einsum("aijeq,bijeq->abe", G, AG)
+        k_up = np.einsum("aijeq,ijeq,ceq->ace", G, mat["dPdp"] * dx, Nq)
+        k_pp = -np.einsum("ceq,deq,eq->cde", Nq, Nq, dx) / self.kappa
+        nu, nel = G.shape[0], dx.shape[0]
+        blocks = np.empty((self._nb, self._nb, nel))
+        blocks[:nu, :nu] = k_uu
+        blocks[:nu, nu:] = k_up
+        blocks[nu:, :nu] = np.swapaxes(k_up, 0, 1)
+        blocks[nu:, nu:] = k_pp
+        n = self.n_u + self.n_p
+        data = np.bincount(self._slot, blocks.ravel(), minlength=len(self._indices))
+        return sparse.csr_matrix((data, self._indices, self._indptr), shape=(n, n))
+
+    def energy(self, x: np.ndarray, stretch_z: float) -> float:
+        """Strain energy per unit depth, units of μ × length².
+
+        The mixed form ∫ Ψ_iso + p (J − 1) − p² / (2κ) dA, which at a
+        solution equals ∫ Ψ_iso + p² / (2κ) dA: the volumetric energy is
+        taken from the pressure field, as the formulation controls J only
+        through it (κ/2 (J − 1)² from the displacement alone would pick up
+        the pointwise part of J − 1 that the P1 pressure does not see).
+        """
+        mat = self.material(x, stretch_z, tangent=False)
+        return float(np.sum(mat["psi_mixed"] * self.dx))
+
+
+def solve_mixed(
+    problem: MixedProblem,
+    support: np.ndarray,
+    stretch_z: float,
+    *,
+    length_scale: float,
+    tol: float = 1e-8,
+    max_iterations: int = 25,
+    initial_step: float = 0.5,
+    min_step: float = 1.0 / 1024.0,
+    progress=None,
+) -> tuple[np.ndarray, NewtonReport]:
+    """Solve the mixed problem with the support moved to ``support`` and λz = ``stretch_z``.
+
+    Parameters
+    ----------
+    problem : MixedProblem
+    support : (d / 2, 2) float64 ndarray
+        Final position of each Dirichlet node (``problem.dirichlet_points``).
+    stretch_z : float
+        Final out-of-plane stretch λz; ramped from 1 with the support.
+    length_scale : float
+        Length for the convergence test (the mean thickness T), units.
+    tol : float
+        Newton stops when the correction is below ``tol × length_scale`` in
+        displacement and ``tol × μ`` in pressure.
+    max_iterations : int
+        Newton iterations allowed per load step before the step is cut.
+    initial_step : float
+        First load increment, fraction of the full load.
+    min_step : float
+        Smallest load increment before giving up.
+    progress : callable, optional
+        Called with one line of text per accepted load step.
+
+    Returns
+    -------
+    x : (n_u + n_p,) float64 ndarray
+        Displacement then pressure degrees of freedom.
+    report : NewtonReport
+
+    Raises
+    ------
+    ConvergenceError
+        If the load cannot be applied with increments of ``min_step`` or more.
+    """
+    pr = problem
+    n_u = pr.n_u
+    X_d = pr.dirichlet_points
+    angle, c0, c1 = kabsch(X_d, support)
+    rest = support - ((X_d - c0) @ _rotation(angle).T + c1)  # non-rigid part of the support motion
+    node_x, node_y = pr.dirichlet_nodes
+
+    def centre(t):
+        return c0 + t * (c1 - c0)
+
+    def lam(t):
+        return 1.0 + t * (stretch_z - 1.0)
+
+    def rigid_increment(x, t, t_new):
+        """Move the whole deformed body by the rigid part of the load from t to t_new."""
+        # Displacement dofs come in (x, y) pairs of the same node: 2k, 2k + 1.
+        nodes = pr.doflocs[0::2]
+        pos = nodes + x[:n_u].reshape(-1, 2)
+        moved = (pos - centre(t)) @ _rotation((t_new - t) * angle).T + centre(t_new)
+        out = x.copy()
+        out[:n_u] = (moved - nodes).ravel()
+        return out
+
+    def support_at(t):
+        return (X_d - c0) @ _rotation(t * angle).T + centre(t) + t * rest
+
+    x = np.zeros(n_u + pr.n_p)
+    t, dt = 0.0, min(1.0, initial_step)
+    iterations = steps = cuts = 0
+    residual = 0.0
+    free = pr.free
+    t_start = time.perf_counter()
+    while t < 1.0:
+        t_new = min(1.0, t + dt)
+        lz = lam(t_new)
+        trial = rigid_increment(x, t, t_new)
+        want = support_at(t_new)
+        lift = np.zeros_like(x)
+        lift[node_x] = want[:, 0] - (X_d[:, 0] + trial[node_x])
+        lift[node_y] = want[:, 1] - (X_d[:, 1] + trial[node_y])
+        ok, its, residual, trial = _newton(pr, trial, lz, lift, free, length_scale, tol, max_iterations)
+        iterations += its
+        if ok:
+            x, t = trial, t_new
+            steps += 1
+            if progress is not None:
+                progress(
+                    f"reference: load {t:6.1%} (step {dt:.3g}) converged in {its} Newton iterations, "
+                    f"{time.perf_counter() - t_start:.1f} s"
+                )
+            if its <= 5:
+                dt = min(1.0, 1.5 * dt)
+        else:
+            cuts += 1
+            dt *= 0.5
+            if progress is not None:
+                progress(f"reference: step to load {t_new:.1%} failed; cutting the load step to {dt:.3g}")
+            if dt < min_step:
+                raise ConvergenceError(
+                    f"reference: Newton did not converge beyond load {t:.1%} of the support motion and "
+                    f"out-of-plane stretch even with load steps of {min_step:.3g} (elements invert or the "
+                    f"residual stalls); the target or the law is too severe for this section, or refine the mesh"
+                )
+    return x, NewtonReport(iterations=iterations, steps=steps, cuts=cuts, residual=residual)
+
+
+def _newton(pr: MixedProblem, x, stretch_z, lift, free, length_scale, tol, max_iterations):
+    """Newton iterations of one load step; returns (converged, iterations, residual norm, x)."""
+    from scipy.sparse.linalg import spsolve
+
+    n_u = pr.n_u
+    mat = pr.material(x, stretch_z)
+    r = pr.residual(x, stretch_z, mat)
+    norm = float(np.linalg.norm(r[free]))
+    first = bool(lift.any())
+    for it in range(1, max_iterations + 1):
+        K = pr.tangent(mat)
+        dx = np.zeros_like(x)
+        if first:
+            dx += lift
+            rhs = -(r + K @ lift)
+        else:
+            rhs = -r
+        Kf = K[free][:, free]
+        with np.errstate(all="ignore"):
+            dx[free] = spsolve(Kf.tocsc(), rhs[free])
+        if not np.all(np.isfinite(dx)):
+            return False, it, norm, x
+        small = (np.abs(dx[:n_u]).max() <= tol * length_scale
+                 and np.abs(dx[n_u:]).max(initial=0.0) <= tol * pr.mu)
+        # Backtracking line search: elements must stay valid; after the first
+        # iteration (which imposes the new support) the residual must not grow.
+        alpha = 1.0
+        for _ in range(6):
+            cand = x + alpha * dx
+            with np.errstate(all="ignore"):
+                mat_c = pr.material(cand, stretch_z)
+            if np.all(mat_c["det2"] > 0) and np.all(np.isfinite(mat_c["P"])):
+                r_c = pr.residual(cand, stretch_z, mat_c)
+                norm_c = float(np.linalg.norm(r_c[free]))
+                if first or norm_c <= norm or small:
+                    break
+            if first:
+                return False, it, norm, x
+            alpha *= 0.5
+        else:
+            return False, it, norm, x
+        x, mat, r, norm = cand, mat_c, r_c, norm_c
+        if first:
+            first = False
+            continue
+        if small and alpha == 1.0:
+            return True, it, norm, x
+    return False, max_iterations, norm, x

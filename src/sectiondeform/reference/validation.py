@@ -1,0 +1,291 @@
+"""The fast method against the finite-element reference on one case (extra ``[fem]``).
+
+:func:`validate_case` runs both on the same case and measures the distance
+between the two deformed upper curves (:mod:`sectiondeform.compare`), their
+areas and their times; :func:`save_validation_figure` overlays the two
+deformed sections. ``sectiondeform validate`` and ``benchmarks/validation.py``
+are thin layers over these.
+
+Timing is fair to both: each is timed from the case to the deformed upper
+points (section, mesh, solve), after the libraries are imported; the fast
+method's time is the median of a few runs (it takes milliseconds), the
+reference's a single run at its default, converged, mesh size.
+"""
+
+from __future__ import annotations
+
+import statistics
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..case import Case
+from ..compare import CurveComparison, compare_curves, point_to_curve_distance
+from ..deform import Deformer
+from ..errors import CaseError, require
+from ..result import Result
+from ..section import polygon_area
+from . import DEFAULT_MESH_SIZE, ReferenceSolution, solve_reference
+
+__all__ = ["Validation", "validate_case", "save_validation_figure", "VALIDATION_FORMAT", "FIGURE_FORMATS"]
+
+VALIDATION_FORMAT = "section-validation/1"
+FIGURE_FORMATS = (".png", ".svg", ".pdf")
+FAST_RUNS = 5
+
+
+@dataclass(frozen=True, eq=False)
+class Validation:
+    """Fast result, reference solution and the distances between them.
+
+    Attributes
+    ----------
+    case : Case
+    fast : Result
+        The fast model's result (``fast.model`` says which).
+    reference : ReferenceSolution
+    shape : CurveComparison
+        Fast upper curve against the reference's, relative figures over the
+        mean thickness T.
+    thickness : float
+        Mean thickness T = area / lower length, units.
+    area_reference : float
+        Area of the deformed finite-element body, ∫ det F2D dA, units².
+    area_reference_polygon : float
+        Area of the polygon of the fast result's lower nodes and the
+        reference's upper points (the polygon the fast area is measured
+        on), units². It differs from ``area_reference`` where the reference
+        bends the straight upper segments between characteristic points.
+    fast_seconds, reference_seconds : float
+        Wall times, case to deformed shape.
+    """
+
+    case: Case
+    fast: Result
+    reference: ReferenceSolution
+    shape: CurveComparison
+    thickness: float
+    area_reference: float
+    area_reference_polygon: float
+    fast_seconds: float
+    reference_seconds: float
+
+    @property
+    def speed_ratio(self) -> float:
+        """Reference time over fast time."""
+        return self.reference_seconds / self.fast_seconds
+
+    @property
+    def pointwise_distance(self) -> np.ndarray:
+        """Distance between corresponding upper points, ``(m,)``, units."""
+        return np.hypot(*(self.fast.upper - self.reference.upper).T)
+
+    def to_json(self) -> dict:
+        """The ``section-validation/1`` report."""
+        f, r = self.fast, self.reference
+        target = f.area_target
+        return {
+            "format": VALIDATION_FORMAT,
+            "name": self.case.name,
+            "units": self.case.units,
+            "thickness": self.thickness,
+            "area": {"initial": f.area_initial, "target": target},
+            "fast": {
+                "model": f.model,
+                "area_final": f.area_final,
+                "area_relative_error": f.relative_error,
+                "seconds": self.fast_seconds,
+                "upper": f.upper.tolist(),
+            },
+            "reference": {
+                "model": "finite elements: neo-Hookean, generalised plane strain, P2/P1 Taylor-Hood",
+                "area_final": self.area_reference,
+                "area_relative_error": (self.area_reference - target) / target,
+                "area_polygon": self.area_reference_polygon,
+                "seconds": self.reference_seconds,
+                "solver": r.summary(),
+                "upper": r.upper.tolist(),
+            },
+            "shape": self.shape.to_json(),
+            "pointwise_distance": self.pointwise_distance.tolist(),
+            "speed_ratio": self.speed_ratio,
+        }
+
+    def lines(self) -> list[str]:
+        """A short human-readable summary."""
+        u, T = self.case.units, self.thickness
+        f, r, s = self.fast, self.reference, self.shape
+        target = f.area_target
+        return [
+            f"{self.case.name}: {f.model} model against the finite-element reference (T = {T:.4g} {u})",
+            f"  area target      {target:12.4f} {u}²",
+            f"  area fast        {f.area_final:12.4f} {u}²   relative error {f.relative_error:+.2e}",
+            f"  area reference   {self.area_reference:12.4f} {u}²   relative error "
+            f"{(self.area_reference - target) / target:+.2e} (bulk/shear {r.bulk_to_shear:g}: "
+            f"volume change {r.volume_change:+.2e})",
+            f"  Hausdorff        {s.hausdorff:12.4f} {u}    {s.hausdorff_relative:.2%} of T",
+            f"  max pointwise    {s.max_pointwise:12.4f} {u}    {s.max_pointwise_relative:.2%} of T "
+            f"(upper point {s.max_pointwise_index})",
+            f"  time fast        {1e3 * self.fast_seconds:12.2f} ms",
+            f"  time reference   {1e3 * self.reference_seconds:12.0f} ms   ({r.elements} elements, {r.dofs} unknowns, "
+            f"{r.iterations} Newton iterations)  speed ratio {self.speed_ratio:,.0f}",
+        ]
+
+
+def _time_fast(case: Case, model: str | None, runs: int) -> tuple[Result, float]:
+    times, result = [], None
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        result = Deformer(case, model=model).deform()
+        times.append(time.perf_counter() - t0)
+    return result, statistics.median(times)
+
+
+def validate_case(
+    case: Case,
+    *,
+    model: str | None = None,
+    mesh_size: float = DEFAULT_MESH_SIZE,
+    bulk_to_shear: float | None = None,
+    fast_runs: int = FAST_RUNS,
+    progress=None,
+) -> Validation:
+    """Run the fast model and the finite-element reference on a case and compare them.
+
+    Parameters
+    ----------
+    case : Case
+    model : str, optional
+        The fast model to check, ``"paper"`` or ``"hyperelastic"``; by
+        default the case's ``options.model``.
+    mesh_size : float
+        Reference element size, fraction of the mean thickness T.
+    bulk_to_shear : float, optional
+        κ / μ of the reference; by default the case's, else 1000.
+    fast_runs : int
+        Runs of the fast model; its time is their median.
+    progress : callable, optional
+        Called with one line of text per stage of the reference solve.
+
+    Returns
+    -------
+    Validation
+
+    Raises
+    ------
+    SectionDeformError
+        Whatever either model raises (bad geometry, no convergence...).
+    MissingExtraError
+        Without the extra ``[fem]``.
+    """
+    require("skfem", "fem", "the finite-element reference")
+    require("triangle", "fem", "the finite-element reference")
+    fast, fast_s = _time_fast(case, model, max(1, int(fast_runs)))
+    if progress is not None:
+        progress(f"validate: {fast.model} model done in {1e3 * fast_s:.1f} ms; solving the reference")
+    t0 = time.perf_counter()
+    ref = solve_reference(case, mesh_size=mesh_size, bulk_to_shear=bulk_to_shear, progress=progress)
+    ref_s = time.perf_counter() - t0
+    thickness = fast.area_initial / case.lower.length
+    shape = compare_curves(fast.upper, ref.upper, scale=thickness)
+    area_poly = abs(polygon_area(np.concatenate((fast.lower, ref.upper[1:-1]))))
+    return Validation(
+        case=case,
+        fast=fast,
+        reference=ref,
+        shape=shape,
+        thickness=thickness,
+        area_reference=ref.area_final,
+        area_reference_polygon=area_poly,
+        fast_seconds=fast_s,
+        reference_seconds=ref_s,
+    )
+
+
+def draw_validation(validation: Validation, fig=None):
+    """Overlay the fast and reference deformed sections, the upper curve coloured by distance.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    mpl = require("matplotlib", "plot", "drawing the validation figure")
+    mpl.use("Agg")
+    plt = require("matplotlib.pyplot", "plot", "drawing the validation figure")
+    from matplotlib.collections import LineCollection, PolyCollection
+
+    v = validation
+    f, r, u = v.fast, v.reference, v.case.units
+    if fig is None:
+        fig = plt.figure(figsize=(10, 6), layout="constrained")
+    ax = fig.add_subplot(1, 1, 1)
+    ax.fill(*f.initial_contour.T, color="0.92", zorder=0, label="initial section")
+    tri = r.mesh.points[r.mesh.cells[:, :3]]
+    ax.add_collection(PolyCollection(tri, facecolors="none", edgecolors="0.7", linewidths=0.25, zorder=1))
+    ref_contour = np.concatenate((f.lower, r.upper[1:-1], f.lower[:1]))
+    ax.plot(*ref_contour.T, color="tab:blue", lw=1.4, zorder=2, label="finite-element reference")
+    fast_contour = np.concatenate((f.contour, f.contour[:1]))
+    ax.plot(*fast_contour.T, "--", color="tab:orange", lw=1.4, zorder=3, label=f"fast ({f.model} model)")
+    # Fast upper curve coloured by its distance to the reference upper curve.
+    d_pts = point_to_curve_distance(f.upper, r.upper)
+    segs = np.stack((f.upper[:-1], f.upper[1:]), axis=1)
+    lc = LineCollection(segs, cmap="viridis", linewidths=3.5, zorder=4)
+    lc.set_array(0.5 * (d_pts[:-1] + d_pts[1:]))
+    ax.add_collection(lc)
+    cb = fig.colorbar(lc, ax=ax, shrink=0.6, aspect=30)
+    cb.set_label(f"distance of the fast upper curve to the reference ({u})")
+    k = v.shape.max_pointwise_index
+    ax.plot(*np.stack((f.upper[k], r.upper[k])).T, "-o", color="tab:red", ms=3, lw=1, zorder=5,
+            label=f"largest pointwise gap {v.shape.max_pointwise:.3g} {u}")
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    ax.grid(True, lw=0.3, alpha=0.5)
+    ax.legend(loc="best", fontsize=8)
+    ax.set_title(
+        f"{v.case.name}: Hausdorff {v.shape.hausdorff:.3g} {u} = {v.shape.hausdorff_relative:.1%} of T; "
+        f"areas {f.area_final:.1f} (fast) / {v.area_reference:.1f} (reference) {u}²; "
+        f"{1e3 * v.fast_seconds:.1f} ms vs {v.reference_seconds:.2f} s",
+        fontsize=9,
+    )
+    return fig
+
+
+def check_figure_path(path) -> Path:
+    """Check a figure path's extension and folder before any long computation.
+
+    Raises
+    ------
+    CaseError
+        If the extension is not .png, .svg or .pdf, or the folder does not exist.
+    """
+    path = Path(path)
+    if path.suffix.lower() not in FIGURE_FORMATS:
+        raise CaseError("--plot", f"unknown figure format {path.suffix or '(none)'!r}; use one of {', '.join(FIGURE_FORMATS)}")
+    if not path.parent.is_dir():
+        raise CaseError("--plot", f"the folder {str(path.parent)!r} does not exist")
+    return path
+
+
+def save_validation_figure(validation: Validation, path) -> Path:
+    """Draw :func:`draw_validation` and write it atomically to ``path`` (.png, .svg or .pdf).
+
+    Raises
+    ------
+    CaseError
+        If the extension or folder is wrong.
+    MissingExtraError
+        Without matplotlib.
+    """
+    from ..io.json import atomic_write
+
+    path = check_figure_path(path)
+    fig = draw_validation(validation)
+    import matplotlib.pyplot as plt
+
+    try:
+        atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=130, format=path.suffix[1:].lower()))
+    finally:
+        plt.close(fig)
+    return path
