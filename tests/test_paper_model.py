@@ -138,3 +138,10 @@ def test_mushroom_section_with_far_overhangs():
     assert np.abs(ident.upper - deformer.section.upper).max() < 1e-12
     moved = deformer.deform(rigid(deformer.section.lower, 70, (1, 2)), law=AreaRatio(1.0))
     assert np.abs(moved.upper - rigid(deformer.section.upper, 70, (1, 2))).max() < 1e-12
+
+
+def test_preview_of_the_paper_model_is_the_full_deformation():
+    deformer = sd.Deformer(sd.load_case(sd.example_case_path()))
+    x = np.linspace(0, 110, 23)
+    t = Polyline(np.column_stack((x, 4 * (1 - (2 * x / 110 - 1) ** 2))))
+    assert np.array_equal(deformer.preview(t).upper, deformer.deform(t).upper)

@@ -102,7 +102,24 @@ class Deformer:
         t0 = time.perf_counter()
         law = law or self.case.law
         nodes = self.target_nodes(target)
-        placement = self.prepared.place(nodes, law)
+        return self._result(nodes, self.prepared.place(nodes, law), law, t0)
+
+    def preview(self, target: Curve | np.ndarray | None = None, law: Law | None = None) -> Result:
+        """A fast deformation for dragging the target (interactive preview).
+
+        The paper model answers exactly as :meth:`deform`; the hyperelastic
+        model takes one linearised step from its last solution, meeting the
+        law exactly but first-order in the change of target
+        (``result.info["preview"]`` is True): call :meth:`deform` when the
+        drag ends.
+        """
+        t0 = time.perf_counter()
+        law = law or self.case.law
+        nodes = self.target_nodes(target)
+        return self._result(nodes, self.prepared.preview(nodes, law), law, t0)
+
+    def _result(self, nodes, placement, law, t0) -> Result:
+        """Check a placement (area law, simple contour) and wrap it in a :class:`Result`."""
         sec = self.section
         contour = np.concatenate((nodes, placement.upper[1:-1]))
         final = abs(polygon_area(contour))

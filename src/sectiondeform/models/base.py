@@ -95,6 +95,14 @@ class Prepared(ABC):
     def place(self, target_nodes: np.ndarray, law: Law) -> Placement:
         """Deform onto ``target_nodes`` ((n, 2), the target at the lower fractions) under ``law``."""
 
+    def preview(self, target_nodes: np.ndarray, law: Law) -> Placement:
+        """A fast placement for dragging the target, meeting the law; by default :meth:`place`.
+
+        A model whose full placement is slow (the hyperelastic one) answers
+        with a linearised step and says so in ``info["preview"]``.
+        """
+        return self.place(target_nodes, law)
+
 
 class Model(ABC):
     """A deformation model: a name and a ``prepare`` step."""
