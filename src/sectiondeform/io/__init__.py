@@ -26,7 +26,7 @@ from __future__ import annotations
 import importlib
 from pathlib import Path
 
-from ..errors import CaseError
+from ..errors import CaseError, require
 from .drawing import add_input_args, input_options
 
 __all__ = [
@@ -113,6 +113,16 @@ def check_outputs(args) -> None:
     plot = getattr(args, "plot", None)
     if plot is not None and plot.suffix.lower() not in FIGURE_FORMATS:
         raise CaseError("--plot", f"unknown figure format {plot.suffix or '(none)'!r}; use one of {', '.join(FIGURE_FORMATS)}")
+    # The optional packages the outputs need, before anything is written.
+    needs = {".dxf": ("ezdxf", "cad"), **{ext: ("meshio", "cad") for ext in MESH_FORMATS}}
+    paths = [getattr(args, "output", None), *(getattr(args, "mesh_out", None) or []),
+             *(getattr(args, "initial_mesh_out", None) or [])]
+    for p in paths:
+        if p is not None and p.suffix.lower() in needs:
+            module, extra = needs[p.suffix.lower()]
+            require(module, extra, f"writing {p.suffix} files")
+    if plot is not None:
+        require("matplotlib", "plot", "drawing a figure")
 
 
 def add_output_args(parser) -> None:
