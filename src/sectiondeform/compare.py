@@ -2,7 +2,7 @@
 
 Used by ``sectiondeform validate`` to measure the fast method against the
 finite-element reference, and by anyone comparing two results of the same
-case. Pure numpy and shapely (core install).
+case. Pure numpy (core install).
 
 * :func:`hausdorff_distance`: Hausdorff distance between two polylines as
   curves (every point of each segment counts, not only the vertices);
@@ -17,7 +17,6 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 import numpy as np
-import shapely
 
 from .curves import as_points
 from .errors import CaseError
@@ -27,9 +26,31 @@ __all__ = ["CurveComparison", "compare_curves", "hausdorff_distance", "point_to_
 DENSIFY_FRACTION = 1e-3
 
 
-def _line(points: np.ndarray, name: str):
-    points = as_points(points, name, min_count=2)
-    return points, shapely.LineString(points)
+CHUNK = 1 << 20  # point-segment pairs per block of the distance computation
+
+
+def _segment_distance(points: np.ndarray, curve: np.ndarray) -> np.ndarray:
+    """Distance of each of ``points`` (k, 2) to the polyline ``curve`` (n, 2), in blocks of points."""
+    a, d = curve[:-1], np.diff(curve, axis=0)
+    dd = np.einsum("jd,jd->j", d, d)
+    safe = np.where(dd > 0, dd, 1.0)
+    out = np.empty(len(points))
+    step = max(1, CHUNK // max(1, len(a)))
+    for i in range(0, len(points), step):
+        q = points[i:i + step, None, :] - a[None]
+        t = np.where(dd > 0, np.clip(np.einsum("kjd,jd->kj", q, d) / safe, 0.0, 1.0), 0.0)
+        r = q - t[..., None] * d[None]
+        out[i:i + step] = np.sqrt(np.einsum("kjd,kjd->kj", r, r).min(axis=1))
+    return out
+
+
+def _densify(curve: np.ndarray, step: float) -> np.ndarray:
+    """The polyline's vertices and points every ``step`` or less along each segment."""
+    d = np.diff(curve, axis=0)
+    parts = np.maximum(1, np.ceil(np.hypot(d[:, 0], d[:, 1]) / step)).astype(np.int64)
+    rank = np.repeat(np.arange(len(d)), parts)
+    sub = (np.arange(parts.sum()) - np.repeat(np.cumsum(parts) - parts, parts)) / parts[rank]
+    return np.concatenate((curve[:-1][rank] + d[rank] * sub[:, None], curve[-1:]))
 
 
 def point_to_curve_distance(points: np.ndarray, curve: np.ndarray) -> np.ndarray:
@@ -40,7 +61,7 @@ def point_to_curve_distance(points: np.ndarray, curve: np.ndarray) -> np.ndarray
     points : (k, 2) float64 ndarray
         Points, units.
     curve : (n, 2) float64 ndarray
-        Vertices of the polyline, units, n >= 2.
+        Vertices of the polyline, units, n >= 2 (repeated vertices allowed).
 
     Returns
     -------
@@ -53,13 +74,7 @@ def point_to_curve_distance(points: np.ndarray, curve: np.ndarray) -> np.ndarray
     [2.0, 2.0]
     """
     pts = as_points(points, "points", min_count=1)
-    _, line = _line(curve, "curve")
-    return shapely.distance(shapely.points(pts), line)
-
-
-def _directed(a_line, b_line, step: float) -> float:
-    dense = shapely.get_coordinates(shapely.segmentize(a_line, step))
-    return float(shapely.distance(shapely.points(dense), b_line).max())
+    return _segment_distance(pts, as_points(curve, "curve", min_count=2))
 
 
 def hausdorff_distance(a: np.ndarray, b: np.ndarray, resolution: float | None = None) -> float:
@@ -97,13 +112,17 @@ def hausdorff_distance(a: np.ndarray, b: np.ndarray, resolution: float | None = 
     >>> round(hausdorff_distance(b, a), 12)
     1.0
     """
-    _, la = _line(a, "a")
-    _, lb = _line(b, "b")
+    a = as_points(a, "a", min_count=2)
+    b = as_points(b, "b", min_count=2)
     if resolution is None:
-        resolution = DENSIFY_FRACTION * max(la.length, lb.length)
+        lengths = [float(np.hypot(*np.diff(c, axis=0).T).sum()) for c in (a, b)]
+        resolution = DENSIFY_FRACTION * max(lengths)
+        if resolution == 0.0:  # both curves are single points
+            return float(np.hypot(*(a[0] - b[0])))
     if not resolution > 0:
         raise CaseError("resolution", f"must be > 0, got {resolution!r}")
-    return max(_directed(la, lb, resolution), _directed(lb, la, resolution))
+    return float(max(_segment_distance(_densify(a, resolution), b).max(),
+                     _segment_distance(_densify(b, resolution), a).max()))
 
 
 @dataclass(frozen=True)
