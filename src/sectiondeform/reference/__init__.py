@@ -150,6 +150,25 @@ def _positive(value, name: str) -> float:
     return float(value)
 
 
+def check_parameters(mesh_size: float, bulk_to_shear: float | None) -> tuple[float, float]:
+    """Check the reference's mesh size (fraction of T) and κ / μ; returns them as floats.
+
+    Raises
+    ------
+    CaseError
+        If the mesh size is not > 0, or κ / μ is below 100.
+    """
+    if bulk_to_shear is None:
+        bulk_to_shear = DEFAULT_BULK_TO_SHEAR
+    bulk_to_shear = _positive(bulk_to_shear, "options.bulk_to_shear")
+    if bulk_to_shear < MIN_BULK_TO_SHEAR:
+        raise CaseError(
+            "options.bulk_to_shear",
+            f"the reference is a nearly incompressible model: needs at least {MIN_BULK_TO_SHEAR:g}, got {bulk_to_shear:g}",
+        )
+    return _positive(mesh_size, "mesh_size"), bulk_to_shear
+
+
 def solve_reference(
     case: Case | Section,
     target=None,
@@ -225,15 +244,7 @@ def solve_reference(
             raise CaseError("target", "solve_reference(section, ...) needs the target and the law too")
     else:
         raise CaseError("case", f"expected a Case or a Section, got {type(case).__name__}")
-    if bulk_to_shear is None:
-        bulk_to_shear = DEFAULT_BULK_TO_SHEAR
-    bulk_to_shear = _positive(bulk_to_shear, "options.bulk_to_shear")
-    if bulk_to_shear < MIN_BULK_TO_SHEAR:
-        raise CaseError(
-            "options.bulk_to_shear",
-            f"the reference is a nearly incompressible model: needs at least {MIN_BULK_TO_SHEAR:g}, got {bulk_to_shear:g}",
-        )
-    mesh_size = _positive(mesh_size, "mesh_size")
+    mesh_size, bulk_to_shear = check_parameters(mesh_size, bulk_to_shear)
     shear_modulus = _positive(shear_modulus, "shear_modulus")
     if not isinstance(law, Law):
         law = AreaRatio(_positive(law, "law.area_ratio"))

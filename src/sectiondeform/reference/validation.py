@@ -27,7 +27,7 @@ from ..deform import Deformer
 from ..errors import CaseError, require
 from ..result import Result
 from ..section import polygon_area
-from . import DEFAULT_MESH_SIZE, ReferenceSolution, solve_reference
+from . import DEFAULT_MESH_SIZE, ReferenceSolution, check_parameters, solve_reference
 
 __all__ = ["Validation", "validate_case", "save_validation_figure", "VALIDATION_FORMAT", "FIGURE_FORMATS"]
 
@@ -182,6 +182,7 @@ def validate_case(
     """
     require("skfem", "fem", "the finite-element reference")
     require("triangle", "fem", "the finite-element reference")
+    check_parameters(mesh_size, case.options.get("bulk_to_shear") if bulk_to_shear is None else bulk_to_shear)
     fast, fast_s = _time_fast(case, model, max(1, int(fast_runs)))
     if progress is not None:
         progress(f"validate: {fast.model} model done in {1e3 * fast_s:.1f} ms; solving the reference")
