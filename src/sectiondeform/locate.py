@@ -8,10 +8,10 @@ in [0, 1]² under the bilinear map of that element::
 The inverse is solved in closed form (a quadratic in ``eta``), for all
 points at once. Candidate elements come from a uniform grid of buckets over
 the mesh, each bucket listing the elements whose bounding box meets it: a
-point inside an element is always among its bucket's candidates. Points
-strictly inside a candidate are taken first, then those within the
-tolerance of one (on an edge or a node); points still unlocated are tried
-against every element. Points go through in chunks, so memory stays
+point inside an element is always among its bucket's candidates. Each point
+takes the candidate that contains it most deeply (or, on an edge or a
+node, within the tolerance); points still unlocated are tried against
+every element. Points go through in chunks, so memory stays
 bounded whatever their number.
 """
 
@@ -26,6 +26,7 @@ __all__ = ["Location", "locate", "place", "bilinear_weights", "inverse_bilinear"
 
 LOCAL_TOL = 1e-6
 CHUNK = 1 << 16  # points located at once
+MAX_BUCKETS_PER_ELEMENT = 16.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -104,12 +105,27 @@ def inverse_bilinear(quad_pts: np.ndarray, x: np.ndarray) -> np.ndarray:
     >>> inverse_bilinear(q, np.array([[1.0, 0.25]])).tolist()
     [[0.5, 0.25]]
     """
+    return _solve_local(_element_terms(quad_pts), x)
+
+
+def _element_terms(quad_pts: np.ndarray) -> np.ndarray:
+    """Per element, the terms of its bilinear map that do not depend on the point, ``(p, 10)``.
+
+    Columns: p0 (x, y), e = p1 - p0, f = p3 - p0, g = p0 - p1 + p2 - p3
+    (x, y each), cross(g, f), cross(e, f).
+    """
     p0, p1, p2, p3 = (quad_pts[:, i] for i in range(4))
-    e, f, g, h = p1 - p0, p3 - p0, p0 - p1 + p2 - p3, x - p0
-    k2 = _cross(g, f)
-    k1 = _cross(e, f) + _cross(h, g)
-    k0 = _cross(h, e)
-    scale = np.abs(_cross(e, f)) + np.abs(k1) + 1e-300
+    e, f, g = p1 - p0, p3 - p0, p0 - p1 + p2 - p3
+    return np.column_stack((p0, e, f, g, _cross(g, f), _cross(e, f)))
+
+
+def _solve_local(terms: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """:func:`inverse_bilinear` from :func:`_element_terms` (one row per point), ``(p, 2)``."""
+    p0x, p0y, ex, ey, fx, fy, gx, gy, k2, kef = terms.T
+    hx, hy = x[:, 0] - p0x, x[:, 1] - p0y
+    k1 = kef + (hx * gy - hy * gx)
+    k0 = hx * ey - hy * ex
+    scale = np.abs(kef) + np.abs(k1) + 1e-300
     disc = k1 * k1 - 4.0 * k0 * k2
     with np.errstate(invalid="ignore", divide="ignore"):
         sq = np.sqrt(np.where(disc >= 0, disc, np.nan))
@@ -120,8 +136,8 @@ def inverse_bilinear(quad_pts: np.ndarray, x: np.ndarray) -> np.ndarray:
         dist1 = np.abs(r1 - np.clip(r1, 0, 1))
         dist2 = np.abs(r2 - np.clip(r2, 0, 1))
         eta = np.where(np.nan_to_num(dist2, nan=np.inf) <= np.nan_to_num(dist1, nan=np.inf), r2, r1)
-        a = e + g * eta[:, None]
-        xi = np.einsum("pd,pd->p", h - f * eta[:, None], a) / np.einsum("pd,pd->p", a, a)
+        ax, ay = ex + gx * eta, ey + gy * eta
+        xi = ((hx - fx * eta) * ax + (hy - fy * eta) * ay) / (ax * ax + ay * ay)
     return np.column_stack((xi, eta))
 
 
@@ -132,29 +148,27 @@ def _try(quad_pts, x, tol):
 
 
 class _Buckets:
-    """A uniform grid over the elements' bounding boxes, about one element per bucket.
+    """A uniform grid over the elements' bounding boxes, ``per_element`` buckets per element.
 
     ``members[start[b]:start[b + 1]]`` are the elements whose bounding box
     (widened by a millionth of the mesh size) meets bucket ``b``, by index.
     """
 
-    def __init__(self, quad_pts: np.ndarray):
+    def __init__(self, quad_pts: np.ndarray, per_element: float = 1.0):
         lo, hi = quad_pts.min(axis=1), quad_pts.max(axis=1)
         self.origin = lo.min(axis=0)
         extent = hi.max(axis=0) - self.origin
         pad = 1e-6 * float(np.hypot(*extent)) + 1e-300
-        self.cell = max(float(np.sqrt(np.prod(extent + pad) / len(quad_pts))), pad)
+        self.cell = max(float(np.sqrt(np.prod(extent + pad) / (per_element * len(quad_pts)))), pad)
         self.shape = np.maximum(1, np.ceil((extent + pad) / self.cell).astype(np.int64))
         i0, i1 = self._cells(lo - pad), self._cells(hi + pad)
         span = i1 - i0 + 1
         count = span[:, 0] * span[:, 1]
         el = np.repeat(np.arange(len(quad_pts)), count)
         k = np.arange(len(el)) - np.repeat(np.cumsum(count) - count, count)
-        ix, iy = i0[el, 0] + k % span[el, 0], i0[el, 1] + k // span[el, 0]
-        bucket = iy * self.shape[0] + ix
-        order = np.argsort(bucket, kind="stable")
-        self.members = el[order]
-        self.start = np.searchsorted(bucket[order], np.arange(self.shape[0] * self.shape[1] + 1))
+        bucket = (i0[el, 1] + k // span[el, 0]) * self.shape[0] + i0[el, 0] + k % span[el, 0]
+        self.members = el[np.argsort(bucket, kind="stable")]
+        self.start = np.concatenate(([0], np.cumsum(np.bincount(bucket, minlength=int(np.prod(self.shape))))))
 
     def _cells(self, x: np.ndarray) -> np.ndarray:
         return np.clip(np.floor((x - self.origin) / self.cell).astype(np.int64), 0, self.shape - 1)
@@ -168,20 +182,26 @@ class _Buckets:
         return self.start[b], count
 
 
-def _locate_chunk(quad_pts, grid, x, tol):
-    """Element (-1 if none) and local coordinates of each point, among its bucket's candidates."""
+def _locate_chunk(terms, grid, x, tol):
+    """Element (-1 if none) and local coordinates of each point: its deepest bucket candidate."""
     first, count = grid.of(x)
+    has = np.flatnonzero(count)
+    starts = np.cumsum(count) - count
+    p = np.repeat(np.arange(len(x)), count)  # one row per (point, candidate) pair
+    el = grid.members[np.repeat(first - starts, count) + np.arange(len(p))]
+    loc = _solve_local(terms[el], x[p])
+    xi, eta = loc[:, 0], loc[:, 1]
+    depth = np.nan_to_num(np.minimum(np.minimum(xi, 1.0 - xi), np.minimum(eta, 1.0 - eta)), nan=-np.inf)
     elements = np.full(len(x), -1, dtype=np.int64)
     local = np.zeros((len(x), 2))
-    for t in (0.0, tol):  # strictly inside first, then within the tolerance
-        for c in range(int(count.max(initial=0))):
-            todo = np.flatnonzero((elements < 0) & (count > c))
-            if not todo.size:
-                continue
-            el = grid.members[first[todo] + c]
-            ok, loc = _try(quad_pts[el], x[todo], t)
-            elements[todo[ok]] = el[ok]
-            local[todo[ok]] = loc[ok]
+    if has.size:
+        deepest = np.full(len(x), -np.inf)
+        deepest[has] = np.maximum.reduceat(depth, starts[has])
+        pair = np.where(depth == deepest[p], np.arange(len(p)), len(p))
+        best = np.minimum.reduceat(pair, starts[has])
+        ok = deepest[has] >= -tol
+        elements[has[ok]] = el[best[ok]]
+        local[has[ok]] = loc[best[ok]]
     return elements, local
 
 
@@ -218,12 +238,14 @@ def locate(points: np.ndarray, quads: np.ndarray, x: np.ndarray, tol: float = LO
     """
     x = np.asarray(x, dtype=np.float64)
     quad_pts_all = points[quads]
-    grid = _Buckets(quad_pts_all)
+    # About one bucket per point, between 1 and MAX_BUCKETS_PER_ELEMENT per element.
+    grid = _Buckets(quad_pts_all, min(max(len(x) / len(quads), 1.0), MAX_BUCKETS_PER_ELEMENT))
+    terms = _element_terms(quad_pts_all)
     elements = np.full(len(x), -1, dtype=np.int64)
     local = np.zeros((len(x), 2))
     for lo in range(0, len(x), CHUNK):
         part = slice(lo, lo + CHUNK)
-        elements[part], local[part] = _locate_chunk(quad_pts_all, grid, x[part], tol)
+        elements[part], local[part] = _locate_chunk(terms, grid, x[part], tol)
     todo = np.flatnonzero(elements < 0)
     if todo.size:  # exhaustive pass for the few points just outside every bucket
         for i in todo:
