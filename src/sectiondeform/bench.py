@@ -241,14 +241,20 @@ def bench_locate_scaling(case, cfg: dict) -> dict:
 
 
 def bench_refinement(case, cfg: dict) -> dict:
-    """The full pipeline as the element size is halved again and again."""
+    """The full pipeline as the element size is halved again and again (until the method refuses)."""
     from .deform import Deformer
+    from .errors import SectionDeformError
 
     h0 = Deformer(case).section.element_size
-    rows = []
+    rows, refused = [], None
     for level in range(cfg["refinements"]):
         h = h0 / 2**level
-        d = Deformer(case, element_size=h)
+        try:
+            d = Deformer(case, element_size=h)
+            d.deform()
+        except SectionDeformError as exc:
+            refused = {"element_size": h, "error": f"{type(exc).__name__}: {exc}"}
+            break
         reps = max(1, cfg["repeats"] // 2**level)
         t = median_time(lambda h=h: Deformer(case, element_size=h).deform(), reps, 1)
         rows.append({
@@ -262,6 +268,7 @@ def bench_refinement(case, cfg: dict) -> dict:
     return {
         "case": case.name,
         "rows": rows,
+        "refused": refused,
         "exponent": growth_exponent(els, [r["full_s"] for r in rows]) if len(rows) > 1 else None,
     }
 
@@ -539,6 +546,8 @@ def to_markdown(report: dict, changes: str = "") -> str:
         lines.append(f"| {r['element_size']:.4g} | {r['elements']} | {_fmt(r['full_s'])} | {_fmt(r['redeform_s'])} | {_fmt(r['peak_mb'], 'MB')} |")
     if ref["exponent"] is not None:
         lines += ["", f"Growth exponent (log time on log elements): {ref['exponent']:.3f}."]
+    if ref.get("refused"):
+        lines += ["", f"At element size {ref['refused']['element_size']:.4g} the method refuses: {ref['refused']['error']}"]
     rbf, fe = report["rbf"], report["fe"]
     lines += ["", f"## 4. Peers ({rbf['case']})", "",
               "| method | time | relative area error | ours / peer (full) | ours / peer (re-deformation) |", "|---|---|---|---|---|",
@@ -571,16 +580,6 @@ def _json_default(obj):
     raise TypeError(f"cannot write {type(obj).__name__} to JSON")
 
 
-def add_args(parser) -> None:
-    """Options shared by ``benchmarks/run.py`` and ``sectiondeform bench``."""
-    parser.add_argument("--quick", action="store_true", help="few repetitions and small N (CI smoke run)")
-    parser.add_argument("--cases", type=Path, help="folder of case files (default: benchmarks/cases)")
-    parser.add_argument("--json", type=Path, default=Path("docs/benchmarks.json"), help="JSON report to write")
-    parser.add_argument("--markdown", type=Path, default=Path("docs/benchmarks.md"), help="Markdown table to write")
-    parser.add_argument("--changes", type=Path, help="Markdown file appended to the table (what changed, what it gained)")
-    parser.add_argument("--no-profile", action="store_true", help="leave pyinstrument's profile out")
-
-
 def run(args) -> int:
     """Run the benchmark with parsed ``args``; write the JSON and the Markdown."""
     report = run_benchmark(args.cases, quick=args.quick, profile=not args.no_profile, log=lambda s: print(s, file=sys.stderr))
@@ -599,6 +598,8 @@ def run(args) -> int:
 def main(argv=None) -> int:
     """``benchmarks/run.py``: parse ``argv`` and :func:`run`."""
     import argparse
+
+    from .commands.bench import add_args
 
     parser = argparse.ArgumentParser(prog="benchmarks/run.py", description=__doc__.splitlines()[0])
     add_args(parser)

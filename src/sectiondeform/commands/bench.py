@@ -9,11 +9,17 @@ Example: sectiondeform bench --quick --json /tmp/b.json --markdown /tmp/b.md
 
 from __future__ import annotations
 
+from pathlib import Path
+
 
 def add_args(parser) -> None:
-    from ..bench import add_args as _add
-
-    _add(parser)
+    """Options shared with ``benchmarks/run.py`` (the benchmark itself is imported only to run)."""
+    parser.add_argument("--quick", action="store_true", help="few repetitions and small N (CI smoke run)")
+    parser.add_argument("--cases", type=Path, help="folder of case files (default: benchmarks/cases)")
+    parser.add_argument("--json", type=Path, default=Path("docs/benchmarks.json"), help="JSON report to write")
+    parser.add_argument("--markdown", type=Path, default=Path("docs/benchmarks.md"), help="Markdown table to write")
+    parser.add_argument("--changes", type=Path, help="Markdown file appended to the table (what changed, what it gained)")
+    parser.add_argument("--no-profile", action="store_true", help="leave pyinstrument's profile out")
 
 
 def run(args) -> int:
