@@ -344,11 +344,11 @@ class BSpline(Curve):
         p, t = self.degree, self.knots
         breaks = np.unique(t[p : len(t) - p])
         u = np.unique(np.concatenate([np.linspace(a, b, 5) for a, b in zip(breaks[:-1], breaks[1:])]))
-        for _ in range(40):
-            a, b = u[:-1], u[1:]
+        kept, a, b = [u], u[:-1], u[1:]
+        for _ in range(40):  # only the intervals split last time are tested again
             probe = np.stack([a + f * (b - a) for f in (0.25, 0.5, 0.75)], axis=1)
-            pu = self._spline(u)
-            pa, pb, pm = pu[:-1], pu[1:], self._spline(probe.ravel()).reshape(-1, 3, 2)
+            values = self._spline(np.concatenate((a, b, probe.ravel())))
+            pa, pb, pm = values[: len(a)], values[len(a) : 2 * len(a)], values[2 * len(a) :].reshape(-1, 3, 2)
             d = pb - pa
             norm = np.hypot(d[:, 0], d[:, 1])
             rel = pm - pa[:, None, :]
@@ -358,7 +358,10 @@ class BSpline(Curve):
             split = dist.max(axis=1) > tol
             if not split.any():
                 break
-            u = np.sort(np.concatenate((u, 0.5 * (a + b)[split])))
+            mid = 0.5 * (a + b)[split]
+            kept.append(mid)
+            a, b = np.concatenate((a[split], mid)), np.concatenate((mid, b[split]))
+        u = np.sort(np.concatenate(kept))
         tu, cum = self._table
         return self._spline(u), np.interp(u, tu, cum) / cum[-1]
 
