@@ -141,8 +141,10 @@ def _split_steps(fractions: np.ndarray, max_step: float) -> np.ndarray:
     """Split every step of ``fractions`` longer than ``max_step`` into equal parts."""
     steps = np.diff(fractions)
     parts = np.maximum(1, np.ceil(steps / max_step - 1e-9)).astype(int)
-    pieces = [np.linspace(a, b, p + 1)[:-1] for a, b, p in zip(fractions[:-1], fractions[1:], parts)]
-    return np.concatenate(pieces + [fractions[-1:]])
+    # Step i gives fractions[i] + k * (steps[i] / parts[i]), k < parts[i]: np.linspace's values.
+    step = np.repeat(np.arange(len(steps)), parts)
+    k = np.arange(len(step)) - np.repeat(np.cumsum(parts) - parts, parts)
+    return np.concatenate((k * (steps / parts)[step] + fractions[:-1][step], fractions[-1:]))
 
 
 def _sketch(curve: Curve) -> np.ndarray:
