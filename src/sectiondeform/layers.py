@@ -395,15 +395,18 @@ def _in_strip(below: np.ndarray, new: np.ndarray, orientation: int, x: np.ndarra
     Only points in the strip's bounding box, and then only the (point,
     element) pairs whose bounding boxes meet, are tested.
     """
+    inside = np.zeros(len(x), dtype=bool)
+    both = np.concatenate((below, new))
+    cand = np.flatnonzero(np.all((x >= both.min(axis=0) - tol) & (x <= both.max(axis=0) + tol), axis=1))
+    if not cand.size:
+        return inside
     corners = np.stack((below[:-1], below[1:], new[1:], new[:-1]), axis=1)  # (n - 1, 4, 2)
     lo, hi = corners.min(axis=1) - tol, corners.max(axis=1) + tol
-    inside = np.zeros(len(x), dtype=bool)
-    cand = np.flatnonzero(np.all((x >= lo.min(axis=0)) & (x <= hi.max(axis=0)), axis=1))
     xc = x[cand]
     near = (xc[:, None, 0] >= lo[:, 0]) & (xc[:, None, 0] <= hi[:, 0]) & (xc[:, None, 1] >= lo[:, 1]) & (xc[:, None, 1] <= hi[:, 1])
     p, e = np.nonzero(near)
     c = corners[e]
-    edges = np.roll(c, -1, axis=1) - c
+    edges = c[:, [1, 2, 3, 0]] - c
     side = orientation * _cross(edges, xc[p][:, None] - c) + tol * np.hypot(edges[..., 0], edges[..., 1])
     inside[cand[p[np.all(side >= 0, axis=1)]]] = True
     return inside
