@@ -208,7 +208,8 @@ class PaperPrepared(Prepared):
             k = solve_scale(fixed, moving, sec.orientation * target_area, guess)
             x, y = self._node_grids(target_nodes, t, n, k)
             jac = corner_jacobians(x, y, sec.orientation)
-            if min(float(j.min()) for j in jac) > 0:
+            jac_min = min(float(j.min()) for j in jac)
+            if jac_min > 0:
                 smoothing = lam
                 break
         else:
@@ -225,7 +226,7 @@ class PaperPrepared(Prepared):
         return Placement(
             upper=upper,
             final_mesh=final,
-            quality={"jacobian_min": min(float(j.min()) for j in jac), "jacobian_max": max(float(j.max()) for j in jac)},
+            quality={"jacobian_min": jac_min, "jacobian_max": max(float(j.max()) for j in jac)},
             info={"height_scale": k, "normal_smoothing": smoothing},
         )
 
