@@ -8,9 +8,9 @@ import math
 
 from sectiondeform.cli import main
 
-from conftest import SHARED
+from conftest import ROOT
 
-CASES = SHARED / "cases"
+CASES = ROOT / "benchmarks" / "cases"  # copies of the shared cases, in the repository
 
 
 def _positive(value):
