@@ -82,6 +82,12 @@ def as_points(value, field: str, min_count: int = 1) -> np.ndarray:
     return arr
 
 
+def _unique(values: np.ndarray) -> np.ndarray:
+    """Sorted distinct values, as ``np.unique`` (which imports numpy.ma on first use, 20 ms)."""
+    v = np.sort(values)
+    return v[np.concatenate(([True], v[1:] != v[:-1]))] if len(v) else v
+
+
 def _cumulative_length(points: np.ndarray) -> np.ndarray:
     """Cumulative chord length along an ``(N, 2)`` polyline, ``(N,)``, starting at 0."""
     seg = np.hypot(*np.diff(points, axis=0).T)
@@ -317,7 +323,7 @@ class BSpline(Curve):
     def _table(self) -> tuple[np.ndarray, np.ndarray]:
         """Parameter samples ``u`` and cumulative arc length at them, both ``(K,)``."""
         p, t = self.degree, self.knots
-        breaks = np.unique(t[p : len(t) - p])
+        breaks = _unique(t[p : len(t) - p])
         u = np.concatenate(
             [np.linspace(a, b, 65)[:-1] for a, b in zip(breaks[:-1], breaks[1:])] + [breaks[-1:]]
         )
@@ -342,8 +348,8 @@ class BSpline(Curve):
 
     def discretise(self, tol):
         p, t = self.degree, self.knots
-        breaks = np.unique(t[p : len(t) - p])
-        u = np.unique(np.concatenate([np.linspace(a, b, 5) for a, b in zip(breaks[:-1], breaks[1:])]))
+        breaks = _unique(t[p : len(t) - p])
+        u = _unique(np.concatenate([np.linspace(a, b, 5) for a, b in zip(breaks[:-1], breaks[1:])]))
         kept, a, b = [u], u[:-1], u[1:]
         for _ in range(40):  # only the intervals split last time are tested again
             probe = np.stack([a + f * (b - a) for f in (0.25, 0.5, 0.75)], axis=1)
