@@ -1,0 +1,125 @@
+"""The fast models against the finite-element reference, and the reference's refinement study.
+
+Writes the tables of ``docs/validation.md`` (between its ``<!-- validation:... -->``
+markers) from scratch:
+
+    .venv/bin/python benchmarks/validation.py ../shared/cases/*.json --write docs/validation.md
+
+1. Validation: for every case, ``sectiondeform.reference.validation.validate_case``
+   with each fast model (``paper``, and ``hyperelastic`` if given with
+   ``--models``): shape distance (Hausdorff and largest pointwise, absolute
+   and over the mean thickness T), areas, times, speed ratio.
+2. Refinement study of the reference: mesh sizes 0.4 T ... 0.025 T; largest
+   move of an upper point between successive meshes and against the finest,
+   over T; area error; time.
+
+Needs the extra ``[fem]``; takes a few minutes on 2 cores (the finest
+meshes of the study dominate). ``--quick`` skips the two finest meshes.
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+import sectiondeform as sd
+from sectiondeform.io.json import atomic_write
+from sectiondeform.reference import DEFAULT_MESH_SIZE, solve_reference
+from sectiondeform.reference.validation import save_validation_figure, validate_case
+
+STUDY = (0.4, 0.2, 0.1, 0.05, 0.025)
+
+
+def eprint(*args):
+    print(*args, file=sys.stderr, flush=True)
+
+
+def validation_table(cases, models, figures: Path | None) -> str:
+    rows = [
+        "| case | fast model | T (mm) | r | Hausdorff (mm) | Hausdorff / T | max pointwise / T "
+        "| area fast (rel. err.) | area reference (rel. err.) | time fast | time reference | speed ratio |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for path in cases:
+        case = sd.load_case(path)
+        for model in models:
+            eprint(f"== {case.name}, {model} model")
+            v = validate_case(case, model=model, progress=eprint)
+            if figures is not None:
+                save_validation_figure(v, figures / f"validation-{case.name}-{model}.png")
+            f, s = v.fast, v.shape
+            ref_err = (v.area_reference - f.area_target) / f.area_target
+            rows.append(
+                f"| {case.name} | {model} | {v.thickness:.2f} | {f.area_target / f.area_initial:.2f} "
+                f"| {s.hausdorff:.3f} | {s.hausdorff_relative:.1%} | {s.max_pointwise_relative:.1%} "
+                f"| {f.area_final:.1f} ({f.relative_error:+.0e}) | {v.area_reference:.1f} ({ref_err:+.1e}) "
+                f"| {1e3 * v.fast_seconds:.1f} ms | {v.reference_seconds:.2f} s | {v.speed_ratio:,.0f} |"
+            )
+    return "\n".join(rows)
+
+
+def study_table(cases, sizes) -> str:
+    rows = [
+        "| case | h / T | triangles | unknowns | Newton its | max move vs previous / T "
+        "| max move vs finest / T | area rel. err. | strain energy (μ mm²) | time |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for path in cases:
+        case = sd.load_case(path)
+        T = sd.build_section(case).thickness
+        sols = []
+        for h in sizes:
+            eprint(f"== study {case.name}, h = {h} T")
+            t0 = time.perf_counter()
+            ref = solve_reference(case, mesh_size=h)
+            sols.append((h, ref, time.perf_counter() - t0))
+        finest = sols[-1][1].upper
+        prev = None
+        for h, ref, secs in sols:
+            move_prev = "" if prev is None else f"{np.linalg.norm(ref.upper - prev, axis=1).max() / T:.3%}"
+            move_fine = np.linalg.norm(ref.upper - finest, axis=1).max() / T
+            rows.append(
+                f"| {case.name} | {h:g}{' (default)' if h == DEFAULT_MESH_SIZE else ''} | {ref.elements} | {ref.dofs} "
+                f"| {ref.iterations} | {move_prev} | {move_fine:.3%} | {ref.relative_area_error:+.2e} "
+                f"| {ref.strain_energy:.4g} | {secs:.2f} s |"
+            )
+            prev = ref.upper
+    return "\n".join(rows)
+
+
+def replace_block(text: str, name: str, body: str) -> str:
+    pattern = re.compile(rf"(<!-- validation:{name} -->\n).*?(<!-- /validation:{name} -->)", re.S)
+    if not pattern.search(text):
+        raise SystemExit(f"the document has no <!-- validation:{name} --> ... <!-- /validation:{name} --> block")
+    return pattern.sub(lambda m: m.group(1) + body + "\n" + m.group(2), text)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("cases", nargs="+", type=Path, help="case files (.json)")
+    parser.add_argument("--models", nargs="+", default=["paper", "hyperelastic"], choices=sd.case.MODELS)
+    parser.add_argument("--write", type=Path, metavar="DOC", help="markdown file whose validation blocks to replace")
+    parser.add_argument("--figures", type=Path, metavar="DIR", help="also write one overlay figure per case and model")
+    parser.add_argument("--quick", action="store_true", help="study down to 0.1 T only")
+    args = parser.parse_args(argv)
+    cases = sorted(args.cases)
+    sizes = STUDY[:3] if args.quick else STUDY
+    table = validation_table(cases, args.models, args.figures)
+    study = study_table(cases, sizes)
+    print(table, study, sep="\n\n")
+    if args.write:
+        text = args.write.read_text(encoding="utf-8")
+        text = replace_block(text, "table", table)
+        text = replace_block(text, "study", study)
+        atomic_write(args.write, lambda tmp: tmp.write_text(text, encoding="utf-8"))
+        eprint(f"wrote {args.write}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
