@@ -145,3 +145,11 @@ def test_preview_of_the_paper_model_is_the_full_deformation():
     x = np.linspace(0, 110, 23)
     t = Polyline(np.column_stack((x, 4 * (1 - (2 * x / 110 - 1) ** 2))))
     assert np.array_equal(deformer.preview(t).upper, deformer.deform(t).upper)
+
+
+def test_fine_mesh_on_a_tightly_curved_target():
+    """Four times finer elements than the default on the S-curve: the normal field needs more smoothing."""
+    case = sd.load_case(SHARED_CASES[[p.stem for p in SHARED_CASES].index("thick-block-s-curve")])
+    case = dataclasses.replace(case, options={**case.options, "refine": 4})
+    r = sd.deform(case)
+    assert abs(r.relative_error) <= 1e-9 and r.quality["final_jacobian_min"] > 0

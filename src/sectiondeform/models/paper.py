@@ -41,6 +41,11 @@ from ..locate import locate
 from ..section import Section
 from .base import MeshData, Model, Placement, Prepared
 
+# Weights tried, in turn, on the target's normal field; the largest ones
+# make it nearly linear along the target (fine meshes need them: the
+# smoothing length grows as the fourth root of the weight, in nodes).
+TARGET_SMOOTHING = (0.0,) + SMOOTHING_WEIGHTS + (5e6, 5e7, 5e8, 5e9, 5e10)
+
 __all__ = ["PaperModel", "PaperPrepared", "MODEL", "solve_scale"]
 
 DENSE_MAP_MAX = 2**21  # entries of each (upper points x columns) placement matrix kept dense
@@ -200,7 +205,7 @@ class PaperPrepared(Prepared):
         fixed = np.concatenate((real, fixed_up[1:-1]))
         zeros = np.zeros_like(real)
         smoothing = 0.0
-        for lam in (0.0,) + SMOOTHING_WEIGHTS:
+        for lam in TARGET_SMOOTHING:
             if lam:
                 t, n = _frames_from_normals(self._smoother(n, lam), sec.orientation)
             moving_up = self._moving_up(t, n)
