@@ -376,6 +376,12 @@ def _end_direction(dirs: np.ndarray, outward: np.ndarray, k: int, deg: float) ->
     return math.cos(a) * dirs[k] + math.sin(a) * outward[k]
 
 
+def _strip_min_jacobian(below: np.ndarray, new: np.ndarray, orientation: int) -> float:
+    """Smallest corner Jacobian of the strip of elements between two layers (``grid_jacobians(...).min()``)."""
+    h0, h1, v = np.diff(below, axis=0), np.diff(new, axis=0), new - below
+    return float(min((orientation * _cross(h, w)).min() for h, w in ((h0, v[:-1]), (h0, v[1:]), (h1, v[1:]), (h1, v[:-1]))))
+
+
 def _distance_to_polyline(line: np.ndarray, x: np.ndarray) -> np.ndarray:
     """Distance of each point of ``x`` ``(m, 2)`` to the polyline ``line`` ``(n, 2)``, ``(m,)``."""
     ax, ay = line[:-1, 0], line[:-1, 1]
@@ -490,8 +496,7 @@ def _grow(base, height, orientation, cover, off_base, tol, max_layers, smoother,
         for lam in SMOOTHING_WEIGHTS:
             new = smoother(raw, lam)
             new[0], new[-1] = raw[0], raw[-1]
-            jac = grid_jacobians(np.stack((below, new)), orientation)
-            if jac.min() > 1e-9 * height * height and shapely.LineString(new).is_simple:
+            if _strip_min_jacobian(below, new, orientation) > 1e-9 * height * height and shapely.LineString(new).is_simple:
                 break
         else:
             raise MeshError(
