@@ -7,8 +7,9 @@ in [0, 1]² under the bilinear map of that element::
 
 The inverse is solved in closed form (a quadratic in ``eta``), for all
 points at once. Candidate elements come from a uniform grid of buckets over
-the mesh, each bucket listing the elements whose bounding box meets it: a
-point inside an element is always among its bucket's candidates. Each point
+the mesh, each bucket listing the elements whose bounding box meets it (or,
+for few points, from every element's bounding box): a point inside an
+element is always among its candidates. Each point
 takes the candidate that contains it most deeply (or, on an edge or a
 node, within the tolerance); points still unlocated are tried against
 every element. Points go through in chunks, so memory stays
@@ -27,6 +28,7 @@ __all__ = ["Location", "locate", "place", "bilinear_weights", "inverse_bilinear"
 LOCAL_TOL = 1e-6
 CHUNK = 1 << 16  # points located at once
 MAX_BUCKETS_PER_ELEMENT = 16.0
+FEW_PAIRS = 1 << 18  # points x elements below which every element's box is tested
 
 
 @dataclass(frozen=True, eq=False)
@@ -173,23 +175,38 @@ class _Buckets:
     def _cells(self, x: np.ndarray) -> np.ndarray:
         return np.clip(np.floor((x - self.origin) / self.cell).astype(np.int64), 0, self.shape - 1)
 
-    def of(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """First member index and member count of each point's bucket, ``(p,)`` each."""
+    def pairs(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(point, candidate element) pairs, by point: ``(q,)`` each."""
         c = self._cells(x)
         b = c[:, 1] * self.shape[0] + c[:, 0]
         outside = np.any((x < self.origin) | (x >= self.origin + self.shape * self.cell), axis=1)
         count = np.where(outside, 0, self.start[b + 1] - self.start[b])
-        return self.start[b], count
+        p = np.repeat(np.arange(len(x)), count)
+        return p, self.members[np.repeat(self.start[b] - (np.cumsum(count) - count), count) + np.arange(len(p))]
 
 
-def _locate_chunk(terms, grid, x, tol):
-    """Element (-1 if none) and local coordinates of each point: its deepest bucket candidate."""
-    first, count = grid.of(x)
+class _Boxes:
+    """Every element's bounding box (widened as in :class:`_Buckets`) against every point: for few points."""
+
+    def __init__(self, quad_pts: np.ndarray):
+        lo, hi = quad_pts.min(axis=1), quad_pts.max(axis=1)
+        pad = 1e-6 * float(np.hypot(*(hi.max(axis=0) - lo.min(axis=0)))) + 1e-300
+        self.lo, self.hi = lo - pad, hi + pad
+
+    def pairs(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(point, candidate element) pairs, by point: ``(q,)`` each."""
+        lo, hi = self.lo, self.hi
+        near = (x[:, None, 0] >= lo[:, 0]) & (x[:, None, 0] <= hi[:, 0]) & (x[:, None, 1] >= lo[:, 1]) & (x[:, None, 1] <= hi[:, 1])
+        return np.nonzero(near)
+
+
+def _locate_chunk(terms_of, finder, x, tol):
+    """Element (-1 if none) and local coordinates of each point: its deepest candidate."""
+    p, el = finder.pairs(x)  # one row per (point, candidate) pair, by point
+    count = np.bincount(p, minlength=len(x))
     has = np.flatnonzero(count)
     starts = np.cumsum(count) - count
-    p = np.repeat(np.arange(len(x)), count)  # one row per (point, candidate) pair
-    el = grid.members[np.repeat(first - starts, count) + np.arange(len(p))]
-    loc = _solve_local(terms[el], x[p])
+    loc = _solve_local(terms_of(el), x[p])
     xi, eta = loc[:, 0], loc[:, 1]
     depth = np.nan_to_num(np.minimum(np.minimum(xi, 1.0 - xi), np.minimum(eta, 1.0 - eta)), nan=-np.inf)
     elements = np.full(len(x), -1, dtype=np.int64)
@@ -238,14 +255,19 @@ def locate(points: np.ndarray, quads: np.ndarray, x: np.ndarray, tol: float = LO
     """
     x = np.asarray(x, dtype=np.float64)
     quad_pts_all = points[quads]
-    # About one bucket per point, between 1 and MAX_BUCKETS_PER_ELEMENT per element.
-    grid = _Buckets(quad_pts_all, min(max(len(x) / len(quads), 1.0), MAX_BUCKETS_PER_ELEMENT))
-    terms = _element_terms(quad_pts_all)
+    if len(x) * len(quads) <= FEW_PAIRS:  # few points: test every box, map terms of candidates only
+        finder = _Boxes(quad_pts_all)
+
+        def terms_of(el):
+            return _element_terms(quad_pts_all[el])
+    else:  # about one bucket per point, between 1 and MAX_BUCKETS_PER_ELEMENT per element
+        finder = _Buckets(quad_pts_all, min(max(len(x) / len(quads), 1.0), MAX_BUCKETS_PER_ELEMENT))
+        terms_of = _element_terms(quad_pts_all).__getitem__
     elements = np.full(len(x), -1, dtype=np.int64)
     local = np.zeros((len(x), 2))
     for lo in range(0, len(x), CHUNK):
         part = slice(lo, lo + CHUNK)
-        elements[part], local[part] = _locate_chunk(terms, grid, x[part], tol)
+        elements[part], local[part] = _locate_chunk(terms_of, finder, x[part], tol)
     todo = np.flatnonzero(elements < 0)
     if todo.size:  # exhaustive pass for the few points just outside every bucket
         for i in todo:
