@@ -79,7 +79,8 @@ def place(points: np.ndarray, location: Location) -> np.ndarray:
     -------
     (p, 2) float64 ndarray
     """
-    return np.einsum("pk,pkd->pd", location.weights, points[location.nodes])
+    w, nodes = location.weights, location.nodes
+    return np.column_stack([np.einsum("pk,pk->p", w, points[:, d][nodes]) for d in (0, 1)])
 
 
 def _cross(a, b):
@@ -107,24 +108,24 @@ def inverse_bilinear(quad_pts: np.ndarray, x: np.ndarray) -> np.ndarray:
     >>> inverse_bilinear(q, np.array([[1.0, 0.25]])).tolist()
     [[0.5, 0.25]]
     """
-    return _solve_local(_element_terms(quad_pts), x)
+    return _solve_local(_element_terms(quad_pts), x.T)
 
 
 def _element_terms(quad_pts: np.ndarray) -> np.ndarray:
-    """Per element, the terms of its bilinear map that do not depend on the point, ``(p, 10)``.
+    """Per element, the terms of its bilinear map that do not depend on the point, ``(10, p)``.
 
-    Columns: p0 (x, y), e = p1 - p0, f = p3 - p0, g = p0 - p1 + p2 - p3
+    Rows: p0 (x, y), e = p1 - p0, f = p3 - p0, g = p0 - p1 + p2 - p3
     (x, y each), cross(g, f), cross(e, f).
     """
     p0, p1, p2, p3 = (quad_pts[:, i] for i in range(4))
     e, f, g = p1 - p0, p3 - p0, p0 - p1 + p2 - p3
-    return np.column_stack((p0, e, f, g, _cross(g, f), _cross(e, f)))
+    return np.vstack((p0.T, e.T, f.T, g.T, _cross(g, f), _cross(e, f)))
 
 
 def _solve_local(terms: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """:func:`inverse_bilinear` from :func:`_element_terms` (one row per point), ``(p, 2)``."""
-    p0x, p0y, ex, ey, fx, fy, gx, gy, k2, kef = terms.T
-    hx, hy = x[:, 0] - p0x, x[:, 1] - p0y
+    """:func:`inverse_bilinear` from :func:`_element_terms` (one column per point), ``(p, 2)``."""
+    p0x, p0y, ex, ey, fx, fy, gx, gy, k2, kef = terms
+    hx, hy = x[0] - p0x, x[1] - p0y
     k1 = kef + (hx * gy - hy * gx)
     k0 = hx * ey - hy * ex
     scale = np.abs(kef) + np.abs(k1) + 1e-300
@@ -206,7 +207,7 @@ def _locate_chunk(terms_of, finder, x, tol):
     count = np.bincount(p, minlength=len(x))
     has = np.flatnonzero(count)
     starts = np.cumsum(count) - count
-    loc = _solve_local(terms_of(el), x[p])
+    loc = _solve_local(terms_of(el), x.T[:, p])
     xi, eta = loc[:, 0], loc[:, 1]
     depth = np.nan_to_num(np.minimum(np.minimum(xi, 1.0 - xi), np.minimum(eta, 1.0 - eta)), nan=-np.inf)
     elements = np.full(len(x), -1, dtype=np.int64)
@@ -262,7 +263,10 @@ def locate(points: np.ndarray, quads: np.ndarray, x: np.ndarray, tol: float = LO
             return _element_terms(quad_pts_all[el])
     else:  # about one bucket per point, between 1 and MAX_BUCKETS_PER_ELEMENT per element
         finder = _Buckets(quad_pts_all, min(max(len(x) / len(quads), 1.0), MAX_BUCKETS_PER_ELEMENT))
-        terms_of = _element_terms(quad_pts_all).__getitem__
+        terms = _element_terms(quad_pts_all)
+
+        def terms_of(el):
+            return terms[:, el]
     elements = np.full(len(x), -1, dtype=np.int64)
     local = np.zeros((len(x), 2))
     for lo in range(0, len(x), CHUNK):
