@@ -27,7 +27,7 @@ __all__ = ["Location", "locate", "place", "bilinear_weights", "inverse_bilinear"
 
 LOCAL_TOL = 1e-6
 CHUNK = 1 << 16  # points located at once
-MAX_BUCKETS_PER_ELEMENT = 16.0
+MAX_BUCKETS_PER_ELEMENT = 64.0
 FEW_PAIRS = 1 << 18  # points x elements below which every element's box is tested
 
 
