@@ -511,8 +511,8 @@ def to_markdown(report: dict, changes: str = "") -> str:
     lines = [
         "# Benchmarks",
         "",
-        f"Produced by `python benchmarks/run.py{' --quick' if report['quick'] else ''}` "
-        f"(same as `sectiondeform bench`) on {m['date']}, in one process and one run; "
+        f"Produced by `{report.get('command', 'python benchmarks/run.py')}` "
+        f"(the same as `sectiondeform bench`) on {m['date']}, in one process and one run; "
         "every time is a median over repeated runs after a warm-up.",
         "",
         f"Machine: {m['platform']}, {m['processor']}, {m['cpus']} CPUs (shared with other work). "
@@ -591,9 +591,18 @@ def _json_default(obj):
     raise TypeError(f"cannot write {type(obj).__name__} to JSON")
 
 
+def _command_line() -> str:
+    """How this process was started, for the report: ``python benchmarks/run.py ...`` or ``sectiondeform bench ...``."""
+    first = sys.argv[0] if sys.argv else ""
+    if first.endswith(".py"):
+        return " ".join(["python", os.path.relpath(first)] + sys.argv[1:])
+    return " ".join(["sectiondeform"] + sys.argv[1:])
+
+
 def run(args) -> int:
     """Run the benchmark with parsed ``args``; write the JSON and the Markdown."""
     report = run_benchmark(args.cases, quick=args.quick, profile=not args.no_profile, log=lambda s: print(s, file=sys.stderr))
+    report["command"] = _command_line()
     changes = args.changes.read_text(encoding="utf-8") if args.changes else ""
     for path in (args.json, args.markdown):
         path.parent.mkdir(parents=True, exist_ok=True)
