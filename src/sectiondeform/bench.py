@@ -408,7 +408,9 @@ def profile_text(case, seconds: float = 2.0) -> str | None:
     while time.perf_counter() - t0 < seconds:
         Deformer(case).deform()
     profiler.stop()
-    return profiler.output_text(unicode=False, color=False, show_all=False)
+    lines = profiler.output_text(unicode=False, color=False, show_all=False).splitlines()
+    first = next((i for i, line in enumerate(lines) if "profile_text" in line), 0)  # drop the banner
+    return "\n".join(lines[first:])
 
 
 def run_benchmark(cases_dir=None, quick: bool = False, profile: bool = True, log=print) -> dict:
