@@ -41,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["run_benchmark", "to_markdown", "main", "TARGETS", "growth_exponent", "median_time"]
+__all__ = ["run_benchmark", "to_markdown", "main", "TARGETS", "growth_exponent", "median_time", "median_times"]
 
 # Targets on a 2-core machine (medians); seconds unless named otherwise.
 TARGETS = {
@@ -56,7 +56,7 @@ TARGETS = {
     "fe_redeform_speedup": 1e4,
 }
 
-FULL = {"repeats": 30, "warmup": 3, "redeform_steps": 200, "sizes": (100, 1000, 10_000, 100_000, 1_000_000),
+FULL = {"repeats": 60, "warmup": 3, "redeform_steps": 200, "sizes": (100, 1000, 10_000, 100_000, 1_000_000),
         "refinements": 5, "cli_repeats": 7, "peer_repeats": 20, "fe_repeats": 2}
 QUICK = {"repeats": 3, "warmup": 1, "redeform_steps": 5, "sizes": (100, 1000), "refinements": 2,
          "cli_repeats": 1, "peer_repeats": 2, "fe_repeats": 1}
@@ -73,6 +73,20 @@ def median_time(fn, repeats: int, warmup: int = 1) -> float:
         fn()
         times.append(time.perf_counter() - t0)
     return statistics.median(times)
+
+
+def median_times(fns: dict, repeats: int, warmup: int = 1) -> dict:
+    """Median wall time of each callable, runs interleaved (a burst of load hits them all alike), seconds."""
+    for _ in range(warmup):
+        for fn in fns.values():
+            fn()
+    times = {name: [] for name in fns}
+    for _ in range(repeats):
+        for name, fn in fns.items():
+            t0 = time.perf_counter()
+            fn()
+            times[name].append(time.perf_counter() - t0)
+    return {name: statistics.median(t) for name, t in times.items()}
 
 
 def peak_memory(fn) -> float:
@@ -132,15 +146,18 @@ def bench_pipeline(case, cfg: dict) -> dict:
     section = deformer.section
     model = get_model(deformer.model_name)
     result = deformer.deform()
+    times = median_times({
+        "full_s": lambda: Deformer(case).deform(),
+        "section_s": lambda: build_section(case),
+        "prepare_s": lambda: model.prepare(section, case.options),
+        "deform_s": deformer.deform,
+    }, r, w)
     return {
         "case": case.name,
         "elements": deformer.prepared.quality.get("elements"),
         "upper_points": int(len(section.upper)),
         "relative_area_error": float(abs(result.relative_error)),
-        "full_s": median_time(lambda: Deformer(case).deform(), r, w),
-        "section_s": median_time(lambda: build_section(case), r, w),
-        "prepare_s": median_time(lambda: model.prepare(section, case.options), r, w),
-        "deform_s": median_time(deformer.deform, r, w),
+        **times,
     }
 
 
