@@ -373,6 +373,9 @@ def bench_fe(case, cfg: dict, ours: dict, ours_redeform: dict) -> dict:
 # 5. Command line
 
 
+PARSER_ONLY = "from sectiondeform.cli import build_parser; build_parser()"
+
+
 def _cli_command() -> list[str]:
     script = Path(sys.executable).with_name("sectiondeform")
     return [str(script)] if script.exists() else [sys.executable, "-m", "sectiondeform"]
@@ -394,6 +397,8 @@ def bench_cli(case_path: Path, cfg: dict) -> dict:
             "cli_s": median_time(lambda: run(cmd), reps, 1),
             "python_bare_s": median_time(lambda: run([sys.executable, "-c", "pass"]), reps, 1),
             "import_s": median_time(lambda: run([sys.executable, "-c", "import sectiondeform.cli"]), reps, 1),
+            # Building the parser imports every command module (and what they import).
+            "parser_s": median_time(lambda: run([sys.executable, "-c", PARSER_ONLY]), reps, 1),
         }
 
 
@@ -594,6 +599,7 @@ def to_markdown(report: dict, changes: str = "") -> str:
     lines += ["", "## 5. Command line", "",
               "| process | wall time |", "|---|---|",
               f"| `{cli['command']}` ({cli['case']}) | {_fmt(cli['cli_s'])} |",
+              f"| `python -c '{PARSER_ONLY}'` (imports every command module) | {_fmt(cli['parser_s'])} |",
               f"| `python -c 'import sectiondeform.cli'` | {_fmt(cli['import_s'])} |",
               f"| `python -c pass` | {_fmt(cli['python_bare_s'])} |"]
     if changes:
