@@ -135,30 +135,34 @@ def machine_info() -> dict:
 # 1. Pipeline and 2. re-deformation
 
 
-def bench_pipeline(case, cfg: dict) -> dict:
-    """Full pipeline and its stages on one case, medians in seconds."""
+def bench_pipeline(cases: list, cfg: dict) -> list[dict]:
+    """Full pipeline and its stages on each case, medians in seconds.
+
+    Every (case, stage) is timed in turn within each repetition, so a burst
+    of load from elsewhere falls on all of them alike.
+    """
     from .deform import Deformer
     from .models import get_model
     from .section import build_section
 
-    r, w = cfg["repeats"], cfg["warmup"]
-    deformer = Deformer(case)
-    section = deformer.section
-    model = get_model(deformer.model_name)
-    result = deformer.deform()
-    times = median_times({
-        "full_s": lambda: Deformer(case).deform(),
-        "section_s": lambda: build_section(case),
-        "prepare_s": lambda: model.prepare(section, case.options),
-        "deform_s": deformer.deform,
-    }, r, w)
-    return {
-        "case": case.name,
-        "elements": deformer.prepared.quality.get("elements"),
-        "upper_points": int(len(section.upper)),
-        "relative_area_error": float(abs(result.relative_error)),
-        **times,
-    }
+    rows, fns = [], {}
+    for i, case in enumerate(cases):
+        deformer = Deformer(case)
+        section = deformer.section
+        model = get_model(deformer.model_name)
+        rows.append({
+            "case": case.name,
+            "elements": deformer.prepared.quality.get("elements"),
+            "upper_points": int(len(section.upper)),
+            "relative_area_error": float(abs(deformer.deform().relative_error)),
+        })
+        fns[i, "full_s"] = lambda case=case: Deformer(case).deform()
+        fns[i, "section_s"] = lambda case=case: build_section(case)
+        fns[i, "prepare_s"] = lambda case=case, model=model, section=section: model.prepare(section, case.options)
+        fns[i, "deform_s"] = deformer.deform
+    for (i, name), t in median_times(fns, cfg["repeats"], cfg["warmup"]).items():
+        rows[i][name] = t
+    return rows
 
 
 def bent_targets(deformer, steps: int, extra: float = 0.1) -> list:
@@ -459,7 +463,7 @@ def run_benchmark(cases_dir=None, quick: bool = False, profile: bool = True, log
     report = {"format": "sectiondeform-bench/1", "quick": quick, "config": {k: list(v) if isinstance(v, tuple) else v for k, v in cfg.items()},
               "machine": machine_info(), "reference_case": ref_name}
     log("pipeline ...")
-    report["pipeline"] = [bench_pipeline(c, cfg) for c in cases.values()]
+    report["pipeline"] = bench_pipeline(list(cases.values()), cfg)
     log("re-deformation ...")
     report["redeform"] = [bench_redeform(c, cfg) for c in cases.values()]
     log("scaling ...")
