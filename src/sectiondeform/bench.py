@@ -177,45 +177,48 @@ def bent_targets(deformer, steps: int, extra: float = 0.1) -> list:
     return [Polyline(lower + (1.0 + extra * i / max(steps - 1, 1)) * (target - lower)) for i in range(steps)]
 
 
-def bench_redeform(case, cfg: dict) -> dict:
-    """Median time of ``deformer.deform(target)`` over targets bent further at each step."""
-    from .deform import Deformer
+def _working_targets(deformer, steps: int) -> tuple[list, float]:
+    """Bent targets the section accepts: 10 % further bending, else 2 %, else none."""
     from .errors import SectionDeformError
 
-    deformer = Deformer(case)
     for extra in (0.1, 0.02, 0.0):
-        targets = bent_targets(deformer, cfg["redeform_steps"], extra)
+        targets = bent_targets(deformer, steps, extra)
         try:
             for t in targets:
                 deformer.deform(t)
-            break
+            return targets, extra
         except SectionDeformError:
             continue
-    for t in targets[: cfg["warmup"]]:
-        deformer.deform(t)
-    times = []
+    return targets, extra
+
+
+def bench_redeform(cases: list, cfg: dict) -> list[dict]:
+    """Median time of ``deformer.deform(target)`` over targets bent further at each step, per case.
+
+    Also without the contour's simplicity check (``check=False``). The
+    passes over the targets alternate between the cases and both checks.
+    """
+    from .deform import Deformer
+
+    runs, rows = [], []
+    for case in cases:
+        deformer, unchecked = Deformer(case), Deformer(case, check=False)
+        targets, extra = _working_targets(deformer, cfg["redeform_steps"])
+        rows.append({"case": case.name, "steps": len(targets), "extra_bend": extra,
+                     "normal_smoothing_last": float(deformer.deform(targets[-1]).info.get("normal_smoothing", 0.0))})
+        runs += [(len(rows) - 1, "redeform_s", deformer, targets), (len(rows) - 1, "redeform_unchecked_s", unchecked, targets)]
+    times = {(i, key): [] for i, key, _, _ in runs}
     for _ in range(max(1, cfg["repeats"] // 10)):
-        for t in targets:
-            t0 = time.perf_counter()
-            deformer.deform(t)
-            times.append(time.perf_counter() - t0)
-    last = deformer.deform(targets[-1])
-    unchecked = Deformer(case, check=False)  # the fast path without the contour's simplicity check
-    for t in targets[: cfg["warmup"]]:
-        unchecked.deform(t)
-    bare = []
-    for t in targets:
-        t0 = time.perf_counter()
-        unchecked.deform(t)
-        bare.append(time.perf_counter() - t0)
-    return {
-        "case": case.name,
-        "steps": len(targets),
-        "extra_bend": extra,
-        "redeform_s": statistics.median(times),
-        "redeform_unchecked_s": statistics.median(bare),
-        "normal_smoothing_last": float(last.info.get("normal_smoothing", 0.0)),
-    }
+        for i, key, d, targets in runs:
+            for t in targets[: cfg["warmup"]]:
+                d.deform(t)
+            for t in targets:
+                t0 = time.perf_counter()
+                d.deform(t)
+                times[i, key].append(time.perf_counter() - t0)
+    for (i, key), t in times.items():
+        rows[i][key] = statistics.median(t)
+    return rows
 
 
 # --------------------------------------------------------------------------
@@ -465,7 +468,7 @@ def run_benchmark(cases_dir=None, quick: bool = False, profile: bool = True, log
     log("pipeline ...")
     report["pipeline"] = bench_pipeline(list(cases.values()), cfg)
     log("re-deformation ...")
-    report["redeform"] = [bench_redeform(c, cfg) for c in cases.values()]
+    report["redeform"] = bench_redeform(list(cases.values()), cfg)
     log("scaling ...")
     report["locate_scaling"] = bench_locate_scaling(ref, cfg)
     report["refinement"] = bench_refinement(ref, cfg)
