@@ -55,11 +55,6 @@ def _cross(a, b):
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
-def _cross_sum(a, b) -> float:
-    """``np.sum(_cross(a, b))`` for ``(N, 2)`` arrays, as two dot products."""
-    return float(np.dot(a[:, 0], b[:, 1]) - np.dot(a[:, 1], b[:, 0]))
-
-
 def _next(a):
     """``np.roll(a, -1, axis=0)``, without its overhead."""
     return np.concatenate((a[1:], a[:1]))
@@ -95,9 +90,9 @@ def solve_scale(fixed: np.ndarray, moving: np.ndarray, signed_area: float, guess
     0.8
     """
     f1, g1 = _next(fixed), _next(moving)
-    c0 = 0.5 * _cross_sum(fixed, f1) - signed_area
-    c1 = 0.5 * (_cross_sum(fixed, g1) + _cross_sum(moving, f1))
-    c2 = 0.5 * _cross_sum(moving, g1)
+    c0 = 0.5 * float(np.sum(_cross(fixed, f1))) - signed_area
+    c1 = 0.5 * float(np.sum(_cross(fixed, g1) + _cross(moving, f1)))
+    c2 = 0.5 * float(np.sum(_cross(moving, g1)))
     if abs(c2) <= 1e-14 * (abs(c1) + abs(c0)):
         roots = [-c0 / c1] if c1 != 0 else []
     else:
