@@ -259,7 +259,7 @@ def bench_locate_scaling(case, cfg: dict) -> dict:
         def run(x=x):
             return place(final, locate(mesh.points, mesh.quads, x))
 
-        reps = max(1, min(cfg["repeats"], int(3e5 // n)))
+        reps = max(3, min(cfg["repeats"], int(3e5 // n)))
         t = median_time(run, reps, 1)
         rows.append({"n": int(n), "time_s": t, "per_point_s": t / n, "peak_mb": peak_memory(run)})
     sizes = [r["n"] for r in rows]
