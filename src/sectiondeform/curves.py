@@ -35,7 +35,9 @@ __all__ = [
 ]
 
 # Gauss-Legendre nodes for arc-length quadrature on each sub-interval.
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(5)
+# (numpy.polynomial.legendre.leggauss(5), written out: its import costs start-up time)
+_GL_X = np.array([-0.906179845938664, -0.5384693101056831, 0.0, 0.5384693101056831, 0.906179845938664])
+_GL_W = np.array([0.23692688505618928, 0.4786286704993663, 0.5688888888888887, 0.4786286704993663, 0.23692688505618928])
 
 
 def as_points(value, field: str, min_count: int = 1) -> np.ndarray:

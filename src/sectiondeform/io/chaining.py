@@ -26,9 +26,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
-from scipy.spatial import cKDTree
 
 from ..curves import BSpline, Chain, Curve, Polyline
 from ..errors import CaseError
@@ -117,6 +114,8 @@ def _piece_length_lower_bound(curve: Curve, a: np.ndarray, b: np.ndarray) -> flo
 
 def _greedy_pairs(points: np.ndarray, radius: float, forbid) -> list[tuple[int, int, float]]:
     """Pairs of rows of ``points`` within ``radius``, nearest first, each row once."""
+    from scipy.spatial import cKDTree  # imported here: start-up time of the command line
+
     if len(points) < 2 or radius <= 0:
         return []
     pairs = cKDTree(points).query_pairs(radius, output_type="ndarray")
@@ -170,6 +169,10 @@ def connect(pieces: list[Piece], where: str, tol: float, snap: float = 0.0, clos
     >>> len(paths), paths[0].curve.vertices.tolist()
     (1, [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [2.0, 1.0]])
     """
+    from scipy.sparse import coo_matrix  # imported here: start-up time of the command line
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
     report = ChainReport(pieces=len(pieces))
     if not pieces:
         return [], report

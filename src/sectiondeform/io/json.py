@@ -9,7 +9,7 @@ from pathlib import Path
 
 from ..case import Case, case_to_dict, load_case
 
-__all__ = ["read_case", "write_case", "write_result", "atomic_write"]
+__all__ = ["read_case", "write_case", "write_result", "atomic_write", "dumps"]
 
 
 def atomic_write(path, write) -> None:
@@ -32,8 +32,27 @@ def atomic_write(path, write) -> None:
         raise
 
 
+def dumps(obj: dict) -> str:
+    """JSON text of a case or result: one top-level key a line, values compact.
+
+    Python's indenting encoder is pure Python and takes about 0.1 s on a
+    result with meshes; the compact C encoder per key keeps the file
+    readable by key at a tenth of the cost.
+
+    Examples
+    --------
+    >>> print(dumps({"a": [1, 2], "b": {"c": 3}}))
+    {
+     "a": [1, 2],
+     "b": {"c": 3}
+    }
+    """
+    items = [f" {json.dumps(k)}: {json.dumps(v)}" for k, v in obj.items()]
+    return "{\n" + ",\n".join(items) + "\n}"
+
+
 def _dump(obj, path: Path) -> None:
-    path.write_text(json.dumps(obj, indent=1) + "\n", encoding="utf-8")
+    path.write_text(dumps(obj) + "\n", encoding="utf-8")
 
 
 def read_case(path, **_options) -> Case:
