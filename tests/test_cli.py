@@ -98,3 +98,11 @@ def test_bad_secondary_output_writes_nothing(extra, tmp_path, capsys):
     assert main(args) == 2
     assert "unknown" in capsys.readouterr().err
     assert [p.name for p in tmp_path.iterdir()] == ["case.json"]
+
+
+def test_missing_output_folder_is_one_line(tmp_path, capsys):
+    case = _write(tmp_path, box_case())
+    assert main(["deform", str(case), "-o", str(tmp_path / "no" / "r.json")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--output: the folder" in err and len(err.splitlines()) == 1
+    assert [p.name for p in tmp_path.iterdir()] == ["case.json"]

@@ -51,6 +51,9 @@ def main(argv: list[str] | None = None) -> int:
     except SectionDeformError as exc:
         print(f"sectiondeform {args.command}: error: {exc}", file=sys.stderr)
         return 2
+    except OSError as exc:  # a file that cannot be read or written: one line, not a traceback
+        print(f"sectiondeform {args.command}: error: {exc}", file=sys.stderr)
+        return 2
     except KeyboardInterrupt:  # pragma: no cover - interactive
         print("interrupted", file=sys.stderr)
         return 130

@@ -11,11 +11,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import CaseError, require
-from .io import FIGURE_FORMATS as FORMATS
+from .errors import require
+from .io import check_figure_path
 from .models.base import MeshData
 
-__all__ = ["save_figure", "draw_result", "draw_mesh"]
+__all__ = ["save_figure", "write_figure", "draw_result", "draw_mesh"]
 
 
 
@@ -47,7 +47,7 @@ def draw_result(result, fig=None):
         fig = plt.figure(figsize=(11, 8), layout="constrained")
     axes = fig.subplots(2, 2, sharex=True, sharey=True).ravel()
     u = result.units
-    low0, up0, low1, up1 = result.initial_lower, result.initial_upper, result.lower, result.upper
+    low0, up0, low1 = result.initial_lower, result.initial_upper, result.lower
 
     ax = axes[0]
     ax.plot(*low0.T, color="tab:blue", lw=2, label="lower curve (BC)")
@@ -84,25 +84,34 @@ def draw_result(result, fig=None):
     return fig
 
 
-def save_figure(result, path) -> Path:
-    """Draw a result and write it to ``path`` (.png, .svg or .pdf), atomically.
+def write_figure(fig, path) -> Path:
+    """Write a matplotlib figure to ``path`` (.png, .svg or .pdf) atomically, then close it.
 
     Raises
     ------
     CaseError
-        If the extension is not one of .png, .svg, .pdf.
-    MissingExtraError
-        If matplotlib is not installed (``pip install 'sectiondeform[plot]'``).
+        If the extension is not one of .png, .svg, .pdf or the folder does not exist.
     """
     from .io.json import atomic_write
 
-    path = Path(path)
-    if path.suffix.lower() not in FORMATS:
-        raise CaseError("--plot", f"unknown figure format {path.suffix or '(none)'!r}; use one of {', '.join(FORMATS)}")
+    path = check_figure_path(path)
     plt = _pyplot()
-    fig = draw_result(result)
     try:
         atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=130, format=path.suffix[1:].lower()))
     finally:
         plt.close(fig)
     return path
+
+
+def save_figure(result, path) -> Path:
+    """Draw a result (:func:`draw_result`) and write it to ``path`` (.png, .svg or .pdf), atomically.
+
+    Raises
+    ------
+    CaseError
+        If the extension is not one of .png, .svg, .pdf or the folder does not exist.
+    MissingExtraError
+        If matplotlib is not installed (``pip install 'sectiondeform[plot]'``).
+    """
+    check_figure_path(path)
+    return write_figure(draw_result(result), path)

@@ -39,7 +39,7 @@ def run(args) -> int:
         runs.append(time.perf_counter() - t)
     runs.sort()
     print(summary(result))
-    print(f"  paper: 4379 mm² -> 3503 mm² expected, 3500 mm² by the method (0.1 % error) in 0.05 s")
+    print("  paper: 4379 mm² -> 3503 mm² expected, 3500 mm² by the method (0.1 % error) in 0.05 s")
     print(
         f"  here:  {result.area_initial:.0f} mm² -> {result.area_final:.1f} mm² "
         f"(relative error {result.relative_error:.1e}) in {1e3 * first:.1f} ms, "

@@ -172,7 +172,7 @@ class MixedNeoHooke:
         finv_t = self._inverse_transpose(f)
         g = np.matmul(G, finv_t.transpose(0, 1, 3, 2)).reshape(e, q, 12).transpose(0, 2, 1)  # (E, (a,i), q)
         h = np.matmul(G, f.F.transpose(0, 1, 3, 2)).reshape(e, q, 12).transpose(0, 2, 1)  # F grad N_a
-        gt, ht = g.transpose(0, 2, 1), h.transpose(0, 2, 1)
+        gt = g.transpose(0, 2, 1)
         c_gg = w * (2.0 * a * f.i1 / 9.0 + f.p * f.J)
         c_sw = w * (a * f.i1 / 3.0 - f.p * f.J)
         c_hg = -2.0 / 3.0 * w * a

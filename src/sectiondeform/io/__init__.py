@@ -40,6 +40,8 @@ __all__ = [
     "input_options",
     "add_output_args",
     "check_outputs",
+    "check_output_path",
+    "check_figure_path",
     "output_options",
 ]
 
@@ -95,6 +97,37 @@ MESH_FORMATS = (".vtu", ".vtk", ".msh", ".inp")
 FIGURE_FORMATS = (".png", ".svg", ".pdf")
 
 
+def check_output_path(path, option: str, formats, what: str = "output") -> Path:
+    """Check an output path's extension and folder before any work is done.
+
+    Parameters
+    ----------
+    path : str or Path
+    option : str
+        The command-line option or field that named it, for the message.
+    formats : sequence of str
+        Accepted extensions, with the dot.
+    what : str
+        What the file is (``"output"``, ``"mesh"``, ``"figure"``), for the message.
+
+    Raises
+    ------
+    CaseError
+        If the extension is not among ``formats`` or the folder does not exist.
+    """
+    path = Path(path)
+    if path.suffix.lower() not in formats:
+        raise CaseError(option, f"unknown {what} format {path.suffix or '(none)'!r}; use one of {', '.join(sorted(formats))}")
+    if not path.parent.is_dir():
+        raise CaseError(option, f"the folder {str(path.parent)!r} does not exist")
+    return path
+
+
+def check_figure_path(path) -> Path:
+    """:func:`check_output_path` for a ``--plot`` figure (.png, .svg, .pdf)."""
+    return check_output_path(path, "--plot", FIGURE_FORMATS, "figure")
+
+
 def check_outputs(args) -> None:
     """Check every output path's format before any work is done.
 
@@ -104,15 +137,14 @@ def check_outputs(args) -> None:
         Naming the option and the formats it accepts, so that a bad name
         never leaves the other outputs half written.
     """
-    if getattr(args, "output", None) is not None and args.output.suffix.lower() not in RESULT_WRITERS:
-        _resolve(RESULT_WRITERS, args.output, "output")
+    if getattr(args, "output", None) is not None:
+        check_output_path(args.output, "--output", RESULT_WRITERS)
     for option in ("mesh_out", "initial_mesh_out"):
         for p in getattr(args, option, None) or []:
-            if p.suffix.lower() not in MESH_FORMATS:
-                raise CaseError(f"--{option.replace('_', '-')}", f"unknown mesh format {p.suffix or '(none)'!r}; use one of {', '.join(MESH_FORMATS)}")
+            check_output_path(p, f"--{option.replace('_', '-')}", MESH_FORMATS, "mesh")
     plot = getattr(args, "plot", None)
-    if plot is not None and plot.suffix.lower() not in FIGURE_FORMATS:
-        raise CaseError("--plot", f"unknown figure format {plot.suffix or '(none)'!r}; use one of {', '.join(FIGURE_FORMATS)}")
+    if plot is not None:
+        check_figure_path(plot)
     # The optional packages the outputs need, before anything is written.
     needs = {".dxf": ("ezdxf", "cad"), **{ext: ("meshio", "cad") for ext in MESH_FORMATS}}
     paths = [getattr(args, "output", None), *(getattr(args, "mesh_out", None) or []),

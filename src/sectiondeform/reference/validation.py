@@ -24,15 +24,15 @@ import numpy as np
 from ..case import Case
 from ..compare import CurveComparison, compare_curves, point_to_curve_distance
 from ..deform import Deformer
-from ..errors import CaseError, require
+from ..errors import require
+from ..io import check_figure_path
 from ..result import Result
 from ..section import polygon_area
 from . import DEFAULT_MESH_SIZE, ReferenceSolution, check_parameters, solve_reference
 
-__all__ = ["Validation", "validate_case", "save_validation_figure", "VALIDATION_FORMAT", "FIGURE_FORMATS"]
+__all__ = ["Validation", "validate_case", "save_validation_figure", "VALIDATION_FORMAT"]
 
 VALIDATION_FORMAT = "section-validation/1"
-FIGURE_FORMATS = (".png", ".svg", ".pdf")
 FAST_RUNS = 5
 
 
@@ -253,22 +253,6 @@ def draw_validation(validation: Validation, fig=None):
     return fig
 
 
-def check_figure_path(path) -> Path:
-    """Check a figure path's extension and folder before any long computation.
-
-    Raises
-    ------
-    CaseError
-        If the extension is not .png, .svg or .pdf, or the folder does not exist.
-    """
-    path = Path(path)
-    if path.suffix.lower() not in FIGURE_FORMATS:
-        raise CaseError("--plot", f"unknown figure format {path.suffix or '(none)'!r}; use one of {', '.join(FIGURE_FORMATS)}")
-    if not path.parent.is_dir():
-        raise CaseError("--plot", f"the folder {str(path.parent)!r} does not exist")
-    return path
-
-
 def save_validation_figure(validation: Validation, path) -> Path:
     """Draw :func:`draw_validation` and write it atomically to ``path`` (.png, .svg or .pdf).
 
@@ -279,14 +263,7 @@ def save_validation_figure(validation: Validation, path) -> Path:
     MissingExtraError
         Without matplotlib.
     """
-    from ..io.json import atomic_write
+    from ..plot import write_figure
 
-    path = check_figure_path(path)
-    fig = draw_validation(validation)
-    import matplotlib.pyplot as plt
-
-    try:
-        atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=130, format=path.suffix[1:].lower()))
-    finally:
-        plt.close(fig)
-    return path
+    check_figure_path(path)
+    return write_figure(draw_validation(validation), path)
