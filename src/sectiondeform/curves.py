@@ -17,6 +17,7 @@ and from the CURVE objects of the case format.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -127,6 +128,25 @@ class Curve:
     def characteristic_points(self, tol: float) -> np.ndarray:
         """Points that the deformation maps, ``(N, 2)``: the discretisation by default."""
         return self.discretise(tol)[0]
+
+    def refinements(self, tol: float, factor: float = 4.0) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+        """:meth:`discretise` at ``tol``, ``tol / factor``, ``tol / factor**2``, ... in turn (endless).
+
+        Each item equals ``discretise`` at that chordal error; a kind whose
+        discretisation refines the previous one continues from it.
+        """
+        while True:
+            yield self.discretise(tol)
+            tol /= factor
+
+    def characteristic_refinements(self, tol: float, factor: float = 4.0) -> Iterator[np.ndarray]:
+        """:meth:`characteristic_points` at ``tol``, ``tol / factor``, ... in turn, like :meth:`refinements`."""
+        if type(self).characteristic_points is Curve.characteristic_points:
+            yield from (points for points, _ in self.refinements(tol, factor))
+        else:
+            while True:
+                yield self.characteristic_points(tol)
+                tol /= factor
 
     def to_json(self) -> dict:  # pragma: no cover - abstract
         """The CURVE object of the case format."""
@@ -305,6 +325,7 @@ class BSpline(Curve):
     control_points: np.ndarray
     knots: np.ndarray | None = None
     kind = "bspline"
+    MAX_DEPTH = 40  # halvings of a knot interval's fifth
     _spline: object = field(init=False, repr=False, default=None)
 
     def __post_init__(self):
@@ -349,29 +370,58 @@ class BSpline(Curve):
         return self._spline(self._u_of_fraction(np.asarray(s, dtype=np.float64)))
 
     def discretise(self, tol):
+        return next(self.refinements(tol))
+
+    def _deviation(self, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarray) -> np.ndarray:
+        """Largest distance of the curve at 1/4, 1/2, 3/4 of each interval ``[a, b]`` from its chord, ``(K,)``."""
+        probe = a[:, None] + _PROBES * (b - a)[:, None]
+        pm = self._spline(probe.ravel()).reshape(-1, 3, 2)
+        d = pb - pa
+        norm = np.hypot(d[:, 0], d[:, 1])
+        rel = pm - pa[:, None, :]
+        cross = np.abs(d[:, None, 0] * rel[..., 1] - d[:, None, 1] * rel[..., 0])
+        if norm.all():
+            return (cross / norm[:, None]).max(axis=1)
+        # A chord of zero length (the curve comes back): the distance to its end.
+        dist = np.where(norm[:, None] > 0, cross / np.where(norm > 0, norm, 1)[:, None],
+                        np.hypot(rel[..., 0], rel[..., 1]))
+        return dist.max(axis=1)
+
+    def refinements(self, tol, factor=4.0):
+        # Bisection from five parameters per knot interval: an interval whose
+        # curve strays more than tol from its chord (at 1/4, 1/2, 3/4) is
+        # halved, down to MAX_DEPTH halvings. The intervals split at tol are
+        # split at any smaller error too, so each finer discretisation starts
+        # from the leaves of the previous one and evaluates only new points.
         p, t = self.degree, self.knots
         breaks = _unique(t[p : len(t) - p])
         u = _unique(np.concatenate([np.linspace(a, b, 5) for a, b in zip(breaks[:-1], breaks[1:])]))
-        kept, a, b = [u], u[:-1], u[1:]
-        for _ in range(40):  # only the intervals split last time are tested again
-            probe = np.stack([a + f * (b - a) for f in (0.25, 0.5, 0.75)], axis=1)
-            values = self._spline(np.concatenate((a, b, probe.ravel())))
-            pa, pb, pm = values[: len(a)], values[len(a) : 2 * len(a)], values[2 * len(a) :].reshape(-1, 3, 2)
-            d = pb - pa
-            norm = np.hypot(d[:, 0], d[:, 1])
-            rel = pm - pa[:, None, :]
-            cross = np.abs(d[:, None, 0] * rel[..., 1] - d[:, None, 1] * rel[..., 0])
-            dist = np.where(norm[:, None] > 0, cross / np.where(norm > 0, norm, 1)[:, None],
-                            np.hypot(rel[..., 0], rel[..., 1]))
-            split = dist.max(axis=1) > tol
-            if not split.any():
-                break
-            mid = 0.5 * (a + b)[split]
-            kept.append(mid)
-            a, b = np.concatenate((a[split], mid)), np.concatenate((mid, b[split]))
-        u = np.sort(np.concatenate(kept))
+        values = self._spline(u)
+        kept_u, kept_p = [u], [values]
+        a, b, pa, pb = u[:-1], u[1:], values[:-1], values[1:]
+        dist, depth = self._deviation(a, b, pa, pb), np.zeros(len(a), dtype=np.int64)
         tu, cum = self._table
-        return self._spline(u), np.interp(u, tu, cum) / cum[-1]
+        while True:
+            leaves = []
+            while True:
+                split = dist > tol
+                leaves.append((a[~split], b[~split], pa[~split], pb[~split], dist[~split], depth[~split]))
+                if not split.any():
+                    break
+                a, b, pa, pb, depth = a[split], b[split], pa[split], pb[split], depth[split] + 1
+                mid = 0.5 * (a + b)
+                pmid = self._spline(mid)
+                kept_u.append(mid)
+                kept_p.append(pmid)
+                a, b = np.concatenate((a, mid)), np.concatenate((mid, b))
+                pa, pb, depth = np.concatenate((pa, pmid)), np.concatenate((pmid, pb)), np.concatenate((depth, depth))
+                dist = np.where(depth < self.MAX_DEPTH, self._deviation(a, b, pa, pb), -np.inf)
+            u = np.concatenate(kept_u)
+            order = np.argsort(u, kind="stable")
+            u = u[order]
+            yield np.concatenate(kept_p)[order], np.interp(u, tu, cum) / cum[-1]
+            a, b, pa, pb, dist, depth = (np.concatenate(parts) for parts in zip(*leaves))
+            tol /= factor
 
     def green(self):
         u, _ = self._table
@@ -445,11 +495,23 @@ class Chain(Curve):
     def characteristic_points(self, tol):
         return self._join([p.characteristic_points(tol) for p in self.pieces])
 
+    def refinements(self, tol, factor=4.0):
+        b = self._bounds
+        for parts in zip(*(piece.refinements(tol, factor) for piece in self.pieces)):
+            yield self._join([q for q, _ in parts]), self._join([b[i] + s * (b[i + 1] - b[i]) for i, (_, s) in enumerate(parts)])
+
+    def characteristic_refinements(self, tol, factor=4.0):
+        for parts in zip(*(piece.characteristic_refinements(tol, factor) for piece in self.pieces)):
+            yield self._join(list(parts))
+
     def green(self):
         return float(sum(p.green() for p in self.pieces))
 
     def to_json(self):
         return {"chain": [p.to_json() for p in self.pieces]}
+
+
+_PROBES = np.array([0.25, 0.5, 0.75])  # where an interval's chordal error is measured
 
 
 def _de_boor(t: np.ndarray, c: np.ndarray, k: int, i: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -489,7 +551,8 @@ class _Spline:
     def __call__(self, x: np.ndarray) -> np.ndarray:
         """Points at parameters ``x`` ``(K,)``, ``(K, 2)``."""
         x = np.asarray(x, dtype=np.float64)
-        i = np.clip(np.searchsorted(self._x0, x, side="right") - 1, 0, len(self._x0) - 1)
+        i = np.searchsorted(self._x0, x, side="right")  # the piece is i - 1, the first one left of x0[0]
+        i = np.maximum(i - 1, 0, out=i)
         dx = (x - self._x0[i])[:, None]
         coef = self._coef[i]
         out = coef[:, 0]

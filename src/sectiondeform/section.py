@@ -127,14 +127,22 @@ class Section:
 
 
 def _merge_fractions(primary: np.ndarray, extra: np.ndarray, gap: float) -> np.ndarray:
-    """Union of two sorted fraction sets; ``extra`` values within ``gap`` of a kept one are dropped."""
-    kept = list(primary)
-    for s in np.sort(extra):
-        i = np.searchsorted(kept, s)
-        near = [kept[j] for j in (i - 1, i) if 0 <= j < len(kept)]
-        if all(abs(s - q) > gap for q in near):
-            kept.insert(i, float(s))
-    return np.asarray(kept)
+    """Union of two sorted fraction sets; ``extra`` values within ``gap`` of a kept one are dropped.
+
+    The ``extra`` values are taken in increasing order, so each is compared
+    with its two neighbours among ``primary`` and with the last ``extra``
+    value kept: the nearest kept values on either side.
+    """
+    extra = np.sort(extra)
+    i = np.searchsorted(primary, extra)
+    below = np.abs(extra - primary[np.maximum(i - 1, 0)]) > gap
+    above = np.abs(extra - primary[np.minimum(i, len(primary) - 1)]) > gap
+    kept, last = [], -math.inf
+    for s in extra[((i == 0) | below) & ((i == len(primary)) | above)].tolist():
+        if abs(s - last) > gap:
+            kept.append(s)
+            last = s
+    return np.sort(np.concatenate((primary, kept)))
 
 
 def _split_steps(fractions: np.ndarray, max_step: float) -> np.ndarray:
@@ -175,13 +183,12 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
     tol = float(opts.get("chordal_error", DEFAULT_CHORDAL_FRACTION * size))
 
     exact = abs(case.lower.green() + case.upper.green())
-    fine = tol
-    for _ in range(AREA_REFINEMENTS):
-        upper = case.upper.characteristic_points(fine)
-        low_pts, low_s = case.lower.discretise(fine)
+    uppers, lowers = case.upper.characteristic_refinements(tol, 4.0), case.lower.refinements(tol, 4.0)
+    for _ in range(AREA_REFINEMENTS):  # chordal errors tol, tol / 4, tol / 16, ...
+        upper = next(uppers)
+        low_pts, low_s = next(lowers)
         if len(upper) < 2 or abs(abs(polygon_area(np.concatenate((low_pts, upper[1:-1])))) - exact) <= AREA_FRACTION * exact:
             break
-        fine /= 4.0
     join = JOIN_FRACTION * size
     a, b = case.lower.start, case.lower.end
     gap_b = float(np.hypot(*(upper[0] - b)))
