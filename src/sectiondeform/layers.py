@@ -209,7 +209,7 @@ def node_frames(line: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndar
         t[cusp] = np.concatenate((seg[:1], seg[:-1]))[cusp]
         norm[cusp] = 1.0
     t /= norm[:, None]
-    n = orientation * np.column_stack((-t[:, 1], t[:, 0]))
+    n = t[:, ::-1] * np.array([-orientation, orientation])  # (-t_y, t_x), turned to the section's side
     return t, n
 
 
@@ -378,8 +378,13 @@ def _end_direction(dirs: np.ndarray, outward: np.ndarray, k: int, deg: float) ->
 
 def _strip_min_jacobian(below: np.ndarray, new: np.ndarray, orientation: int) -> float:
     """Smallest corner Jacobian of the strip of elements between two layers (``grid_jacobians(...).min()``)."""
-    h0, h1, v = below[1:] - below[:-1], new[1:] - new[:-1], new - below
-    return float(min((orientation * _cross(h, w)).min() for h, w in ((h0, v[:-1]), (h0, v[1:]), (h1, v[1:]), (h1, v[:-1]))))
+    both = np.stack((below, new))
+    h, v = both[:, 1:] - both[:, :-1], new - below  # rows 0 and 1: the bottom and top edges
+    left = h[..., 0] * v[:-1, 1] - h[..., 1] * v[:-1, 0]  # corners 0 (bottom row) and 3 (top row)
+    right = h[..., 0] * v[1:, 1] - h[..., 1] * v[1:, 0]  # corners 1 and 2
+    if orientation < 0:
+        return -float(max(left.max(), right.max()))
+    return float(min(left.min(), right.min()))
 
 
 def _distance_to_polyline(line: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -387,10 +392,17 @@ def _distance_to_polyline(line: np.ndarray, x: np.ndarray) -> np.ndarray:
     ax, ay = line[:-1, 0], line[:-1, 1]
     dx, dy = np.diff(line[:, 0]), np.diff(line[:, 1])
     dd = dx * dx + dy * dy
-    rx, ry = x[:, :1] - ax, x[:, 1:] - ay  # (m, n - 1)
-    t = np.clip((rx * dx + ry * dy) / np.where(dd > 0, dd, 1.0), 0.0, 1.0)
-    gx, gy = rx - t * dx, ry - t * dy
-    return np.sqrt(np.min(gx * gx + gy * gy, axis=1))
+    # (m, n - 1) arrays, computed in place: fresh arrays of this size cost more than the arithmetic.
+    rx, ry = x[:, :1] - ax, x[:, 1:] - ay
+    t, tmp = rx * dx, ry * dy
+    t += tmp
+    t /= np.where(dd > 0, dd, 1.0)
+    np.clip(t, 0.0, 1.0, out=t)
+    rx -= np.multiply(t, dx, out=tmp)  # gx
+    ry -= np.multiply(t, dy, out=tmp)  # gy
+    np.multiply(rx, rx, out=t)
+    t += np.multiply(ry, ry, out=tmp)
+    return np.sqrt(np.min(t, axis=1))
 
 
 def _in_strip(below: np.ndarray, new: np.ndarray, orientation: int, x: np.ndarray, tol: float) -> np.ndarray:
@@ -402,18 +414,19 @@ def _in_strip(below: np.ndarray, new: np.ndarray, orientation: int, x: np.ndarra
     element) pairs whose bounding boxes meet, are tested.
     """
     inside = np.zeros(len(x), dtype=bool)
-    both = np.concatenate((below, new))
-    cand = np.flatnonzero(np.all((x >= both.min(axis=0) - tol) & (x <= both.max(axis=0) + tol), axis=1))
+    low, high = np.minimum(below, new), np.maximum(below, new)
+    lo, hi = np.minimum(low[:-1], low[1:]) - tol, np.maximum(high[1:], high[:-1]) + tol  # element boxes
+    box = (x >= lo.min(axis=0)) & (x <= hi.max(axis=0))
+    cand = np.flatnonzero(box[:, 0] & box[:, 1])
     if not cand.size:
         return inside
-    corners = np.stack((below[:-1], below[1:], new[1:], new[:-1]), axis=1)  # (n - 1, 4, 2)
-    lo, hi = corners.min(axis=1) - tol, corners.max(axis=1) + tol
     xc = x[cand]
-    near = (xc[:, None, 0] >= lo[:, 0]) & (xc[:, None, 0] <= hi[:, 0]) & (xc[:, None, 1] >= lo[:, 1]) & (xc[:, None, 1] <= hi[:, 1])
-    p, e = np.nonzero(near)
-    c = corners[e]
-    edges = c[:, [1, 2, 3, 0]] - c
-    side = orientation * _cross(edges, xc[p][:, None] - c) + tol * np.hypot(edges[..., 0], edges[..., 1])
+    x0, y0 = xc[:, :1], xc[:, 1:]
+    p, e = np.nonzero((x0 >= lo[:, 0]) & (x0 <= hi[:, 0]) & (y0 >= lo[:, 1]) & (y0 <= hi[:, 1]))
+    n = len(below)
+    corners = np.concatenate((below, new))[e[:, None] + np.array([0, 1, n + 1, n])]  # (pairs, 4, 2)
+    edges = corners[:, [1, 2, 3, 0]] - corners
+    side = orientation * _cross(edges, xc[p][:, None] - corners) + tol * np.hypot(edges[..., 0], edges[..., 1])
     inside[cand[p[np.all(side >= 0, axis=1)]]] = True
     return inside
 
