@@ -193,11 +193,13 @@ class Polyline(Curve):
     def at_fractions(self, s):
         s = np.asarray(s, dtype=np.float64)
         cum = self._cum
-        d = np.clip(s, 0.0, 1.0) * cum[-1]
+        d = np.minimum(np.maximum(s, 0.0), 1.0) * cum[-1]  # np.clip, without its overhead
         # Skip zero-length segments so that np.interp sees increasing abscissae.
-        keep = np.concatenate(([True], np.diff(cum) > 0))
+        keep = np.concatenate(([True], cum[1:] > cum[:-1]))
         c, v = cum[keep], self.vertices[keep]
-        return np.column_stack((np.interp(d, c, v[:, 0]), np.interp(d, c, v[:, 1])))
+        out = np.empty((len(d), 2))
+        out[:, 0], out[:, 1] = np.interp(d, c, v[:, 0]), np.interp(d, c, v[:, 1])
+        return out
 
     def discretise(self, tol):
         keep = _douglas_peucker(self.vertices, tol)

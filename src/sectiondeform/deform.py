@@ -78,7 +78,8 @@ class Deformer:
                     "target",
                     f"expected {len(self.section.fractions)} nodes (one per lower node), got {len(nodes)}",
                 )
-        length = np.hypot(*np.diff(nodes, axis=0).T).sum()
+        steps = nodes[1:] - nodes[:-1]
+        length = np.hypot(steps[:, 0], steps[:, 1]).sum()
         if not length > 1e-9 * self.section.lower_length:
             raise CaseError("target", "the target has zero length")
         return nodes

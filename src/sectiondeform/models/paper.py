@@ -90,9 +90,9 @@ def solve_scale(fixed: np.ndarray, moving: np.ndarray, signed_area: float, guess
     0.8
     """
     f1, g1 = _next(fixed), _next(moving)
-    c0 = 0.5 * float(np.sum(_cross(fixed, f1))) - signed_area
-    c1 = 0.5 * float(np.sum(_cross(fixed, g1) + _cross(moving, f1)))
-    c2 = 0.5 * float(np.sum(_cross(moving, g1)))
+    c0 = 0.5 * float(_cross(fixed, f1).sum()) - signed_area
+    c1 = 0.5 * float((_cross(fixed, g1) + _cross(moving, f1)).sum())
+    c2 = 0.5 * float(_cross(moving, g1).sum())
     if abs(c2) <= 1e-14 * (abs(c1) + abs(c0)):
         roots = [-c0 / c1] if c1 != 0 else []
     else:
@@ -199,7 +199,8 @@ class PaperPrepared(Prepared):
         real = target_nodes
         target_nodes = self.extended_target(real)
         t, n = node_frames(target_nodes, sec.orientation)
-        lengths = np.hypot(*np.diff(real, axis=0).T).sum()
+        steps = real[1:] - real[:-1]
+        lengths = np.hypot(steps[:, 0], steps[:, 1]).sum()
         guess = target_area / sec.area * sec.lower_length / lengths
         fixed_up = self._map(0, target_nodes)
         fixed = np.concatenate((real, fixed_up[1:-1]))
