@@ -40,7 +40,7 @@ from .case import Case
 from .curves import Curve
 from .errors import GeometryError
 
-__all__ = ["Section", "build_section", "polygon_area", "DEFAULT_CHORDAL_FRACTION"]
+__all__ = ["Section", "build_section", "polygon_area", "mesh_scale", "DEFAULT_CHORDAL_FRACTION"]
 
 DEFAULT_CHORDAL_FRACTION = 1e-4
 JOIN_FRACTION = 1e-6
@@ -48,6 +48,22 @@ AREA_FRACTION = 1e-5
 AREA_REFINEMENTS = 8
 STEP_CAP_FRACTION = 0.25
 ELEMENT_FLOOR_FRACTION = 1.0 / 32.0
+
+
+def mesh_scale(area: float, lower_length: float) -> float:
+    """The length that sizes the meshes: the mean thickness, or the square root of the area if smaller.
+
+    The mean thickness T = area / lower length measures a section that sits
+    on its lower curve; a section much wider than its lower curve (a cap on
+    a short foot, like a lip seal) would get elements as large as the
+    section itself, so the scale never exceeds the square root of the area.
+
+    Examples
+    --------
+    >>> mesh_scale(40.0, 10.0), mesh_scale(36.0, 1.0)
+    (4.0, 6.0)
+    """
+    return min(area / lower_length, math.sqrt(area))
 
 
 def polygon_area(points: np.ndarray) -> float:
@@ -114,6 +130,11 @@ class Section:
     def thickness(self) -> float:
         """Mean thickness T = area / lower length, units."""
         return self.area / self.lower_length
+
+    @property
+    def mesh_scale(self) -> float:
+        """Length that sizes the meshes of every model, units: :func:`mesh_scale`."""
+        return mesh_scale(self.area, self.lower_length)
 
     @property
     def contour(self) -> np.ndarray:
@@ -215,7 +236,7 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
     length = case.lower.length
     # Mesh scale: the mean thickness, or the square root of the area for a
     # section much wider than its lower curve (a mushroom on a short foot).
-    thickness = min(abs(signed) / length, math.sqrt(abs(signed)))
+    thickness = mesh_scale(abs(signed), length)
     floor = ELEMENT_FLOOR_FRACTION * thickness
     _, tgt_s = case.target.discretise(tol)
     s = _merge_fractions(low_s, tgt_s, 0.5 * floor / length)

@@ -90,9 +90,7 @@ class HyperelasticPrepared(Prepared):
     def __init__(self, section: Section, through_thickness: float = DEFAULT_THROUGH_THICKNESS,
                  bulk_to_shear: float = DEFAULT_BULK_TO_SHEAR, tol: float = DEFAULT_TOLERANCE):
         self.section = section
-        # Mesh scale: the mean thickness T, or the square root of the area for
-        # a section much wider than its lower curve (as the layered mesh does).
-        T = min(section.thickness, math.sqrt(section.area))
+        T = section.mesh_scale
         n_low = len(section.lower)
         mesh = coarse_mesh(section.contour, np.array([0, n_low - 1]), T / through_thickness)
         self.mesh = mesh

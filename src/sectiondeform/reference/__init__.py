@@ -194,8 +194,9 @@ def solve_reference(
     law : Law or float, optional
         Mechanical law, or an area ratio r; by default the case's.
     mesh_size : float
-        Element size as a fraction of the mean thickness T = area / lower
-        length (dimensionless). The default, 0.1, is converged to better than
+        Element size as a fraction of the section's mesh scale (the mean
+        thickness T = area / lower length, or the square root of the area
+        where that is smaller; dimensionless). The default, 0.1, is converged to better than
         0.1 % of T on the project's cases (see ``docs/validation.md``).
     bulk_to_shear : float, optional
         κ / μ, at least 100; by default the case's ``options.bulk_to_shear``,
@@ -251,14 +252,14 @@ def solve_reference(
     if not hasattr(target, "at_fractions"):
         raise CaseError("target", f"expected a curve with at_fractions(s), got {type(target).__name__}")
 
-    T = section.thickness
+    T = section.mesh_scale
     h = mesh_size * T
     mesh = triangulate_section(section, h, lower_curve)
     t1 = time.perf_counter()
     problem = MixedProblem(mesh, shear_modulus, bulk_to_shear)
     if progress is not None:
         progress(
-            f"reference: {len(mesh.triangles)} P2/P1 triangles (h = {h:.4g}, {mesh_size:g} T), "
+            f"reference: {len(mesh.triangles)} P2/P1 triangles (h = {h:.4g}, {mesh_size:g} x mesh scale), "
             f"{problem.n_u + problem.n_p} unknowns"
         )
     support = np.asarray(target.at_fractions(problem.dirichlet_fractions), dtype=np.float64)
