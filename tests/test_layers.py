@@ -82,3 +82,13 @@ def test_far_overhang_extends_the_base():
     mesh = grow_mesh(ext, 0.5, 1, cover, 1e-9)
     assert mesh.jacobians().min() > 0
     assert _covered(mesh, cover)
+
+
+def test_concave_corner_keeps_elements_open():
+    """Layers in a right-angled corner: smoothing is raised before elements are squeezed flat."""
+    base = np.concatenate((np.column_stack((np.zeros(40), np.linspace(10, 0.25, 40))),
+                           np.column_stack((np.linspace(0, 30, 121), np.zeros(121)))))
+    cover = np.array([[30, 0], [30, 3.5], [3.5, 3.5], [3.5, 10], [0, 10]], float)
+    mesh = grow_mesh(base, 0.25, 1, cover, 1e-9)
+    assert mesh.jacobians().min() > 0
+    assert _covered(mesh, cover)

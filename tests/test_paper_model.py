@@ -153,3 +153,28 @@ def test_fine_mesh_on_a_tightly_curved_target():
     case = dataclasses.replace(case, options={**case.options, "refine": 4})
     r = sd.deform(case)
     assert abs(r.relative_error) <= 1e-9 and r.quality["final_jacobian_min"] > 0
+
+
+@pytest.mark.parametrize("model", ["paper", "hyperelastic"])
+def test_long_straight_upper_segment_is_named_when_the_target_bends(model):
+    """A 200 x 5 strip given by its four corners cannot follow a tight arc: the refusal says why."""
+    case = sd.case_from_dict(box_case(200, 5, target={"arc": {"center": [100, 60], "radius": 60,
+                                                               "start_deg": -170, "end_deg": -10}}))
+    with pytest.raises((MeshError, LawError, sd.GeometryError), match="upper segment 1 .* split it into shorter segments"):
+        sd.Deformer(case, model=model).deform()
+    # with the top edge split, both models deform it
+    top = [[200 - 5 * i, 5.0] for i in range(41)]
+    case = sd.case_from_dict(box_case(200, 5, upper=[[200, 0]] + top + [[0, 0]], target={"arc": {
+        "center": [100, 60], "radius": 60, "start_deg": -170, "end_deg": -10}}))
+    r = sd.Deformer(case, model=model).deform()
+    assert abs(r.relative_error) <= 1e-9
+
+
+def test_section_in_a_right_angled_corner():
+    """An L-shaped section on an L-shaped support, moved rigidly and shrunk: the layers turn the corner."""
+    case = sd.case_from_dict(box_case(30, 4, upper=[[30, 0], [30, 4], [4, 4], [4, 10], [0, 10]], ratio=0.95))
+    d = sd.case_to_dict(case)
+    d["lower"] = {"polyline": [[0, 10], [0, 0], [30, 0]]}
+    d["target"] = {"polyline": rigid(d["lower"]["polyline"], 10, (1, -1)).tolist()}
+    r = sd.deform(sd.case_from_dict(d))
+    assert abs(r.relative_error) <= 1e-9 and r.quality["jacobian_min"] > 0 and r.quality["final_jacobian_min"] > 0

@@ -13,6 +13,7 @@ solve and the placement: the interactive use.
 
 from __future__ import annotations
 
+import contextlib
 import time
 
 import numpy as np
@@ -20,7 +21,7 @@ import shapely
 
 from .case import Case
 from .curves import Curve, as_points
-from .errors import CaseError, GeometryError, LawError
+from .errors import CaseError, GeometryError, LawError, MeshError
 from .laws import Law
 from .models import get_model
 from .result import Result
@@ -103,7 +104,8 @@ class Deformer:
         t0 = time.perf_counter()
         law = law or self.case.law
         nodes = self.target_nodes(target)
-        return self._result(nodes, self.prepared.place(nodes, law), law, t0)
+        with self._hints():
+            return self._result(nodes, self.prepared.place(nodes, law), law, t0)
 
     def preview(self, target: Curve | np.ndarray | None = None, law: Law | None = None) -> Result:
         """A fast deformation for dragging the target (interactive preview).
@@ -117,7 +119,29 @@ class Deformer:
         t0 = time.perf_counter()
         law = law or self.case.law
         nodes = self.target_nodes(target)
-        return self._result(nodes, self.prepared.preview(nodes, law), law, t0)
+        with self._hints():
+            return self._result(nodes, self.prepared.preview(nodes, law), law, t0)
+
+    @contextlib.contextmanager
+    def _hints(self):
+        """Add to a refusal the likeliest cause the user can fix: long straight upper segments.
+
+        Only the upper curve's characteristic points are mapped, so a long
+        segment of an upper polyline stays a straight chord in the deformed
+        contour, however much the target bends under it.
+        """
+        try:
+            yield
+        except (MeshError, LawError, GeometryError) as exc:
+            up = self.section.upper
+            seg = np.hypot(*np.diff(up, axis=0).T)
+            i = int(np.argmax(seg))
+            if seg[i] > 2.0 * self.section.mesh_scale:
+                raise type(exc)(
+                    f"{exc}; note: upper segment {i} ({np.round(up[i], 6).tolist()} to {np.round(up[i + 1], 6).tolist()}, "
+                    f"length {seg[i]:.6g}) stays a straight chord in the deformed section: split it into shorter segments"
+                ) from exc
+            raise
 
     def _result(self, nodes, placement, law, t0) -> Result:
         """Check a placement (area law, simple contour) and wrap it in a :class:`Result`."""

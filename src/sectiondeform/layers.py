@@ -15,8 +15,14 @@ Growth: each new layer stands on the normals of the layer below, at the
 element height; the layer is then smoothed into a continuous curve by a
 small quadratic optimisation (closeness to the raw layer plus a penalty on
 the second differences of its nodes, a pentadiagonal solve), with the
-smoothing weight raised until no element of the new strip is inverted and
-the layer does not cross itself. On a smooth layer the penalty acts like a
+smoothing weight raised until no element of the new strip is inverted, the
+layer does not cross itself and no corner Jacobian falls below
+``MIN_RELATIVE_JACOBIAN`` of the element's nominal one (height x bottom
+edge; where no weight reaches that, the least weight giving a valid strip is
+kept; where no weight reaches it, as nodes crowd into a concave corner,
+the exact offset of the layer below is tried first, its swallowtails
+trimmed by shapely and its nodes spread at the base's arc-length
+fractions). On a smooth layer the penalty acts like a
 fourth derivative and moves nothing measurable; at kinks and above concave
 parts it rounds the layer and evens out the node spacing. The two end columns are straight
 lines along the base's end normals, splayed outward where the upper curve
@@ -52,6 +58,11 @@ SMOOTHING_WEIGHTS = (0.05, 0.5, 5.0, 50.0, 500.0, 5e3, 5e4, 5e5)
 SPLAY_STEP_DEG = 10.0
 SPLAY_MAX_DEG = 80.0
 SPLAY_EXTEND_DEG = 45.0
+# Smallest corner Jacobian of a new strip, relative to height x bottom edge,
+# that the smoothing of a layer aims for (it takes the least smoothing that
+# gives a valid strip when none reaches it): squeezed elements above
+# concave corners are spread out before they can fold.
+MIN_RELATIVE_JACOBIAN = 0.2
 
 
 @dataclass(frozen=True, eq=False)
@@ -376,15 +387,20 @@ def _end_direction(dirs: np.ndarray, outward: np.ndarray, k: int, deg: float) ->
     return math.cos(a) * dirs[k] + math.sin(a) * outward[k]
 
 
-def _strip_min_jacobian(below: np.ndarray, new: np.ndarray, orientation: int) -> float:
-    """Smallest corner Jacobian of the strip of elements between two layers (``grid_jacobians(...).min()``)."""
+def _strip_quality(below: np.ndarray, new: np.ndarray, orientation: int, height: float) -> tuple[float, float]:
+    """Smallest corner Jacobian of the strip of elements between two layers, and smallest relative one.
+
+    The relative Jacobian divides each corner's by ``height`` times the
+    length of the element's bottom edge: 1 for a rectangle of the nominal
+    height, near 0 for an element squeezed or sheared flat.
+    """
     both = np.stack((below, new))
     h, v = both[:, 1:] - both[:, :-1], new - below  # rows 0 and 1: the bottom and top edges
     left = h[..., 0] * v[:-1, 1] - h[..., 1] * v[:-1, 0]  # corners 0 (bottom row) and 3 (top row)
     right = h[..., 0] * v[1:, 1] - h[..., 1] * v[1:, 0]  # corners 1 and 2
-    if orientation < 0:
-        return -float(max(left.max(), right.max()))
-    return float(min(left.min(), right.min()))
+    worst = np.minimum(left, right) if orientation > 0 else -np.maximum(left, right)
+    nominal = height * np.hypot(h[0, :, 0], h[0, :, 1])
+    return float(worst.min()), float((worst / nominal).min())
 
 
 def _distance_to_polyline(line: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -497,8 +513,52 @@ def grow_mesh(
             )
 
 
+def _respace(layer: np.ndarray, fractions: np.ndarray) -> np.ndarray:
+    """Nodes moved along ``layer`` to the arc-length ``fractions`` (``(n,)``, those of the base)."""
+    cum = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(layer, axis=0).T))))
+    d = fractions * cum[-1]
+    return np.column_stack((np.interp(d, cum, layer[:, 0]), np.interp(d, cum, layer[:, 1])))
+
+
+def _offset_layer(below, height, orientation, start, end, fractions) -> np.ndarray:
+    """The offset of ``below`` by ``height`` towards the section, swallowtails trimmed (shapely).
+
+    The offset curve (rounded at convex corners, trimmed at concave ones)
+    is joined to the layer's end nodes ``start`` and ``end`` and the nodes
+    are spread along it at the base's arc-length ``fractions``.
+    """
+    curve = shapely.offset_curve(shapely.LineString(below), orientation * height, quad_segs=4, join_style="round")
+    line = np.vstack((start, shapely.get_coordinates(curve), end))
+    return _respace(line, fractions)
+
+
+def _smooth_layer(below, raw, orientation, height, smoother, fractions):
+    """Smoothed layers on ``raw``: the good one and the merely valid one (each None if there is none).
+
+    The good one has the least weight whose strip keeps every corner
+    Jacobian above ``MIN_RELATIVE_JACOBIAN`` of the nominal one; the valid
+    one the least weight giving a strip with no inverted element. With
+    ``fractions``, the smoothed nodes are first moved along the layer to the
+    base's arc-length fractions.
+    """
+    fallback = None
+    for lam in SMOOTHING_WEIGHTS:
+        new = smoother(raw, lam)
+        new[0], new[-1] = raw[0], raw[-1]
+        if fractions is not None:
+            new = _respace(new, fractions)
+        jac, rel = _strip_quality(below, new, orientation, height)
+        if jac > 1e-9 * height * height and shapely.LineString(new).is_simple:
+            if rel >= MIN_RELATIVE_JACOBIAN:
+                return new, new
+            fallback = new if fallback is None else fallback
+    return None, fallback
+
+
 def _grow(base, height, orientation, cover, off_base, tol, max_layers, smoother, end_dirs):
     layers = [base]
+    steps = np.hypot(*np.diff(base, axis=0).T)
+    fractions = np.concatenate(([0.0], np.cumsum(steps))) / steps.sum()
     todo = np.flatnonzero(off_base)
     while todo.size and len(layers) <= max_layers:
         below = layers[-1]
@@ -506,12 +566,13 @@ def _grow(base, height, orientation, cover, off_base, tol, max_layers, smoother,
         g = height * n
         g[0], g[-1] = height * end_dirs[0], height * end_dirs[1]
         raw = below + g
-        for lam in SMOOTHING_WEIGHTS:
-            new = smoother(raw, lam)
-            new[0], new[-1] = raw[0], raw[-1]
-            if _strip_min_jacobian(below, new, orientation) > 1e-9 * height * height and shapely.LineString(new).is_simple:
-                break
-        else:
+        good, fallback = _smooth_layer(below, raw, orientation, height, smoother, None)
+        if good is None:  # nodes crowding into a concave corner: the trimmed offset, nodes spread along it
+            offset = _offset_layer(below, height, orientation, raw[0], raw[-1], fractions)
+            good, fallback_offset = _smooth_layer(below, offset, orientation, height, smoother, fractions)
+            fallback = fallback if fallback is not None else fallback_offset
+        new = good if good is not None else fallback
+        if new is None:
             raise MeshError(
                 f"layer {len(layers)} of the initial mesh folds over whatever the smoothing "
                 f"(element height {height:.6g}); the lower curve bends too sharply for this "

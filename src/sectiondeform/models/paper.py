@@ -16,8 +16,10 @@ is 1 and every point comes back; a rigid motion of the target moves the
 section rigidly.
 
 Where the target bends so sharply that the straight frame lines would cross
-(an inverted element), the target's normal field is smoothed, with growing
-weight, before giving up with :class:`~sectiondeform.errors.MeshError`.
+(an inverted element), or converge so fast that no height scale reaches the
+law's area, the target's normal field is smoothed, with growing weight,
+before giving up with :class:`~sectiondeform.errors.MeshError` (or
+:class:`~sectiondeform.errors.LawError`).
 """
 
 from __future__ import annotations
@@ -206,12 +208,17 @@ class PaperPrepared(Prepared):
         fixed = np.concatenate((real, fixed_up[1:-1]))
         zeros = np.zeros_like(real)
         smoothing = 0.0
+        law_error, jac = None, None
         for lam in TARGET_SMOOTHING:
             if lam:
                 t, n = _frames_from_normals(self._smoother(n, lam), sec.orientation)
             moving_up = self._moving_up(t, n)
             moving = np.concatenate((zeros, moving_up[1:-1]))
-            k = solve_scale(fixed, moving, sec.orientation * target_area, guess)
+            try:
+                k = solve_scale(fixed, moving, sec.orientation * target_area, guess)
+            except LawError as exc:  # converging normals cap the reachable area: smooth them more
+                law_error = exc
+                continue
             x, y = self._node_grids(target_nodes, t, n, k)
             jac = corner_jacobians(x, y, sec.orientation)
             jac_min = min(float(j.min()) for j in jac)
@@ -219,11 +226,14 @@ class PaperPrepared(Prepared):
                 smoothing = lam
                 break
         else:
+            if jac is None:
+                raise law_error
             e = int(np.argmin(np.minimum.reduce(jac).ravel()))
             cols = self.mesh.n_columns
             raise MeshError(
                 f"target: the final mesh has an inverted element (layer {e // cols}, column {e % cols}) "
-                "even with its normals smoothed; the target bends too sharply for this section's thickness"
+                "even with its normals smoothed; the target bends too sharply for this section's thickness "
+                "(the hyperelastic model, --model hyperelastic, follows the material instead of the normals)"
             )
         upper = fixed_up + k * moving_up
         upper[0], upper[-1] = real[-1], real[0]
