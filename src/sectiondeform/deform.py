@@ -13,7 +13,6 @@ solve and the placement: the interactive use.
 
 from __future__ import annotations
 
-import contextlib
 import time
 
 import numpy as np
@@ -104,8 +103,13 @@ class Deformer:
         t0 = time.perf_counter()
         law = law or self.case.law
         nodes = self.target_nodes(target)
-        with self._hints():
+        try:
             return self._result(nodes, self.prepared.place(nodes, law), law, t0)
+        except (MeshError, LawError, GeometryError) as exc:
+            better = self._explained(exc)
+            if better is exc:
+                raise
+            raise better from exc
 
     def preview(self, target: Curve | np.ndarray | None = None, law: Law | None = None) -> Result:
         """A fast deformation for dragging the target (interactive preview).
@@ -119,29 +123,30 @@ class Deformer:
         t0 = time.perf_counter()
         law = law or self.case.law
         nodes = self.target_nodes(target)
-        with self._hints():
+        try:
             return self._result(nodes, self.prepared.preview(nodes, law), law, t0)
+        except (MeshError, LawError, GeometryError) as exc:
+            better = self._explained(exc)
+            if better is exc:
+                raise
+            raise better from exc
 
-    @contextlib.contextmanager
-    def _hints(self):
-        """Add to a refusal the likeliest cause the user can fix: long straight upper segments.
+    def _explained(self, exc: Exception) -> Exception:
+        """The refusal ``exc`` with the likeliest cause the user can fix: a long straight upper segment.
 
         Only the upper curve's characteristic points are mapped, so a long
         segment of an upper polyline stays a straight chord in the deformed
         contour, however much the target bends under it.
         """
-        try:
-            yield
-        except (MeshError, LawError, GeometryError) as exc:
-            up = self.section.upper
-            seg = np.hypot(*np.diff(up, axis=0).T)
-            i = int(np.argmax(seg))
-            if seg[i] > 2.0 * self.section.mesh_scale:
-                raise type(exc)(
-                    f"{exc}; note: upper segment {i} ({np.round(up[i], 6).tolist()} to {np.round(up[i + 1], 6).tolist()}, "
-                    f"length {seg[i]:.6g}) stays a straight chord in the deformed section: split it into shorter segments"
-                ) from exc
-            raise
+        up = self.section.upper
+        seg = np.hypot(*np.diff(up, axis=0).T)
+        i = int(np.argmax(seg))
+        if seg[i] <= 2.0 * self.section.mesh_scale:
+            return exc
+        return type(exc)(
+            f"{exc}; note: upper segment {i} ({np.round(up[i], 6).tolist()} to {np.round(up[i + 1], 6).tolist()}, "
+            f"length {seg[i]:.6g}) stays a straight chord in the deformed section: split it into shorter segments"
+        )
 
     def _result(self, nodes, placement, law, t0) -> Result:
         """Check a placement (area law, simple contour) and wrap it in a :class:`Result`."""
