@@ -26,7 +26,8 @@ fractions). On a smooth layer the penalty acts like a
 fourth derivative and moves nothing measurable; at kinks and above concave
 parts it rounds the layer and evens out the node spacing. The two end columns are straight
 lines along the base's end normals, splayed outward where the upper curve
-overhangs the ends of the lower curve (:func:`end_frames`). Layers are added until every upper
+overhangs the ends of the lower curve (:func:`end_frames`), the splay fading
+over the columns within the section's height of each end. Layers are added until every upper
 point lies in the mesh.
 """
 
@@ -494,7 +495,8 @@ def grow_mesh(
     frames = end_frames(base, orientation)
     while True:
         dirs = (_end_direction(*frames, 0, splay[0]), _end_direction(*frames, 1, splay[1]))
-        nodes, missing = _grow(base, height, orientation, cover, distance > tol, tol, max_layers, smoother, dirs)
+        tilt = _splay_taper(base, splay, min(0.5 * float(np.hypot(*np.diff(base, axis=0).T).sum()), reach))
+        nodes, missing = _grow(base, height, orientation, cover, distance > tol, tol, max_layers, smoother, dirs, tilt)
         if not missing.size:
             return LayeredMesh(nodes, orientation)
         # Splay the end nearest to the uncovered points further, or give up.
@@ -555,15 +557,33 @@ def _smooth_layer(below, raw, orientation, height, smoother, fractions):
     return None, fallback
 
 
-def _grow(base, height, orientation, cover, off_base, tol, max_layers, smoother, end_dirs):
+def _splay_taper(base: np.ndarray, splay: list, length: float):
+    """Outward tilt of every column, radians, ``(n,)`` (positive towards B), or None without splay.
+
+    The end columns' splay fades linearly to nothing over ``length`` (units)
+    of the base from each end, so the columns fan out evenly instead of the
+    splay being taken up by the few columns next to the end.
+    """
+    if not (splay[0] or splay[1]):
+        return None
+    s = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(base, axis=0).T))))
+    fade_a = np.clip(1.0 - s / length, 0.0, 1.0)
+    fade_b = np.clip(1.0 - (s[-1] - s) / length, 0.0, 1.0)
+    return math.radians(splay[1]) * fade_b - math.radians(splay[0]) * fade_a
+
+
+def _grow(base, height, orientation, cover, off_base, tol, max_layers, smoother, end_dirs, tilt=None):
     layers = [base]
     steps = np.hypot(*np.diff(base, axis=0).T)
     fractions = np.concatenate(([0.0], np.cumsum(steps))) / steps.sum()
     todo = np.flatnonzero(off_base)
     while todo.size and len(layers) <= max_layers:
         below = layers[-1]
-        _, n = node_frames(below, orientation)
-        g = height * n
+        t, n = node_frames(below, orientation)
+        if tilt is None:
+            g = height * n
+        else:  # splayed ends: every column leans out a little, the more the nearer the end
+            g = height * (np.cos(tilt)[:, None] * n + np.sin(tilt)[:, None] * t)
         g[0], g[-1] = height * end_dirs[0], height * end_dirs[1]
         raw = below + g
         good, fallback = _smooth_layer(below, raw, orientation, height, smoother, None)
