@@ -156,7 +156,7 @@ class Deformer:
         wanted = law.target_area(sec.area)
         if abs(final - wanted) > AREA_TOLERANCE * wanted:
             raise LawError(f"law: the final area {final:.9g} misses the target {wanted:.9g} by more than 1e-9")
-        if self.check and not shapely.LinearRing(contour).is_simple:
+        if self.check and not shapely.is_simple(shapely.linearrings(contour)):
             raise GeometryError("result: the deformed contour crosses itself; the target or the law is too severe for this section")
         seconds = time.perf_counter() - t0
         quality = dict(self.prepared.quality)

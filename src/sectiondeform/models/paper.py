@@ -145,6 +145,7 @@ class PaperPrepared(Prepared):
         rel = nodes - nodes[0][None]
         self.a = np.einsum("ijd,jd->ij", rel, t0)
         self.b = np.einsum("ijd,jd->ij", rel, n0)
+        self._a3, self._b3 = self.a[..., None], self.b[..., None]
         n = nodes.shape[1]
         self.columns = self.location.nodes % n
         # The upper points are linear in the target's nodes and frames:
@@ -180,10 +181,9 @@ class PaperPrepared(Prepared):
         stretch = np.hypot(*np.diff(target_nodes, axis=0).T).sum() / self._lower_polyline_length
         return extend_base(target_nodes, before * stretch, after * stretch)
 
-    def _node_grids(self, target_nodes: np.ndarray, t: np.ndarray, n: np.ndarray, k: float) -> tuple:
-        """Final node coordinates ``T_j + k (a t_j + b n_j)`` as two ``(L + 1, n)`` grids, x and y."""
-        a, b = self.a, self.b
-        return tuple(target_nodes[:, d] + k * (a * t[:, d] + b * n[:, d]) for d in (0, 1))
+    def _nodes(self, target_nodes: np.ndarray, t: np.ndarray, n: np.ndarray, k: float) -> np.ndarray:
+        """Final node coordinates ``T_j + k (a t_j + b n_j)``, ``(L + 1, n, 2)``."""
+        return target_nodes + k * (self._a3 * t + self._b3 * n)
 
     def _map(self, i: int, x: np.ndarray) -> np.ndarray:
         """Map ``i`` (0: W, 1: A, 2: B) applied to per-column values ``x`` ``(n, 2)``: ``(m, 2)``."""
@@ -219,9 +219,9 @@ class PaperPrepared(Prepared):
             except LawError as exc:  # converging normals cap the reachable area: smooth them more
                 law_error = exc
                 continue
-            x, y = self._node_grids(target_nodes, t, n, k)
-            jac = corner_jacobians(x, y, sec.orientation)
-            jac_min = min(float(j.min()) for j in jac)
+            nodes = self._nodes(target_nodes, t, n, k)
+            jac = corner_jacobians(nodes[..., 0], nodes[..., 1], sec.orientation)
+            jac_min = float(np.minimum(np.minimum(jac[0], jac[1]), np.minimum(jac[2], jac[3])).min())
             if jac_min > 0:
                 smoothing = lam
                 break
@@ -237,12 +237,12 @@ class PaperPrepared(Prepared):
             )
         upper = fixed_up + k * moving_up
         upper[0], upper[-1] = real[-1], real[0]
-        nodes = np.stack((x, y), axis=-1)
         final = MeshData(nodes.reshape(-1, 2), self.quads, "quad", self.initial_mesh.shape)
+        jac_max = float(np.maximum(np.maximum(jac[0], jac[1]), np.maximum(jac[2], jac[3])).max())
         return Placement(
             upper=upper,
             final_mesh=final,
-            quality={"jacobian_min": jac_min, "jacobian_max": max(float(j.max()) for j in jac)},
+            quality={"jacobian_min": jac_min, "jacobian_max": jac_max},
             info={"height_scale": k, "normal_smoothing": smoothing},
         )
 
