@@ -124,13 +124,18 @@ def _element_terms(quad_pts: np.ndarray) -> np.ndarray:
 
 def _solve_local(terms: np.ndarray, x: np.ndarray) -> np.ndarray:
     """:func:`inverse_bilinear` from :func:`_element_terms` (one column per point), ``(p, 2)``."""
+    return np.column_stack(_solve_xi_eta(terms, x))
+
+
+def _solve_xi_eta(terms: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_solve_local` as two ``(p,)`` arrays, xi and eta."""
     p0x, p0y, ex, ey, fx, fy, gx, gy, k2, kef = terms
     hx, hy = x[0] - p0x, x[1] - p0y
     k1 = kef + (hx * gy - hy * gx)
     k0 = hx * ey - hy * ex
     scale = np.abs(kef) + np.abs(k1) + 1e-300
     disc = k1 * k1 - 4.0 * k0 * k2
-    with np.errstate(invalid="ignore", divide="ignore"):
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         sq = np.sqrt(np.where(disc >= 0, disc, np.nan))
         q = -0.5 * (k1 + np.copysign(sq, k1))
         r1 = np.where(np.abs(k2) > 1e-12 * scale, q / k2, np.inf)
@@ -138,10 +143,11 @@ def _solve_local(terms: np.ndarray, x: np.ndarray) -> np.ndarray:
         # Linear case: k2 == 0 gives eta = -k0 / k1, which r2 equals.
         dist1 = np.abs(r1 - np.clip(r1, 0, 1))
         dist2 = np.abs(r2 - np.clip(r2, 0, 1))
-        eta = np.where(np.nan_to_num(dist2, nan=np.inf) <= np.nan_to_num(dist1, nan=np.inf), r2, r1)
+        # r2 unless r1 is strictly nearer [0, 1]; a NaN distance counts as infinitely far.
+        eta = np.where(~(dist1 < dist2) & (dist2 == dist2), r2, r1)
         ax, ay = ex + gx * eta, ey + gy * eta
         xi = ((hx - fx * eta) * ax + (hy - fy * eta) * ay) / (ax * ax + ay * ay)
-    return np.column_stack((xi, eta))
+    return xi, eta
 
 
 def _try(quad_pts, x, tol):
@@ -207,9 +213,9 @@ def _locate_chunk(terms_of, finder, x, tol):
     count = np.bincount(p, minlength=len(x))
     has = np.flatnonzero(count)
     starts = np.cumsum(count) - count
-    loc = _solve_local(terms_of(el), x.T[:, p])
-    xi, eta = loc[:, 0], loc[:, 1]
-    depth = np.nan_to_num(np.minimum(np.minimum(xi, 1.0 - xi), np.minimum(eta, 1.0 - eta)), nan=-np.inf)
+    xi, eta = _solve_xi_eta(terms_of(el), x.T[:, p])
+    depth = np.minimum(np.minimum(xi, 1.0 - xi), np.minimum(eta, 1.0 - eta))
+    depth[depth != depth] = -np.inf  # no real root: never the deepest
     elements = np.full(len(x), -1, dtype=np.int64)
     local = np.zeros((len(x), 2))
     if has.size:
@@ -219,7 +225,8 @@ def _locate_chunk(terms_of, finder, x, tol):
         best = np.minimum.reduceat(pair, starts[has])
         ok = deepest[has] >= -tol
         elements[has[ok]] = el[best[ok]]
-        local[has[ok]] = loc[best[ok]]
+        chosen = best[ok]
+        local[has[ok]] = np.column_stack((xi[chosen], eta[chosen]))
     return elements, local
 
 
