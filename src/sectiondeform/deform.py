@@ -100,16 +100,7 @@ class Deformer:
         GeometryError
             If the deformed contour crosses itself.
         """
-        t0 = time.perf_counter()
-        law = law or self.case.law
-        nodes = self.target_nodes(target)
-        try:
-            return self._result(nodes, self.prepared.place(nodes, law), law, t0)
-        except (MeshError, LawError, GeometryError) as exc:
-            better = self._explained(exc)
-            if better is exc:
-                raise
-            raise better from exc
+        return self._run(self.prepared.place, target, law)
 
     def preview(self, target: Curve | np.ndarray | None = None, law: Law | None = None) -> Result:
         """A fast deformation for dragging the target (interactive preview).
@@ -120,11 +111,15 @@ class Deformer:
         (``result.info["preview"]`` is True): call :meth:`deform` when the
         drag ends.
         """
+        return self._run(self.prepared.preview, target, law)
+
+    def _run(self, placer, target, law) -> Result:
+        """Place with ``placer`` (the model's ``place`` or ``preview``), check, explain a refusal."""
         t0 = time.perf_counter()
         law = law or self.case.law
         nodes = self.target_nodes(target)
         try:
-            return self._result(nodes, self.prepared.preview(nodes, law), law, t0)
+            return self._result(nodes, placer(nodes, law), law, t0)
         except (MeshError, LawError, GeometryError) as exc:
             better = self._explained(exc)
             if better is exc:
