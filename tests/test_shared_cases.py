@@ -32,8 +32,8 @@ def test_reference_figures(name):
     assert r.area_target == pytest.approx(case.law.ratio * r.area_initial, rel=1e-15)
     assert abs(r.relative_error) <= 1e-9
     assert (len(r.upper), len(r.lower)) == (ref["n_upper"], ref["n_lower"])
-    assert (r.quality["layers"], r.quality["columns"]) == (ref["layers"], ref["columns"])
-    assert r.quality["jacobian_min"] > 0 and r.quality["final_jacobian_min"] > 0
+    assert (r.quality.initial.layers, r.quality.initial.columns) == (ref["layers"], ref["columns"])
+    assert r.quality.initial.jacobian_min > 0 and r.quality.final.jacobian_min > 0
 
 
 def test_paper_example_figures():

@@ -152,13 +152,13 @@ def bench_pipeline(cases: list, cfg: dict) -> list[dict]:
         model = get_model(deformer.model_name)
         rows.append({
             "case": case.name,
-            "elements": deformer.prepared.quality.get("elements"),
+            "elements": deformer.prepared.quality.elements,
             "upper_points": int(len(section.upper)),
             "relative_area_error": float(abs(deformer.deform().relative_error)),
         })
         fns[i, "full_s"] = lambda case=case: Deformer(case).deform()
         fns[i, "section_s"] = lambda case=case: build_section(case)
-        fns[i, "prepare_s"] = lambda case=case, model=model, section=section: model.prepare(section, case.options)
+        fns[i, "prepare_s"] = lambda case=case, model=model, section=section: model.prepare(section, case.options.for_model(model.name))
         fns[i, "deform_s"] = deformer.deform
     for (i, name), t in median_times(fns, cfg["repeats"], cfg["warmup"]).items():
         rows[i][name] = t
@@ -205,7 +205,7 @@ def bench_redeform(cases: list, cfg: dict) -> list[dict]:
         deformer, unchecked = Deformer(case), Deformer(case, check=False)
         targets, extra = _working_targets(deformer, cfg["redeform_steps"])
         rows.append({"case": case.name, "steps": len(targets), "extra_bend": extra,
-                     "normal_smoothing_last": float(deformer.deform(targets[-1]).info.get("normal_smoothing", 0.0))})
+                     "normal_smoothing_last": float(deformer.deform(targets[-1]).info.normal_smoothing)})
         runs += [(len(rows) - 1, "redeform_s", deformer, targets), (len(rows) - 1, "redeform_unchecked_s", unchecked, targets)]
     times = {(i, key): [] for i, key, _, _ in runs}
     for _ in range(max(1, cfg["repeats"] // 10)):
@@ -292,7 +292,7 @@ def bench_refinement(case, cfg: dict) -> dict:
         t = median_time(lambda h=h: Deformer(case, element_size=h).deform(), reps, 1)
         rows.append({
             "element_size": h,
-            "elements": int(d.prepared.quality["elements"]),
+            "elements": int(d.prepared.quality.elements),
             "full_s": t,
             "redeform_s": median_time(d.deform, reps, 1),
             "peak_mb": peak_memory(lambda h=h: Deformer(case, element_size=h).deform()),

@@ -23,6 +23,7 @@ from functools import cached_property
 
 import numpy as np
 
+from .checks import COORDINATE_LIMIT, number
 from .errors import CaseError
 
 __all__ = [
@@ -70,19 +71,54 @@ def as_points(value, field: str, min_count: int = 1) -> np.ndarray:
     """
     if isinstance(value, (str, bytes, dict)) or value is None:
         raise CaseError(field, f"expected a list of [x, y] pairs, got {type(value).__name__}")
-    try:
-        arr = np.array(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise CaseError(field, "expected a list of [x, y] pairs of numbers") from None
+    if isinstance(value, np.ndarray):
+        arr = value
+    else:
+        try:
+            arr = np.array(value)
+        except (TypeError, ValueError, OverflowError):
+            arr = None
+        if arr is None or arr.dtype.kind not in "iuf" or arr.ndim != 2 or _has_bool(value):
+            _first_bad_pair(value, field)
     if arr.ndim != 2 or arr.shape[1] != 2:
         raise CaseError(field, f"expected a list of [x, y] pairs, got an array of shape {arr.shape}")
+    if arr.dtype.kind not in "iuf":
+        if not isinstance(value, np.ndarray):
+            _first_bad_pair(value, field)
+        raise CaseError(field, f"coordinates must be numbers, got an array of {arr.dtype}")
+    with np.errstate(all="ignore"):
+        arr = np.array(arr, dtype=np.float64)
     if len(arr) < min_count:
         raise CaseError(field, f"needs at least {min_count} points, got {len(arr)}")
-    bad = ~np.isfinite(arr).all(axis=1)
+    bad = ~(np.isfinite(arr).all(axis=1) & (np.abs(arr) <= COORDINATE_LIMIT).all(axis=1))
     if bad.any():
         i = int(np.argmax(bad))
-        raise CaseError(f"{field}[{i}]", f"coordinates must be finite numbers, got {arr[i].tolist()}")
+        raise CaseError(f"{field}[{i}]", f"coordinates must be finite numbers within +-{COORDINATE_LIMIT:g}, got {arr[i].tolist()}")
     return arr
+
+
+def _has_bool(value) -> bool:
+    """Whether a nested list of pairs holds a bool (numpy takes ``true`` for 1)."""
+    return any(type(c) is bool for pair in value if isinstance(pair, (list, tuple)) for c in pair)
+
+
+def _first_bad_pair(value, field: str) -> None:
+    """Raise the one-line error for the first entry of ``value`` that is not a pair of numbers."""
+    try:
+        items = list(value)
+    except TypeError:
+        raise CaseError(field, f"expected a list of [x, y] pairs, got {type(value).__name__}") from None
+    for i, pair in enumerate(items):
+        if isinstance(pair, (str, bytes, dict)) or not hasattr(pair, "__len__") or len(pair) != 2:
+            raise CaseError(f"{field}[{i}]", f"expected an [x, y] pair, got {_number_text(pair)}")
+        for c in pair:
+            number(c, f"{field}[{i}]", low=-COORDINATE_LIMIT, high=COORDINATE_LIMIT)
+    raise CaseError(field, "expected a list of [x, y] pairs of numbers")
+
+
+def _number_text(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."
 
 
 def _unique(values: np.ndarray) -> np.ndarray:
@@ -592,11 +628,8 @@ def _taylor_pieces(t: np.ndarray, c: np.ndarray, k: int) -> tuple[np.ndarray, np
 
 
 def _number(value, field: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise CaseError(field, f"expected a number, got {value!r}")
-    if not math.isfinite(value):
-        raise CaseError(field, f"expected a finite number, got {value!r}")
-    return float(value)
+    """A finite number within the coordinate range (:func:`~sectiondeform.checks.number`)."""
+    return number(value, field, low=-COORDINATE_LIMIT, high=COORDINATE_LIMIT)
 
 
 def curve_from_json(obj, field: str = "curve", join_tol: float | None = None) -> Curve:
@@ -673,10 +706,10 @@ def curve_from_json(obj, field: str = "curve", join_tol: float | None = None) ->
         cp = as_points(body["control_points"], f"{sub}.control_points", min_count=deg + 1)
         knots = body.get("knots")
         if knots is not None:
-            try:
-                t = np.array(knots, dtype=np.float64)
-            except (TypeError, ValueError):
-                raise CaseError(f"{sub}.knots", "expected a list of numbers") from None
+            if not isinstance(knots, (list, tuple, np.ndarray)):
+                raise CaseError(f"{sub}.knots", f"expected a list of numbers, got {type(knots).__name__}")
+            t = np.array([_number(v.item() if isinstance(v, np.generic) else v, f"{sub}.knots[{i}]")
+                          for i, v in enumerate(knots)], dtype=np.float64)
             n_exp = len(cp) + deg + 1
             if t.ndim != 1 or len(t) != n_exp:
                 raise CaseError(f"{sub}.knots", f"expected {n_exp} knots (control points + degree + 1), got {t.size}")

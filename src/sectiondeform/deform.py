@@ -9,6 +9,18 @@
 ``Deformer`` keeps the section, its mesh and the point locations, so
 ``deformer.deform(other_target)`` redoes only the final mesh, the law's
 solve and the placement: the interactive use.
+
+Prepare once, place many: the lower curve was sampled finely enough for the
+case's own target. Another target is sampled at the same arc-length
+fractions; where it bends more than the case's target, the deformed lower
+polyline strays from it. Every placement measures that deviation (the
+target's points at the mid-fractions against the chords' midpoints) and,
+above the section's chordal error, says so in ``result.warnings`` with the
+number and the fix (build a :class:`Deformer` on a case with that target).
+
+A section that would come out turned over -- the case's lower curve drawn
+the other way than its target, so the section hangs on the other side of
+the support -- is refused with :class:`~sectiondeform.errors.GeometryError`.
 """
 
 from __future__ import annotations
@@ -19,16 +31,30 @@ import numpy as np
 import shapely
 
 from .case import Case
-from .curves import Curve, as_points
+from .curves import Curve, Polyline, as_points
 from .errors import CaseError, GeometryError, LawError, MeshError
 from .laws import Law
 from .models import get_model
-from .result import Result
+from .result import Result, ResultQuality
 from .section import build_section, polygon_area
 
-__all__ = ["Deformer", "deform", "AREA_TOLERANCE"]
+__all__ = ["Deformer", "deform", "AREA_TOLERANCE", "TARGET_DEVIATION_SLACK"]
 
 AREA_TOLERANCE = 1e-9
+TARGET_DEVIATION_SLACK = 1.5
+"""A target is reported as under-sampled when it strays from the deformed lower
+polyline by more than this times the section's chordal error."""
+
+
+def _centroid(ring: np.ndarray) -> np.ndarray:
+    """Area centroid of a closed polygon ``(N, 2)``."""
+    x, y = ring[:, 0], ring[:, 1]
+    x1, y1 = np.roll(x, -1), np.roll(y, -1)
+    c = x * y1 - x1 * y
+    a = c.sum()
+    if a == 0:
+        return ring.mean(axis=0)
+    return np.array([((x + x1) * c).sum(), ((y + y1) * c).sum()]) / (3.0 * a)
 
 
 class Deformer:
@@ -38,7 +64,7 @@ class Deformer:
     ----------
     case : Case
     model : str, optional
-        ``"paper"`` or ``"hyperelastic"``; by default ``case.options["model"]``.
+        A name of :data:`~sectiondeform.models.MODEL_NAMES`; by default ``case.options.model``.
     element_size : float, optional
         Element size of the layered mesh, units; overrides the case's.
     check : bool
@@ -57,35 +83,76 @@ class Deformer:
         self.model_name = model or case.model
         self.model = get_model(self.model_name)
         self.section = build_section(case, element_size)
-        self.prepared = self.model.prepare(self.section, case.options)
+        self.prepared = self.model.prepare(self.section, case.options.for_model(self.model_name))
         self.check = check
         self.prepare_seconds = time.perf_counter() - t0
 
     def target_nodes(self, target: Curve | np.ndarray | None = None) -> np.ndarray:
         """The target at the lower nodes' arc-length fractions, ``(n, 2)``.
 
-        ``target`` may be a :class:`~sectiondeform.curves.Curve`, an ``(n, 2)``
-        array of nodes already at those fractions, or None for the case's own.
+        ``target`` may be a :class:`~sectiondeform.curves.Curve`, any
+        ``(k, 2)`` polyline (k >= 2, taken as a :class:`~sectiondeform.curves.Polyline`),
+        or None for the case's own.
         """
+        return self._sample(self._target_curve(target))
+
+    def _target_curve(self, target) -> Curve:
         if target is None:
-            target = self.case.target
+            return self.case.target
         if isinstance(target, Curve):
-            nodes = target.at_fractions(self.section.fractions)
-        else:
-            nodes = as_points(target, "target", min_count=2)
-            if len(nodes) != len(self.section.fractions):
-                raise CaseError(
-                    "target",
-                    f"expected {len(self.section.fractions)} nodes (one per lower node), got {len(nodes)}",
-                )
+            return target
+        return Polyline(as_points(target, "target", min_count=2))
+
+    def _sample(self, curve: Curve) -> np.ndarray:
+        return self._checked_nodes(curve.at_fractions(self.section.fractions))
+
+    def _checked_nodes(self, nodes) -> np.ndarray:
+        nodes = as_points(nodes, "target_nodes", min_count=2)
+        if len(nodes) != len(self.section.fractions):
+            raise CaseError(
+                "target_nodes",
+                f"expected {len(self.section.fractions)} nodes (one per lower node), got {len(nodes)}; "
+                "give the target as a curve or polyline instead",
+            )
         steps = nodes[1:] - nodes[:-1]
         length = np.hypot(steps[:, 0], steps[:, 1]).sum()
         if not length > 1e-9 * self.section.lower_length:
             raise CaseError("target", "the target has zero length")
         return nodes
 
-    def deform(self, target: Curve | np.ndarray | None = None, law: Law | None = None) -> Result:
+    def target_deviation(self, target: Curve | np.ndarray | None = None) -> float:
+        """Largest distance, in units, between the target and its polyline at the lower fractions.
+
+        Measured at the middle of every step: the target's point at the
+        mid-fraction against the midpoint of the chord. Compare with
+        ``section.chordal_error``.
+        """
+        curve = self._target_curve(target)
+        s = self.section.fractions
+        nodes = curve.at_fractions(s)
+        mids = curve.at_fractions(0.5 * (s[1:] + s[:-1]))
+        d = mids - 0.5 * (nodes[1:] + nodes[:-1])
+        return float(np.hypot(d[:, 0], d[:, 1]).max())
+
+    def deform(self, target: Curve | np.ndarray | None = None, law: Law | None = None, *,
+               target_nodes: np.ndarray | None = None, start: Result | None = None) -> Result:
         """Deform the section onto ``target`` under ``law`` (the case's by default).
+
+        Parameters
+        ----------
+        target : Curve or (k, 2) array_like, optional
+            The deformed lower curve, A' to B', units: a curve, or any
+            polyline (it need not have one node per lower node). By default
+            the case's own target.
+        law : Law, optional
+        target_nodes : (n, 2) array_like, optional
+            Fast path for dragging: the target already at the lower nodes'
+            arc-length fractions (``section.fractions``), one node per lower
+            node, instead of ``target``. No deviation is measured.
+        start : Result, optional
+            An earlier result of this deformer to start the solve from (a warm
+            start; the hyperelastic model only). Without it the answer
+            depends on the arguments alone, bit for bit.
 
         Returns
         -------
@@ -98,33 +165,82 @@ class Deformer:
         LawError
             If the law cannot be met to 1e-9.
         GeometryError
-            If the deformed contour crosses itself.
+            If the deformed contour crosses itself, or the section would come
+            out turned over.
+        CaseError
+            If the target is not a curve or a polyline of finite points.
         """
-        return self._run(self.prepared.place, target, law)
+        return self._run(self.prepared.place, target, law, target_nodes, start)
 
-    def preview(self, target: Curve | np.ndarray | None = None, law: Law | None = None) -> Result:
+    def preview(self, target: Curve | np.ndarray | None = None, law: Law | None = None, *,
+                target_nodes: np.ndarray | None = None, start: Result | None = None) -> Result:
         """A fast deformation for dragging the target (interactive preview).
 
         The paper model answers exactly as :meth:`deform`; the hyperelastic
-        model takes one linearised step from its last solution, meeting the
-        law exactly but first-order in the change of target
-        (``result.info["preview"]`` is True): call :meth:`deform` when the
-        drag ends.
+        model takes one linearised step from ``start`` (a result of this
+        deformer) or from the undeformed section, meeting the law exactly
+        but first-order in the change of target (``result.info.preview`` is
+        True): call :meth:`deform` when the drag ends. Arguments as
+        :meth:`deform`.
         """
-        return self._run(self.prepared.preview, target, law)
+        return self._run(self.prepared.preview, target, law, target_nodes, start)
 
-    def _run(self, placer, target, law) -> Result:
+    def _run(self, placer, target, law, target_nodes=None, start=None) -> Result:
         """Place with ``placer`` (the model's ``place`` or ``preview``), check, explain a refusal."""
         t0 = time.perf_counter()
         law = law or self.case.law
-        nodes = self.target_nodes(target)
+        warnings: list[str] = []
+        if target_nodes is not None:
+            if target is not None:
+                raise CaseError("target_nodes", "give either target or target_nodes, not both")
+            nodes = self._checked_nodes(target_nodes)
+        else:
+            curve = self._target_curve(target)
+            nodes = self._sample(curve)
+            deviation = self.target_deviation(curve)
+            tol = self.section.chordal_error
+            if deviation > TARGET_DEVIATION_SLACK * tol:
+                warnings.append(
+                    f"target: the deformed lower curve strays {deviation:.3g} {self.case.units} from the target "
+                    f"(chordal error {tol:.3g}): the section was sampled for another target; "
+                    "build a Deformer on a case with this target for a resolved lower curve"
+                )
+        state = start.state if start is not None else None
         try:
-            return self._result(nodes, placer(nodes, law), law, t0)
+            with np.errstate(all="ignore"):
+                placement = placer(nodes, law, state)
+                result = self._result(nodes, placement, law, t0, tuple(warnings))
         except (MeshError, LawError, GeometryError) as exc:
             better = self._explained(exc)
             if better is exc:
                 raise
             raise better from exc
+        if target is None and target_nodes is None:
+            self._check_not_turned_over(result)
+        return result
+
+    def _check_not_turned_over(self, result: Result) -> None:
+        """Refuse a section that comes out on the other side of the case's target than of its lower curve.
+
+        That happens when the lower curve is drawn the other way than the
+        target (B to A) on the same support: the target starts near the lower
+        curve's end B and ends near its start A (within a quarter of the
+        lower curve's length), and the deformed section lies on the other
+        side of the target than the initial one of the lower curve. The map
+        then turns the section over to hang under the support. A target
+        moved elsewhere, or rotated on purpose, is not refused.
+        """
+        low0, low1 = result.initial_lower, result.lower
+        near = 0.25 * self.section.lower_length
+        swapped = np.hypot(*(low1[0] - low0[-1])) < near and np.hypot(*(low1[-1] - low0[0])) < near
+        side0 = _centroid(result.initial_contour) - low0.mean(axis=0)
+        side1 = _centroid(result.contour) - low1.mean(axis=0)
+        if swapped and float(side0 @ side1) < 0:
+            raise GeometryError(
+                "target: the section would come out turned over, on the other side of the target than of "
+                "its lower curve (the lower curve runs the other way than the target); "
+                "reverse the lower curve or the target"
+            )
 
     def _explained(self, exc: Exception) -> Exception:
         """The refusal ``exc`` with the likeliest cause the user can fix: a long straight upper segment.
@@ -143,7 +259,7 @@ class Deformer:
             f"length {seg[i]:.6g}) stays a straight chord in the deformed section: split it into shorter segments"
         )
 
-    def _result(self, nodes, placement, law, t0) -> Result:
+    def _result(self, nodes, placement, law, t0, warnings=()) -> Result:
         """Check a placement (area law, simple contour) and wrap it in a :class:`Result`."""
         sec = self.section
         contour = np.concatenate((nodes, placement.upper[1:-1]))
@@ -154,8 +270,6 @@ class Deformer:
         if self.check and not shapely.is_simple(shapely.linearrings(contour)):
             raise GeometryError("result: the deformed contour crosses itself; the target or the law is too severe for this section")
         seconds = time.perf_counter() - t0
-        quality = dict(self.prepared.quality)
-        quality.update({f"final_{k}": v for k, v in placement.quality.items()})
         return Result(
             name=self.case.name,
             units=self.case.units,
@@ -169,10 +283,11 @@ class Deformer:
             area_final=final,
             initial_mesh=self.prepared.initial_mesh,
             final_mesh=placement.final_mesh,
-            quality=quality,
-            info=dict(placement.info),
+            quality=ResultQuality(self.prepared.quality, placement.quality),
+            info=placement.info,
             timings={"prepare_s": self.prepare_seconds, "place_s": seconds},
-            warnings=tuple(placement.warnings),
+            warnings=tuple(warnings) + tuple(placement.warnings),
+            state=placement.state,
         )
 
 

@@ -9,13 +9,16 @@ physical reason a volume-preserving section changes area.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import ClassVar
 
+from .checks import number
 from .errors import CaseError
 
-__all__ = ["Law", "AreaRatio", "law_from_json", "LAWS"]
+__all__ = ["Law", "AreaRatio", "law_from_json", "LAWS", "RATIO_RANGE"]
+
+RATIO_RANGE = (0.01, 100.0)
+"""Accepted area ratios, inclusive: beyond them no rubber section means anything."""
 
 LAWS: dict[str, type["Law"]] = {}
 
@@ -51,6 +54,8 @@ class Law:
 class AreaRatio(Law):
     """Final area = ``ratio`` x initial area (the paper's law, ratio 0.8).
 
+    ``ratio`` is a finite number in :data:`RATIO_RANGE` (0.01 to 100).
+
     Examples
     --------
     >>> AreaRatio(0.8).target_area(4379.0)
@@ -61,9 +66,11 @@ class AreaRatio(Law):
     key: ClassVar[str] = "area_ratio"
 
     def __post_init__(self):
-        r = self.ratio
-        if isinstance(r, bool) or not isinstance(r, (int, float)) or not math.isfinite(r) or r <= 0:
-            raise CaseError("law.area_ratio", f"must be a finite number > 0, got {r!r}")
+        low, high = RATIO_RANGE
+        r = number(self.ratio, "law.area_ratio", low=0.0, strict_low=True)
+        if not low <= r <= high:
+            raise CaseError("law.area_ratio", f"must be between {low:g} and {high:g}, got {r!r}")
+        object.__setattr__(self, "ratio", r)
 
     def target_area(self, initial_area):
         return self.ratio * initial_area

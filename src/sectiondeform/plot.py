@@ -60,8 +60,7 @@ def draw_result(result, fig=None):
     ax = axes[1]
     draw_mesh(ax, result.initial_mesh)
     ax.plot(*_closed(result.initial_contour).T, color="k", lw=1.2)
-    q = result.quality
-    shape = f" ({q['layers']} layers x {q['columns']} elements)" if "layers" in q else ""
+    shape = f" ({result.quality.initial.describe()})" if result.quality is not None else ""
     ax.set_title(f"2  initial mesh{shape}")
 
     ax = axes[2]

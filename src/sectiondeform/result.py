@@ -6,11 +6,33 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .models.base import MeshData
+from .models.base import FinalQuality, Info, MeshData, MeshQuality
 
-__all__ = ["Result", "RESULT_FORMAT"]
+__all__ = ["Result", "ResultQuality", "RESULT_FORMAT"]
 
 RESULT_FORMAT = "section-result/1"
+
+
+@dataclass(frozen=True)
+class ResultQuality:
+    """The figures of both meshes of a result.
+
+    Attributes
+    ----------
+    initial : MeshQuality
+        The prepared mesh.
+    final : FinalQuality
+        The placed mesh; written with the prefix ``final_``.
+    """
+
+    initial: MeshQuality
+    final: FinalQuality = FinalQuality()
+
+    def to_json(self) -> dict:
+        """The result's ``quality`` object: the initial figures, then the final ones prefixed ``final_``."""
+        out = self.initial.to_json()
+        out.update({f"final_{k}": v for k, v in self.final.to_json().items()})
+        return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -29,13 +51,16 @@ class Result:
     area_initial, area_target, area_final : float
         Areas in units².
     initial_mesh, final_mesh : MeshData
-    quality : dict
+    quality : ResultQuality
         Mesh figures: layers, columns, element counts, Jacobian ranges.
-    info : dict
-        Model figures (height scale, iterations...).
+    info : Info
+        Model figures (height scale, iterations...), a type per model.
     timings : dict
         Seconds spent in ``prepare`` and ``place``.
     warnings : tuple of str
+    state : object, optional
+        The model's solved state, for ``Deformer.deform(..., start=result)``;
+        not written to JSON.
     """
 
     name: str
@@ -50,10 +75,11 @@ class Result:
     area_final: float
     initial_mesh: MeshData
     final_mesh: MeshData
-    quality: dict = field(default_factory=dict)
-    info: dict = field(default_factory=dict)
+    quality: ResultQuality | None = None
+    info: Info = Info()
     timings: dict = field(default_factory=dict)
     warnings: tuple = ()
+    state: object = field(default=None, repr=False)
 
     @property
     def contour(self) -> np.ndarray:
@@ -92,8 +118,8 @@ class Result:
                 "relative_error": self.relative_error,
             },
             "model": self.model,
-            "quality": self.quality,
-            "info": self.info,
+            "quality": self.quality.to_json() if self.quality is not None else {},
+            "info": self.info.to_json(),
             "timings": self.timings,
             "warnings": list(self.warnings),
         }

@@ -187,7 +187,7 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
     ----------
     case : Case
     element_size : float, optional
-        Element size in units; overrides ``case.options["element_size"]``.
+        Element size in units; overrides ``case.options.element_size``.
 
     Returns
     -------
@@ -201,7 +201,7 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
     opts = case.options
     sketch = np.concatenate((_sketch(case.lower), _sketch(case.upper)))
     size = float(np.hypot(*np.ptp(sketch, axis=0)))
-    tol = float(opts.get("chordal_error", DEFAULT_CHORDAL_FRACTION * size))
+    tol = float(opts.chordal_error if opts.chordal_error is not None else DEFAULT_CHORDAL_FRACTION * size)
 
     exact = abs(case.lower.green() + case.upper.green())
     uppers, lowers = case.upper.characteristic_refinements(tol, 4.0), case.lower.refinements(tol, 4.0)
@@ -242,11 +242,11 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
     s = _merge_fractions(low_s, tgt_s, 0.5 * floor / length)
     s = _split_steps(s, STEP_CAP_FRACTION * thickness / length)
     if element_size is None:
-        element_size = opts.get("element_size")
+        element_size = opts.element_size
     if element_size is None:
         s_min = float(np.min(np.diff(s))) * length
         element_size = min(max(s_min, floor), STEP_CAP_FRACTION * thickness)
-    element_size = float(element_size) / float(opts.get("refine", 1.0))
+    element_size = float(element_size) / float(opts.refine)
     s = _split_steps(s, element_size / length)
     s[0], s[-1] = 0.0, 1.0
     lower = case.lower.at_fractions(s)

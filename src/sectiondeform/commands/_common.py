@@ -5,14 +5,14 @@ from __future__ import annotations
 import dataclasses
 import sys
 
-from ..case import MODELS
+from ..models import MODEL_NAMES
 from ..errors import CaseError
 from ..laws import AreaRatio
 
 
 def add_model_args(parser) -> None:
     """``--model``, ``--area-ratio`` and ``--element-size``."""
-    parser.add_argument("--model", choices=MODELS, help="deformation model (default: the case's options.model, else paper)")
+    parser.add_argument("--model", choices=MODEL_NAMES, help="deformation model (default: the case's options.model, else paper)")
     parser.add_argument("--area-ratio", type=float, metavar="R", help="override the law: final area = R x initial area")
     parser.add_argument("--element-size", type=float, metavar="H", help="element size of the layered mesh, in the case's units")
 
@@ -22,7 +22,7 @@ def apply_overrides(case, args):
     if getattr(args, "area_ratio", None) is not None:
         case = dataclasses.replace(case, law=AreaRatio(args.area_ratio))
     if getattr(args, "model", None):
-        case = dataclasses.replace(case, options={**case.options, "model": args.model})
+        case = dataclasses.replace(case, options=case.options.replace(model=args.model))
     if getattr(args, "element_size", None) is not None and not args.element_size > 0:
         raise CaseError("--element-size", f"must be > 0, got {args.element_size}")
     return case
@@ -38,12 +38,12 @@ def summary(result) -> str:
         f"  target area   {result.area_target:12.4f} {u}²",
         f"  final area    {result.area_final:12.4f} {u}²   relative error {result.relative_error:+.2e}",
     ]
-    if "layers" in q:
-        lines.append(
-            f"  mesh          {q['layers']} layers x {q['columns']} elements, Jacobian "
-            f"{q['jacobian_min']:.4g}..{q['jacobian_max']:.4g} initial, "
-            f"{q['final_jacobian_min']:.4g}..{q['final_jacobian_max']:.4g} final"
-        )
+    if q is not None:
+        text = f"  mesh          {q.initial.describe()}"
+        if q.initial.jacobian_min is not None and q.final.jacobian_min is not None:
+            text += (f", Jacobian {q.initial.jacobian_min:.4g}..{q.initial.jacobian_max:.4g} initial, "
+                     f"{q.final.jacobian_min:.4g}..{q.final.jacobian_max:.4g} final")
+        lines.append(text)
     t = result.timings
     lines.append(f"  time          prepare {1e3 * t['prepare_s']:.2f} ms, deform {1e3 * t['place_s']:.3f} ms")
     for w in result.warnings:

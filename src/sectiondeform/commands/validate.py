@@ -47,7 +47,7 @@ def run(args) -> int:
 
     case = apply_overrides(read_case(args.case), args)
     if args.element_size is not None:
-        case = dataclasses.replace(case, options={**case.options, "element_size": args.element_size})
+        case = dataclasses.replace(case, options=case.options.replace(element_size=args.element_size))
     if args.output is not None:
         _check_output(args.output, "--output")
     if args.plot is not None:

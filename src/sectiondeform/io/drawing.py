@@ -44,7 +44,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..case import Case, case_from_dict
+from ..case import Case, case_from_dict, read_json
 from ..curves import Arc, Chain, Curve, Polyline, curve_from_json
 from ..errors import CaseError
 from ..laws import AreaRatio, law_from_json
@@ -445,12 +445,7 @@ def read_json_case(path, **options) -> Case:
     from .json import read_case as read_plain
 
     path = Path(path)
-    try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise CaseError(str(path), f"cannot read the case file ({exc.strerror})") from None
-    except json.JSONDecodeError as exc:
-        raise CaseError(str(path), f"not valid JSON: {exc.msg} at line {exc.lineno}, column {exc.colno}") from None
+    data = read_json(path)
     if not isinstance(data, dict) or "drawing" not in data:
         return read_plain(path)
     d = data["drawing"]
@@ -467,7 +462,7 @@ def read_json_case(path, **options) -> Case:
     case = case_from_drawing(drawing, report=options.get("report"), **{k: v for k, v in opts.items() if k != "report"})
     merged = {"format": data.get("format", "section-case/1"), "lower": case.lower.to_json(), "upper": case.upper.to_json(),
               "target": case.target.to_json(), "law": case.law.to_json(), "name": data.get("name", case.name),
-              "units": data.get("units", case.units), "options": {**case.options, **(data.get("options") or {})}}
+              "units": data.get("units", case.units), "options": {**case.options.to_json(), **(data.get("options") or {})}}
     for key in ("lower", "upper"):
         if key in data:
             merged[key] = data[key]

@@ -320,7 +320,7 @@ def write_case(path, case) -> None:
         _layer(doc, name, color)
         _add_curve(msp, curve, name)
     meta = {
-        "law": case.law.to_json(), "name": case.name, "options": case.options,
+        "law": case.law.to_json(), "name": case.name, "options": case.options.to_json(),
         "lower_start": case.lower.start.tolist(), "target_start": case.target.start.tolist(),
     }
     doc.header.custom_vars.append(META_KEY, json.dumps(meta, separators=(",", ":")))

@@ -352,10 +352,10 @@ def write_case(path, case) -> None:
         pts.append(q)
     allp = np.concatenate(pts)
     size = float(np.hypot(*np.ptp(allp, axis=0))) or 1.0
-    tol = case.options.get("chordal_error", 1e-4 * size)
+    tol = case.options.chordal_error or 1e-4 * size
     for name, color, c in (("lower", "#d62728", case.lower), ("upper", "#222222", case.upper), ("target", "#1f77b4", case.target)):
         body.append(f'<path id="{name}" stroke="{color}" d="{_curve_d(c, tol)}"/>')
-    meta = {"law": case.law.to_json(), "name": case.name, "options": case.options, "units": case.units,
+    meta = {"law": case.law.to_json(), "name": case.name, "options": case.options.to_json(), "units": case.units,
             "lower_start": case.lower.start.tolist(), "target_start": case.target.start.tolist()}
     text = _svg(allp, case.units, body, meta)
     atomic_write(path, lambda tmp: tmp.write_text(text, encoding="utf-8"))

@@ -5,9 +5,18 @@ targets) redoes only the second:
 
 1. ``Model.prepare(section, options)`` -> :class:`Prepared`: everything that
    depends on the section alone (its mesh, the location of the upper
-   points in it, factorisations);
-2. ``Prepared.place(target_nodes, law)`` -> :class:`Placement`: the deformed
-   mesh on the target and the images of the upper points, meeting the law.
+   points in it, factorisations); ``options`` is the model's own frozen
+   :class:`ModelOptions` subclass, declared as ``Model.options_type``;
+2. ``Prepared.place(target_nodes, law, start=None)`` -> :class:`Placement`:
+   the deformed mesh on the target and the images of the upper points,
+   meeting the law. A prepared object is never changed by ``place``: a
+   model that can start from an earlier solution takes it as ``start`` (a
+   :attr:`Placement.state`), so the same arguments give the same answer,
+   bit for bit, and one prepared object may serve several threads.
+
+Quality and info figures are frozen dataclasses (:class:`MeshQuality`,
+:class:`FinalQuality`, :class:`Info` subclasses); ``to_json`` gives the keys
+of the result format, leaving out figures a model does not have.
 
 The lower nodes always go to ``target_nodes`` (the target at the lower
 nodes' arc-length fractions), so the deformed lower curve is the target
@@ -17,15 +26,123 @@ itself; a model decides where the upper points go.
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from dataclasses import dataclass, field
-from typing import ClassVar
+from dataclasses import dataclass, fields
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
 from ..laws import Law
-from ..section import Section
 
-__all__ = ["MeshData", "Placement", "Prepared", "Model"]
+if TYPE_CHECKING:  # pragma: no cover
+    from ..section import Section
+
+__all__ = [
+    "MeshData", "Placement", "Prepared", "Model", "ModelOptions", "Figures", "MeshQuality",
+    "FinalQuality", "Info",
+]
+
+
+def _plain(value):
+    """A JSON-ready copy of a figure (tuples as lists, numpy scalars as Python numbers)."""
+    if isinstance(value, tuple):
+        return [_plain(v) for v in value]
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+@dataclass(frozen=True)
+class Figures:
+    """Base of the frozen records of figures; :meth:`to_json` leaves out the ones that are None."""
+
+    def to_json(self) -> dict:
+        """The figures as a JSON object, keys as the field names."""
+        return {f.name: _plain(getattr(self, f.name)) for f in fields(self) if getattr(self, f.name) is not None}
+
+
+@dataclass(frozen=True)
+class ModelOptions(Figures):
+    """Base of a model's options: a frozen dataclass whose fields are the ``options`` keys it reads.
+
+    A subclass gives every field a default and checks its values in
+    ``__post_init__`` with :func:`~sectiondeform.checks.positive`.
+    """
+
+    @classmethod
+    def keys(cls) -> tuple[str, ...]:
+        """The option keys this model reads."""
+        return tuple(f.name for f in fields(cls))
+
+    def to_json(self) -> dict:
+        """The options that differ from their defaults."""
+        return {f.name: getattr(self, f.name) for f in fields(self) if getattr(self, f.name) != f.default}
+
+
+@dataclass(frozen=True)
+class MeshQuality(Figures):
+    """Figures of a prepared (initial) mesh.
+
+    Attributes
+    ----------
+    elements : int
+    element_size : float
+        Units.
+    jacobian_min, jacobian_max : float, optional
+        Smallest and largest corner Jacobian (layered quad mesh), units².
+    layers, columns : int, optional
+        Shape of a structured layered mesh.
+    virtual_columns : tuple of int, optional
+        Columns added beyond A and B (paper model).
+    nodes, unknowns : int, optional
+        Node and free unknown counts (finite-element mesh).
+    through_thickness : float, optional
+        Elements across the mean thickness asked for.
+    jacobian_ratio_min : float, optional
+        Smallest ratio of det J inside an element to its largest (P2 mesh).
+    """
+
+    elements: int
+    element_size: float
+    jacobian_min: float | None = None
+    jacobian_max: float | None = None
+    layers: int | None = None
+    columns: int | None = None
+    virtual_columns: tuple[int, int] | None = None
+    nodes: int | None = None
+    unknowns: int | None = None
+    through_thickness: float | None = None
+    jacobian_ratio_min: float | None = None
+
+    def describe(self) -> str:
+        """One line on the mesh, for a summary."""
+        if self.layers is not None:
+            text = f"{self.layers} layers x {self.columns} elements"
+        else:
+            text = f"{self.elements} elements"
+        return text + f", size {self.element_size:.4g}"
+
+
+@dataclass(frozen=True)
+class FinalQuality(Figures):
+    """Figures of a placed (final) mesh; the result writes them with the prefix ``final_``.
+
+    Attributes
+    ----------
+    jacobian_min, jacobian_max : float, optional
+        Corner Jacobian range of a layered quad mesh, units².
+    area_stretch_min, area_stretch_max : float, optional
+        Range of det F of a finite-element solution.
+    """
+
+    jacobian_min: float | None = None
+    jacobian_max: float | None = None
+    area_stretch_min: float | None = None
+    area_stretch_max: float | None = None
+
+
+@dataclass(frozen=True)
+class Info(Figures):
+    """Base of a model's figures on one placement (a subclass per model)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,20 +185,24 @@ class Placement:
         Image of each upper characteristic point, B' first, A' last.
     final_mesh : MeshData
         The deformed (or rebuilt) mesh on the target.
-    quality : dict
-        Figures such as ``jacobian_min``/``jacobian_max`` of the final mesh.
-    info : dict
+    quality : FinalQuality
+        Figures of the final mesh.
+    info : Info
         Model-specific figures (height scale, Newton iterations, area
         correction...).
     warnings : tuple of str
         Anything the user must know about this result.
+    state : object, optional
+        The model's solved state, to pass back as ``start`` of a later
+        placement (a warm start); None for a model without one.
     """
 
     upper: np.ndarray
     final_mesh: MeshData
-    quality: dict = field(default_factory=dict)
-    info: dict = field(default_factory=dict)
+    quality: FinalQuality = FinalQuality()
+    info: Info = Info()
     warnings: tuple = ()
+    state: object = None
 
 
 class Prepared(ABC):
@@ -89,26 +210,31 @@ class Prepared(ABC):
 
     section: Section
     initial_mesh: MeshData
-    quality: dict
+    quality: MeshQuality
 
     @abstractmethod
-    def place(self, target_nodes: np.ndarray, law: Law) -> Placement:
-        """Deform onto ``target_nodes`` ((n, 2), the target at the lower fractions) under ``law``."""
+    def place(self, target_nodes: np.ndarray, law: Law, start=None) -> Placement:
+        """Deform onto ``target_nodes`` ((n, 2), the target at the lower fractions) under ``law``.
 
-    def preview(self, target_nodes: np.ndarray, law: Law) -> Placement:
+        ``start`` is the :attr:`Placement.state` of an earlier placement to
+        start from (a model without a solver ignores it).
+        """
+
+    def preview(self, target_nodes: np.ndarray, law: Law, start=None) -> Placement:
         """A fast placement for dragging the target, meeting the law; by default :meth:`place`.
 
         A model whose full placement is slow (the hyperelastic one) answers
-        with a linearised step and says so in ``info["preview"]``.
+        with a linearised step about ``start`` and says so in its info.
         """
-        return self.place(target_nodes, law)
+        return self.place(target_nodes, law, start)
 
 
 class Model(ABC):
-    """A deformation model: a name and a ``prepare`` step."""
+    """A deformation model: a name, its options type and a ``prepare`` step."""
 
     name: ClassVar[str] = ""
+    options_type: ClassVar[type[ModelOptions]] = ModelOptions
 
     @abstractmethod
-    def prepare(self, section: Section, options: dict) -> Prepared:
+    def prepare(self, section: Section, options: ModelOptions) -> Prepared:
         """Build what depends on the section alone (mesh, point locations)."""

@@ -19,16 +19,17 @@ Prepare (once per section, :class:`HyperelasticPrepared`):
   (:func:`~sectiondeform.fem.mapping.boundary_weights`).
 
 Place (once per target): the coarse lower nodes go to the target at their
-arc-length fractions; Newton follows the path from the last solved state (or,
-the first time, from the undeformed section moved rigidly onto the target,
-whose tangent is the prepared one rotated) with a linear predictor,
+arc-length fractions; Newton follows the path from the ``start`` state given
+(a warm start: the :attr:`~.base.Placement.state` of an earlier placement)
+or, without one, from the undeformed section moved rigidly onto the target,
+whose tangent is the prepared one rotated, with a linear predictor,
 modified-Newton corrections with the factorisation at hand, full Newton
 when those stall, a line search and automatic load steps. The upper points
 are read off the solved field; a small normal offset (reported in
 ``info["area_correction"]``, relative to T) then makes the area law exact.
 
 :meth:`HyperelasticPrepared.preview` is the drag preview: one linear step
-from the last solved state (or the rigidly moved undeformed one) with a
+from the ``start`` state (or the rigidly moved undeformed one) with a
 factorisation that does not depend on the new target, as one dense
 matrix-vector product.
 """
@@ -41,7 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..errors import CaseError
+from ..checks import positive
 from ..fem.assembly import MixedNeoHooke, Pattern
 from ..fem.elements import geometry
 from ..fem.mapping import boundary_weights, correct_area, interpolation_matrix, rigid_fit
@@ -49,9 +50,12 @@ from ..fem.mesh import coarse_mesh
 from ..fem.newton import NewtonSolver, State
 from ..laws import Law
 from ..section import Section
-from .base import MeshData, Model, Placement, Prepared
+from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions, Placement, Prepared
 
-__all__ = ["HyperelasticModel", "HyperelasticPrepared", "MODEL", "DEFAULT_THROUGH_THICKNESS", "DEFAULT_BULK_TO_SHEAR"]
+__all__ = [
+    "HyperelasticModel", "HyperelasticPrepared", "HyperelasticOptions", "HyperelasticInfo", "PreviewInfo", "MODEL",
+    "DEFAULT_THROUGH_THICKNESS", "DEFAULT_BULK_TO_SHEAR",
+]
 
 DEFAULT_THROUGH_THICKNESS = 4.0
 DEFAULT_BULK_TO_SHEAR = 1000.0
@@ -59,11 +63,65 @@ DEFAULT_TOLERANCE = 1e-7
 CORRECTION_WARNING = 0.02
 
 
-def _option(options: dict, key: str, default: float) -> float:
-    v = options.get(key, default)
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
-        raise CaseError(f"options.{key}", f"must be a finite number > 0, got {v!r}")
-    return float(v)
+
+
+@dataclass(frozen=True)
+class HyperelasticOptions(ModelOptions):
+    """Options of the hyperelastic model.
+
+    Attributes
+    ----------
+    elements_through_thickness : float
+        Elements across the mean thickness T, > 0 and at most 64.
+    bulk_to_shear : float
+        Bulk over shear modulus, > 0 and at most 1e9.
+    newton_tolerance : float
+        Newton tolerance on the position increment, relative to T, in (0, 0.1].
+    """
+
+    elements_through_thickness: float = DEFAULT_THROUGH_THICKNESS
+    bulk_to_shear: float = DEFAULT_BULK_TO_SHEAR
+    newton_tolerance: float = DEFAULT_TOLERANCE
+
+    def __post_init__(self):
+        for key, high in (("elements_through_thickness", 64.0), ("bulk_to_shear", 1e9), ("newton_tolerance", 0.1)):
+            object.__setattr__(self, key, positive(getattr(self, key), f"options.{key}", high=high))
+
+
+@dataclass(frozen=True)
+class HyperelasticInfo(Info):
+    """Figures of one hyperelastic solve.
+
+    Attributes
+    ----------
+    newton_full, newton_modified, load_steps : int
+        Iterations of each kind and load steps taken.
+    factorisations, assemblies : int
+        Work done by this solve.
+    warm_start : bool
+        Whether the solve started from a given state.
+    area_correction : float
+        Normal offset that made the area law exact, relative to T.
+    out_of_plane_stretch : float
+        The law's ``lz``.
+    """
+
+    newton_full: int
+    newton_modified: int
+    load_steps: int
+    factorisations: int
+    assemblies: int
+    warm_start: bool
+    area_correction: float
+    out_of_plane_stretch: float
+
+
+@dataclass(frozen=True)
+class PreviewInfo(Info):
+    """Figures of a drag preview: ``preview`` is always True."""
+
+    area_correction: float
+    preview: bool = True
 
 
 class HyperelasticPrepared(Prepared):
@@ -83,8 +141,14 @@ class HyperelasticPrepared(Prepared):
     ----------
     mesh : CoarseMesh
     solver : NewtonSolver
-    last : State or None
-        The last solved state, the start of the next solve.
+
+    Notes
+    -----
+    Nothing here changes after ``__init__`` but a cache of the preview's
+    linear map (rebuilt identically when missing): the same ``place`` or
+    ``preview`` arguments give the same answer, bit for bit, whatever was
+    computed before, and one object may serve several threads (the
+    solver's work counters, reported in ``info``, may then mix).
     """
 
     def __init__(self, section: Section, through_thickness: float = DEFAULT_THROUGH_THICKNESS,
@@ -114,17 +178,16 @@ class HyperelasticPrepared(Prepared):
         self.z_ref = np.concatenate((mesh.nodes.ravel(), np.zeros(mesh.n_vertices)))
         fields = self.physics.fields(self.z_ref, 1.0)
         self.reference = State(self.z_ref, 1.0, self.solver.tangent(fields))
-        self.last: State | None = None
-        self._preview_base = None
+        self._preview_cache = None  # (state, _PreviewBase), replaced whole, never mutated
         self.initial_mesh = MeshData(mesh.nodes, mesh.cells, "triangle6")
-        self.quality = {
-            "elements": int(len(mesh.cells)),
-            "nodes": int(n),
-            "unknowns": int(len(pattern.free)),
-            "element_size": float(mesh.size),
-            "through_thickness": float(through_thickness),
-            "jacobian_ratio_min": float(geom.detj_ratio.min()),
-        }
+        self.quality = MeshQuality(
+            elements=int(len(mesh.cells)),
+            element_size=float(mesh.size),
+            nodes=int(n),
+            unknowns=int(len(pattern.free)),
+            through_thickness=float(through_thickness),
+            jacobian_ratio_min=float(geom.detj_ratio.min()),
+        )
 
     # -- helpers -----------------------------------------------------------
     def _fixed_values(self, target_nodes: np.ndarray) -> np.ndarray:
@@ -144,8 +207,13 @@ class HyperelasticPrepared(Prepared):
         return upper, offset / sec.thickness
 
     # -- the model's interface --------------------------------------------
-    def place(self, target_nodes: np.ndarray, law: Law) -> Placement:
+    def place(self, target_nodes: np.ndarray, law: Law, start: State | None = None) -> Placement:
         """Solve the section's equilibrium on ``target_nodes`` ((n, 2), units) under ``law``.
+
+        ``start`` is the solved state of an earlier placement of this object
+        (its ``Placement.state``) to follow the path from; None starts from
+        the undeformed section moved rigidly onto the target. The returned
+        placement's ``state`` is the solution, for the next call.
 
         Raises
         ------
@@ -157,41 +225,39 @@ class HyperelasticPrepared(Prepared):
         target_nodes = np.asarray(target_nodes, dtype=np.float64)
         lz = law.out_of_plane_stretch(self.section.area)
         xd = self._fixed_values(target_nodes)
-        warm = self.last is not None
-        start = self.last if warm else self._rigid_start(xd)[0]
+        warm = start is not None
+        start = start if warm else self._rigid_start(xd)[0]
         a0, f0 = self.solver.assemblies, self.solver.factorisations
         state = self.solver.solve(start, xd.ravel(), lz)
-        self.last = state
-        self._preview_base = None
         n = len(self.mesh.nodes)
         x = state.z[: 2 * n].reshape(n, 2)
         upper, correction = self._finish(target_nodes, law, self.upper_weights @ x)
         quality = self._quality(state)
-        info = {
-            "newton_full": int(state.iterations[0]),
-            "newton_modified": int(state.iterations[1]),
-            "load_steps": int(state.iterations[2]),
-            "factorisations": self.solver.factorisations - f0,
-            "assemblies": self.solver.assemblies - a0,
-            "warm_start": warm,
-            "area_correction": abs(correction),
-            "out_of_plane_stretch": lz,
-        }
+        info = HyperelasticInfo(
+            newton_full=int(state.iterations[0]),
+            newton_modified=int(state.iterations[1]),
+            load_steps=int(state.iterations[2]),
+            factorisations=int(self.solver.factorisations - f0),
+            assemblies=int(self.solver.assemblies - a0),
+            warm_start=warm,
+            area_correction=float(abs(correction)),
+            out_of_plane_stretch=float(lz),
+        )
         warnings = ()
         if abs(correction) > CORRECTION_WARNING:
             warnings = (
                 f"hyperelastic: the area correction moved the upper curve by {abs(correction):.3g} T; the coarse "
                 "mesh misses this deformation's physics (refine with options.elements_through_thickness)",
             )
-        return Placement(upper, MeshData(x.copy(), self.mesh.cells, "triangle6"), quality, info, warnings)
+        return Placement(upper, MeshData(x.copy(), self.mesh.cells, "triangle6"), quality, info, warnings, state)
 
-    def _quality(self, state: State) -> dict:
+    def _quality(self, state: State) -> FinalQuality:
         f = state.fields if state.fields is not None else self.physics.fields(state.z, state.lz)
         det = f.det
-        return {"area_stretch_min": float(det.min()), "area_stretch_max": float(det.max())}
+        return FinalQuality(area_stretch_min=float(det.min()), area_stretch_max=float(det.max()))
 
-    def preview(self, target_nodes: np.ndarray, law: Law) -> Placement:
-        """Drag preview: one linear step from the last solved state, no new factorisation.
+    def preview(self, target_nodes: np.ndarray, law: Law, start: State | None = None) -> Placement:
+        """Drag preview: one linear step from the ``start`` state, no new factorisation.
 
         The first call after a solve builds the linear map from the target to
         the upper points (one back-substitution per prescribed dof, with the
@@ -207,18 +273,23 @@ class HyperelasticPrepared(Prepared):
         target_nodes : (n, 2) float64 ndarray
             The target at the lower fractions, units.
         law : Law
+        start : State, optional
+            The solved state to linearise about (a ``Placement.state``).
 
         Returns
         -------
         Placement
             ``final_mesh`` is the base state's mesh (not updated);
-            ``info["preview"]`` is True.
+            ``info.preview`` is True; ``state`` is ``start``.
         """
         target_nodes = np.asarray(target_nodes, dtype=np.float64)
         xd = self._fixed_values(target_nodes)
-        if self._preview_base is None:
-            self._preview_base = self._build_preview()
-        base = self._preview_base
+        cached = self._preview_cache
+        if cached is not None and cached[0] is start:
+            base = cached[1]
+        else:
+            base = self._build_preview(start)
+            self._preview_cache = (start, base)
         upper0, xd0, q = base.upper, base.xd, None
         if base.rigid:  # before any solve: linearise about the rigid fit of this target
             q, t = rigid_fit(self.mesh.nodes[self.lower_ids], xd)
@@ -232,12 +303,12 @@ class HyperelasticPrepared(Prepared):
             du = du @ q.T
         upper, correction = self._finish(target_nodes, law, upper0 + du)
         final = MeshData(base.nodes, self.mesh.cells, "triangle6")
-        return Placement(upper, final, {}, {"preview": True, "area_correction": abs(correction)})
+        return Placement(upper, final, FinalQuality(), PreviewInfo(area_correction=float(abs(correction))), (), start)
 
-    def _build_preview(self) -> "_PreviewBase":
+    def _build_preview(self, start: State | None) -> "_PreviewBase":
         solver, pat = self.solver, self.solver.pattern
         n = len(self.mesh.nodes)
-        state = self.last if self.last is not None else self.reference
+        state = start if start is not None else self.reference
         tan = state.tangent
         k = len(pat.fixed)
         # Sensitivity of the free dofs to each fixed dof and to ln lz: -K_ff^-1 [K_fd, dR/dln lz].
@@ -251,7 +322,7 @@ class HyperelasticPrepared(Prepared):
         return _PreviewBase(
             upper=self.upper_weights @ x, xd=state.z[pat.fixed].reshape(-1, 2), lz=state.lz,
             h_d=np.ascontiguousarray(resp[:, :-1]), h_lz=resp[:, -1].copy(), nodes=x.copy(),
-            rigid=self.last is None,
+            rigid=start is None,
         )
 
 
@@ -272,13 +343,15 @@ class HyperelasticModel(Model):
     """The hyperelastic model: ``options.elements_through_thickness``, ``options.bulk_to_shear``."""
 
     name = "hyperelastic"
+    options_type = HyperelasticOptions
 
-    def prepare(self, section: Section, options: dict) -> HyperelasticPrepared:
+    def prepare(self, section: Section, options: HyperelasticOptions | None = None) -> HyperelasticPrepared:
+        options = options if options is not None else HyperelasticOptions()
         return HyperelasticPrepared(
             section,
-            through_thickness=_option(options, "elements_through_thickness", DEFAULT_THROUGH_THICKNESS),
-            bulk_to_shear=_option(options, "bulk_to_shear", DEFAULT_BULK_TO_SHEAR),
-            tol=_option(options, "newton_tolerance", DEFAULT_TOLERANCE),
+            through_thickness=options.elements_through_thickness,
+            bulk_to_shear=options.bulk_to_shear,
+            tol=options.newton_tolerance,
         )
 
 

@@ -25,6 +25,7 @@ before giving up with :class:`~sectiondeform.errors.MeshError` (or
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -41,14 +42,14 @@ from ..layers import (
 from ..laws import Law
 from ..locate import locate
 from ..section import Section
-from .base import MeshData, Model, Placement, Prepared
+from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions, Placement, Prepared
 
 # Weights tried, in turn, on the target's normal field; the largest ones
 # make it nearly linear along the target (fine meshes need them: the
 # smoothing length grows as the fourth root of the weight, in nodes).
 TARGET_SMOOTHING = (0.0,) + SMOOTHING_WEIGHTS + (5e6, 5e7, 5e8, 5e9, 5e10)
 
-__all__ = ["PaperModel", "PaperPrepared", "MODEL", "solve_scale"]
+__all__ = ["PaperModel", "PaperPrepared", "PaperOptions", "PaperInfo", "MODEL", "solve_scale"]
 
 DENSE_MAP_MAX = 2**21  # entries of each (upper points x columns) placement matrix kept dense
 
@@ -158,15 +159,15 @@ class PaperPrepared(Prepared):
         self._smoother = _Smoother(n, end_weight=1.0)
         jac = mesh.jacobians()
         self.initial_mesh = MeshData(mesh.points, mesh.quads, "quad", (mesh.n_layers, mesh.n_columns))
-        self.quality = {
-            "layers": mesh.n_layers,
-            "columns": mesh.n_columns,
-            "elements": int(len(mesh.quads)),
-            "element_size": section.element_size,
-            "jacobian_min": float(jac.min()),
-            "jacobian_max": float(jac.max()),
-            "virtual_columns": [len(self.extension[0]), len(self.extension[1])],
-        }
+        self.quality = MeshQuality(
+            elements=int(len(mesh.quads)),
+            element_size=float(section.element_size),
+            jacobian_min=float(jac.min()),
+            jacobian_max=float(jac.max()),
+            layers=int(mesh.n_layers),
+            columns=int(mesh.n_columns),
+            virtual_columns=(len(self.extension[0]), len(self.extension[1])),
+        )
 
     def extended_target(self, target_nodes: np.ndarray) -> np.ndarray:
         """The target nodes with the virtual base nodes beyond A' and B', ``(n + p + q, 2)``.
@@ -195,7 +196,11 @@ class PaperPrepared(Prepared):
         """Upper points' offsets from the target for a unit height scale, ``(m, 2)``."""
         return self._map(1, t) + self._map(2, n)
 
-    def place(self, target_nodes: np.ndarray, law: Law) -> Placement:
+    def place(self, target_nodes: np.ndarray, law: Law, start=None) -> Placement:
+        """Build the final mesh on ``target_nodes`` ((n, 2), units) and solve the law's height scale.
+
+        ``start`` is ignored: the placement is closed-form.
+        """
         sec = self.section
         target_area = law.target_area(sec.area)
         real = target_nodes
@@ -242,17 +247,39 @@ class PaperPrepared(Prepared):
         return Placement(
             upper=upper,
             final_mesh=final,
-            quality={"jacobian_min": jac_min, "jacobian_max": jac_max},
-            info={"height_scale": k, "normal_smoothing": smoothing},
+            quality=FinalQuality(jacobian_min=jac_min, jacobian_max=jac_max),
+            info=PaperInfo(height_scale=float(k), normal_smoothing=float(smoothing)),
         )
+
+
+@dataclass(frozen=True)
+class PaperOptions(ModelOptions):
+    """The paper model reads no options of its own (the common ones shape its mesh)."""
+
+
+@dataclass(frozen=True)
+class PaperInfo(Info):
+    """Figures of one paper placement.
+
+    Attributes
+    ----------
+    height_scale : float
+        The scale ``k`` of the nodes' offsets that meets the law.
+    normal_smoothing : float
+        Weight of the smoothing applied to the target's normals (0: none).
+    """
+
+    height_scale: float
+    normal_smoothing: float = 0.0
 
 
 class PaperModel(Model):
     """The paper's geometric method (the default model)."""
 
     name = "paper"
+    options_type = PaperOptions
 
-    def prepare(self, section: Section, options: dict) -> PaperPrepared:
+    def prepare(self, section: Section, options: PaperOptions | None = None) -> PaperPrepared:
         return PaperPrepared(section)
 
 

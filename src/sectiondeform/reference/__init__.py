@@ -237,7 +237,7 @@ def solve_reference(
         target = case.target if target is None else target
         law = case.law if law is None else law
         if bulk_to_shear is None:
-            bulk_to_shear = case.options.get("bulk_to_shear", DEFAULT_BULK_TO_SHEAR)
+            bulk_to_shear = case.options.for_model("hyperelastic").bulk_to_shear
         lower_curve = case.lower
     elif isinstance(case, Section):
         section = case

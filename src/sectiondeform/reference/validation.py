@@ -182,7 +182,7 @@ def validate_case(
     """
     require("skfem", "fem", "the finite-element reference")
     require("triangle", "fem", "the finite-element reference")
-    check_parameters(mesh_size, case.options.get("bulk_to_shear") if bulk_to_shear is None else bulk_to_shear)
+    check_parameters(mesh_size, case.options.for_model("hyperelastic").bulk_to_shear if bulk_to_shear is None else bulk_to_shear)
     fast, fast_s = _time_fast(case, model, max(1, int(fast_runs)))
     if progress is not None:
         progress(f"validate: {fast.model} model done in {1e3 * fast_s:.1f} ms; solving the reference")
