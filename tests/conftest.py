@@ -1,4 +1,9 @@
-"""Shared fixtures: the shared cases, small hand-made cases."""
+"""Shared fixtures: the cases kept in ``tests/data``, small hand-made cases.
+
+The tests read their files only from ``tests/data`` (copies of the project's
+shared cases and of one real scan), so that a clone of the repository alone
+runs them; a missing fixture is an error, never a skip.
+"""
 
 from __future__ import annotations
 
@@ -10,17 +15,30 @@ import pytest
 import sectiondeform as sd
 
 ROOT = Path(__file__).resolve().parents[1]
-SHARED = ROOT.parent / "shared"
-SHARED_CASES = sorted((SHARED / "cases").glob("*.json"))
+DATA = ROOT / "tests" / "data"
+CASES_DIR = DATA / "cases"
+SHARED_CASES = sorted(CASES_DIR.glob("*.json"))
+SEAL = DATA / "real" / "vr6000_seal_scan.dxf"
+if len(SHARED_CASES) < 3 or not SEAL.is_file():  # a missing fixture fails the run, it is not skipped
+    raise FileNotFoundError(f"test fixtures missing in {DATA}: expected the case files and {SEAL.name}")
+
+
+def data_case_path(name: str) -> Path:
+    """The path of a case kept in ``tests/data/cases``; raises if it is absent."""
+    path = CASES_DIR / f"{name}.json"
+    if not path.is_file():
+        raise FileNotFoundError(f"test fixture {path} is missing")
+    return path
 
 
 def shared_case_ids():
+    """Test ids: the case names."""
     return [p.stem for p in SHARED_CASES]
 
 
 @pytest.fixture(params=SHARED_CASES, ids=shared_case_ids())
 def shared_case(request):
-    """Each case of the shared folder, parsed."""
+    """Each case of ``tests/data/cases``, parsed."""
     return sd.load_case(request.param)
 
 
