@@ -42,6 +42,35 @@ def shared_case(request):
     return sd.load_case(request.param)
 
 
+class Outcomes:
+    """Counts of a property test's outcomes, so that a test cannot pass by refusing every example.
+
+    Inside the ``@given`` body call :meth:`checked` when the property was
+    checked, or :meth:`refused` (which also records a ``hypothesis.event``)
+    when the example was refused; after the run, :meth:`assert_mostly_checked`.
+    """
+
+    def __init__(self):
+        self.counts = {"checked": 0, "refused": 0}
+
+    def checked(self):
+        """Record one example whose property was asserted."""
+        self.counts["checked"] += 1
+
+    def refused(self, why: str):
+        """Record one refused example (shown in hypothesis' statistics)."""
+        from hypothesis import event
+
+        event(f"refused: {why}")
+        self.counts["refused"] += 1
+
+    def assert_mostly_checked(self, at_least: int, max_refused_fraction: float):
+        """At least ``at_least`` examples checked, refusals at most ``max_refused_fraction`` of all."""
+        total = sum(self.counts.values())
+        assert self.counts["checked"] >= at_least, self.counts
+        assert self.counts["refused"] <= max_refused_fraction * total, self.counts
+
+
 def box_case(width=10.0, height=4.0, target=None, ratio=1.0, upper=None, **options):
     """A rectangle section on [0, width] x [0, height] as a case dict."""
     lower = [[0.0, 0.0], [width, 0.0]]
