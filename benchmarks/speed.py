@@ -466,7 +466,7 @@ def default_cases_dir() -> Path:
 
 
 def profile_text(case, seconds: float = 2.0) -> str | None:
-    """pyinstrument's view of the pipeline on ``case`` (None without pyinstrument)."""
+    """Pyinstrument's view of the pipeline on ``case`` (None without pyinstrument)."""
     try:
         from pyinstrument import Profiler
     except ImportError:
@@ -650,7 +650,7 @@ def to_markdown(report: dict, changes: str = "") -> str:
     if fe.get("available"):
         lines.append(f"| FE reference | {_fmt(fe['fe_s'])} | | {1 / fe['speedup_full']:.3g} | {1 / fe['speedup_redeform']:.3g} |")
     else:
-        lines.append(f"| FE reference | not measured | | | |")
+        lines.append("| FE reference | not measured | | | |")
     cli = report["cli"]
     lines += ["", "## 5. Command line", "",
               "| process | wall time |", "|---|---|",

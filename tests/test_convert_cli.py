@@ -10,10 +10,10 @@ import pytest
 pytest.importorskip("ezdxf")
 pytest.importorskip("meshio")
 
-from io_helpers import CASES_DIR, same_curve, shared_case  # noqa: E402
-
 from sectiondeform.case import load_case  # noqa: E402
 from sectiondeform.cli import main  # noqa: E402
+
+from io_helpers import CASES_DIR, same_curve, shared_case  # noqa: E402
 
 
 def test_convert_json_dxf_svg_json(tmp_path):

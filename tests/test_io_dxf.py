@@ -10,14 +10,14 @@ import pytest
 
 ezdxf = pytest.importorskip("ezdxf")
 
-from io_helpers import SEAL, same_curve, shared_case  # noqa: E402
-
 from sectiondeform.cli import main  # noqa: E402
 from sectiondeform.deform import Deformer  # noqa: E402
 from sectiondeform.errors import CaseError  # noqa: E402
 from sectiondeform.io import read_case, write_case, write_result  # noqa: E402
 from sectiondeform.laws import AreaRatio  # noqa: E402
 from sectiondeform.section import polygon_area  # noqa: E402
+
+from io_helpers import SEAL, same_curve, shared_case  # noqa: E402
 
 
 def new_doc(units=4):
@@ -243,8 +243,8 @@ def test_chaining_5600_shuffled_lines_gives_the_ring(tmp_path):
             a, b = b, a
         msp.add_line(tuple(a), tuple(b))
     doc.saveas(tmp_path / "ring.dxf")
-    from sectiondeform.io.dxf import read_drawing
     from sectiondeform.io.chaining import one_chain
+    from sectiondeform.io.dxf import read_drawing
 
     drawing = read_drawing(tmp_path / "ring.dxf")
     path, report = one_chain(drawing.pieces, "layer 0", 1e-9, closed=True)  # its time: benchmarks/run.py

@@ -17,7 +17,7 @@ from .errors import CaseError
 
 __all__ = ["Law", "AreaRatio", "law_from_json", "LAWS"]
 
-LAWS: dict[str, type["Law"]] = {}
+LAWS: dict[str, type[Law]] = {}
 
 
 class Law:

@@ -234,7 +234,7 @@ class HyperelasticPrepared(Prepared):
         final = MeshData(base.nodes, self.mesh.cells, "triangle6")
         return Placement(upper, final, {}, {"preview": True, "area_correction": abs(correction)})
 
-    def _build_preview(self) -> "_PreviewBase":
+    def _build_preview(self) -> _PreviewBase:
         solver, pat = self.solver, self.solver.pattern
         n = len(self.mesh.nodes)
         state = self.last if self.last is not None else self.reference

@@ -29,6 +29,7 @@ import math
 import numpy as np
 
 from ..errors import LawError, MeshError
+from ..laws import Law
 from ..layers import (
     SMOOTHING_WEIGHTS,
     _Smoother,
@@ -38,7 +39,6 @@ from ..layers import (
     node_frames,
     plan_extension,
 )
-from ..laws import Law
 from ..locate import locate
 from ..section import Section
 from .base import MeshData, Model, Placement, Prepared
