@@ -65,7 +65,7 @@ def _reference_upper(case, div: float) -> np.ndarray:
     sec = sd.build_section(case)
     T = sec.thickness
     mesh = triangulate_section(sec, T / div, lower_curve=case.lower)
-    pr = MixedProblem(mesh, bulk_to_shear=float(case.options.get("bulk_to_shear", 1000.0)))
+    pr = MixedProblem(mesh, bulk_to_shear=float(case.options.for_model("hyperelastic").bulk_to_shear))
     support = case.target.at_fractions(pr.dirichlet_fractions)
     x, _ = solve_mixed(pr, support, case.law.out_of_plane_stretch(sec.area), length_scale=T)
     nd = pr.ubasis.nodal_dofs[:, mesh.upper_nodes]
@@ -77,7 +77,7 @@ def truth(case, fine: float, reference_div: float):
     try:
         return _reference_upper(case, reference_div), f"reference (h = T/{reference_div:g})"
     except ImportError:
-        c = dataclasses.replace(case, options={**case.options, "elements_through_thickness": fine})
+        c = dataclasses.replace(case, options=case.options.replace(elements_through_thickness=fine))
         return sd.Deformer(c, model="hyperelastic").deform().upper, f"self (n={fine:g})"
 
 
@@ -96,7 +96,7 @@ def study(path: Path, levels, repeat: int, fine: float, reference_div: float) ->
     upper_true, label = truth(case, fine, reference_div)
     rows = []
     for n in levels:
-        c = dataclasses.replace(case, options={**case.options, "elements_through_thickness": n})
+        c = dataclasses.replace(case, options=case.options.replace(elements_through_thickness=n))
         t0 = time.perf_counter()
         deformer = sd.Deformer(c, model="hyperelastic", check=False)
         prepare_ms = 1e3 * (time.perf_counter() - t0)
@@ -132,7 +132,7 @@ def study(path: Path, levels, repeat: int, fine: float, reference_div: float) ->
         preview_err = float(np.abs(prep.preview(nodes + bump, law).upper - exact).max()) / T
         rows.append({
             "case": case.name, "through_thickness": n, "truth": label,
-            "unknowns": prep.quality["unknowns"], "elements": prep.quality["elements"],
+            "unknowns": prep.quality.unknowns, "elements": prep.quality.elements,
             "prepare_ms": prepare_ms, "full_ms": full_ms, "redeform_ms": redeform_ms,
             "preview_ms": preview_ms, "preview_err": preview_err, "mean": mean, "max": worst,
             "raw_mean": raw_mean, "raw_max": raw_max,

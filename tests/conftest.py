@@ -1,4 +1,9 @@
-"""Shared fixtures: the shared cases, small hand-made cases."""
+"""Shared fixtures: the cases kept in ``tests/data``, small hand-made cases.
+
+The tests read their files only from ``tests/data`` (copies of the project's
+shared cases and of one real scan), so that a clone of the repository alone
+runs them; a missing fixture is an error, never a skip.
+"""
 
 from __future__ import annotations
 
@@ -10,18 +15,60 @@ import pytest
 import sectiondeform as sd
 
 ROOT = Path(__file__).resolve().parents[1]
-SHARED = ROOT.parent / "shared"
-SHARED_CASES = sorted((SHARED / "cases").glob("*.json"))
+DATA = ROOT / "tests" / "data"
+CASES_DIR = DATA / "cases"
+SHARED_CASES = sorted(CASES_DIR.glob("*.json"))
+SEAL = DATA / "real" / "vr6000_seal_scan.dxf"
+if len(SHARED_CASES) < 3 or not SEAL.is_file():  # a missing fixture fails the run, it is not skipped
+    raise FileNotFoundError(f"test fixtures missing in {DATA}: expected the case files and {SEAL.name}")
+
+
+def data_case_path(name: str) -> Path:
+    """The path of a case kept in ``tests/data/cases``; raises if it is absent."""
+    path = CASES_DIR / f"{name}.json"
+    if not path.is_file():
+        raise FileNotFoundError(f"test fixture {path} is missing")
+    return path
 
 
 def shared_case_ids():
+    """Test ids: the case names."""
     return [p.stem for p in SHARED_CASES]
 
 
 @pytest.fixture(params=SHARED_CASES, ids=shared_case_ids())
 def shared_case(request):
-    """Each case of the shared folder, parsed."""
+    """Each case of ``tests/data/cases``, parsed."""
     return sd.load_case(request.param)
+
+
+class Outcomes:
+    """Counts of a property test's outcomes, so that a test cannot pass by refusing every example.
+
+    Inside the ``@given`` body call :meth:`checked` when the property was
+    checked, or :meth:`refused` (which also records a ``hypothesis.event``)
+    when the example was refused; after the run, :meth:`assert_mostly_checked`.
+    """
+
+    def __init__(self):
+        self.counts = {"checked": 0, "refused": 0}
+
+    def checked(self):
+        """Record one example whose property was asserted."""
+        self.counts["checked"] += 1
+
+    def refused(self, why: str):
+        """Record one refused example (shown in hypothesis' statistics)."""
+        from hypothesis import event
+
+        event(f"refused: {why}")
+        self.counts["refused"] += 1
+
+    def assert_mostly_checked(self, at_least: int, max_refused_fraction: float):
+        """At least ``at_least`` examples checked, refusals at most ``max_refused_fraction`` of all."""
+        total = sum(self.counts.values())
+        assert self.counts["checked"] >= at_least, self.counts
+        assert self.counts["refused"] <= max_refused_fraction * total, self.counts
 
 
 def box_case(width=10.0, height=4.0, target=None, ratio=1.0, upper=None, **options):

@@ -1,26 +1,20 @@
-"""Shared helpers of the CAD input/output tests: drawings built with ezdxf, the shared cases."""
+"""Shared helpers of the CAD input/output tests: the cases kept in tests/data."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
-import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-SHARED = ROOT.parent / "shared"
-SEAL = SHARED / "real" / "vr6000_seal_scan.dxf"
+from conftest import CASES_DIR, SEAL, data_case_path
+
+__all__ = ["CASES_DIR", "FRACTIONS", "SEAL", "same_curve", "shared_case"]
 FRACTIONS = np.linspace(0.0, 1.0, 201)
 
 
 def shared_case(name: str):
-    """A case from ../shared/cases, or skip."""
+    """A case from ``tests/data/cases``, parsed; raises if the file is absent."""
     from sectiondeform.case import load_case
 
-    path = SHARED / "cases" / f"{name}.json"
-    if not path.exists():
-        pytest.skip(f"{path} is absent")
-    return load_case(path)
+    return load_case(data_case_path(name))
 
 
 def same_curve(a, b, tol=1e-9) -> float:

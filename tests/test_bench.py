@@ -1,26 +1,42 @@
-"""The benchmark's quick mode, run in-process: the report's structure, finite positive figures.
+"""The project benchmark's quick mode, run in-process: the report's structure, finite positive figures.
 
 No time limits: the benchmark reports figures, it does not assert them.
 """
 
+import importlib.util
 import json
 import math
 
-from sectiondeform.cli import main
+import pytest
 
 from conftest import ROOT
 
 CASES = ROOT / "benchmarks" / "cases"  # copies of the shared cases, in the repository
 
 
+def _load_runner():
+    spec = importlib.util.spec_from_file_location("bench_run", ROOT / "benchmarks" / "run.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def _positive(value):
     return isinstance(value, (int, float)) and math.isfinite(value) and value > 0
 
 
-def test_quick_benchmark_writes_json_and_markdown(tmp_path):
-    out_json, out_md = tmp_path / "b.json", tmp_path / "b.md"
-    assert main(["bench", "--quick", "--cases", str(CASES), "--json", str(out_json), "--markdown", str(out_md)]) == 0
-    r = json.loads(out_json.read_text())
+@pytest.fixture(scope="module")
+def runner():
+    return _load_runner()
+
+
+def test_quick_benchmark_writes_json_and_markdown(tmp_path, runner, capsys):
+    docs = ROOT / "docs"
+    before = {p: p.stat().st_mtime_ns for p in docs.glob("benchmarks.*")}
+    assert runner.main(["--quick", "--cases", str(CASES), "-o", str(tmp_path)]) == 0
+    assert str(tmp_path / "benchmarks.json") in capsys.readouterr().out  # says where it wrote
+    assert {p: p.stat().st_mtime_ns for p in docs.glob("benchmarks.*")} == before  # the tracked report untouched
+    r = json.loads((tmp_path / "benchmarks.json").read_text())
     assert r["quick"] is True
     assert {"python", "numpy", "scipy", "shapely", "platform"} <= set(r["machine"])
     assert {p["case"] for p in r["pipeline"]} == {p.stem for p in CASES.glob("*.json")}
@@ -36,7 +52,21 @@ def test_quick_benchmark_writes_json_and_markdown(tmp_path):
     assert _positive(r["rbf"]["rbf_s"]) and r["rbf"]["rbf_area_error"] >= 0
     assert "available" in r["fe"]
     assert _positive(r["cli"]["cli_s"])
+    if r["io"]["available"]:
+        assert _positive(r["io"]["chain_s"]) and _positive(r["io"]["seal_read_s"])
     for t in r["targets"]:
         assert math.isfinite(t["value"]) and isinstance(t["met"], bool)
-    md = out_md.read_text()
+    md = (tmp_path / "benchmarks.md").read_text()
     assert md.startswith("# Benchmarks") and "| figure | measured | target |" in md
+
+
+def test_quick_run_without_output_goes_to_a_temporary_folder(runner, tmp_path):
+    folder = runner.output_folder(None, quick=True)
+    assert folder.is_dir() and not folder.is_relative_to(ROOT)
+    folder.rmdir()
+    assert runner.output_folder(tmp_path, quick=True) == tmp_path
+    assert runner.output_folder(None, quick=False) == ROOT / "docs"
+
+
+def test_the_package_holds_no_benchmark():
+    assert importlib.util.find_spec("sectiondeform.bench") is None

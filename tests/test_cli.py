@@ -39,10 +39,33 @@ def test_deform_with_plot_and_overrides(tmp_path):
     assert fig.read_text().lstrip().startswith("<?xml")
 
 
-def test_demo_prints_the_paper_figures(tmp_path, capsys):
-    assert main(["demo", "--no-plot", "-o", str(tmp_path / "demo.json")]) == 0
+def test_demo_prints_the_paper_figures_and_one_time(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["demo", "-o", "demo.json"]) == 0
     text = capsys.readouterr().out
     assert "4379 mm² -> 3503.2 mm²" in text
+    assert text.count("re-deformation") == 1  # one re-deformation time, not two
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["demo.json"]  # no figure unless asked
+
+
+def test_demo_figure_where_asked(tmp_path, monkeypatch):
+    pytest.importorskip("matplotlib")
+    monkeypatch.chdir(tmp_path)
+    assert main(["demo", "--plot", "fig.svg"]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["fig.svg"]
+
+
+def test_bench_times_a_users_case_and_writes_nothing(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    case = tmp_path / "box.json"
+    case.write_text(json.dumps(box_case()))
+    assert main(["bench", str(case), "--repeat", "3"]) == 0
+    out = capsys.readouterr().out
+    for line in ("prepare", "re-deformation"):
+        (row,) = [r for r in out.splitlines() if r.strip().startswith(line)]
+        assert float(row.split()[1]) > 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["box.json"]
+    assert main(["bench", str(case), "--repeat", "0"]) == 2
 
 
 BAD = [

@@ -12,6 +12,8 @@ from hypothesis.extra.numpy import arrays
 import sectiondeform as sd
 from sectiondeform.compare import compare_curves, hausdorff_distance, point_to_curve_distance
 
+from conftest import Outcomes
+
 coords = st.integers(-1000, 1000).map(lambda i: i / 10.0)  # no sub-normal segments for shapely
 
 
@@ -19,22 +21,30 @@ def polylines(n_min=2, n_max=12):
     return st.integers(n_min, n_max).flatmap(lambda n: arrays(np.float64, (n, 2), elements=coords))
 
 
-@settings(max_examples=60, deadline=None)
-@given(a=polylines(), b=polylines())
-def test_hausdorff_is_symmetric_and_bounded_by_shapely(a, b):
-    h = hausdorff_distance(a, b)
-    assert h == pytest.approx(hausdorff_distance(b, a), abs=1e-9)
-    la, lb = shapely.LineString(a), shapely.LineString(b)
-    res = 1e-3 * max(la.length, lb.length)
-    if min(la.length, lb.length) == 0.0:  # shapely cannot densify a point
-        return
-    # Sampled every `res`, the result can only fall short of the exact value by res / 2,
-    # and can never exceed it; shapely's vertex-only figure is a lower bound.
-    with np.errstate(all="ignore"):  # shapely divides by repeated vertices' zero lengths
-        exact_ub = shapely.hausdorff_distance(la, lb, densify=1e-4) + res
-        vertex_lb = shapely.hausdorff_distance(la, lb)
-    assert h <= exact_ub + 1e-9
-    assert h >= vertex_lb - 1e-9
+def test_hausdorff_is_symmetric_and_bounded_by_shapely():
+    outcomes = Outcomes()
+
+    @settings(max_examples=60, deadline=None)
+    @given(a=polylines(), b=polylines())
+    def check(a, b):
+        h = hausdorff_distance(a, b)
+        assert h == pytest.approx(hausdorff_distance(b, a), abs=1e-9)
+        la, lb = shapely.LineString(a), shapely.LineString(b)
+        res = 1e-3 * max(la.length, lb.length)
+        if min(la.length, lb.length) == 0.0:  # shapely cannot densify a point
+            outcomes.refused("a curve of zero length")
+            return
+        # Sampled every `res`, the result can only fall short of the exact value by res / 2,
+        # and can never exceed it; shapely's vertex-only figure is a lower bound.
+        with np.errstate(all="ignore"):  # shapely divides by repeated vertices' zero lengths
+            exact_ub = shapely.hausdorff_distance(la, lb, densify=1e-4) + res
+            vertex_lb = shapely.hausdorff_distance(la, lb)
+        assert h <= exact_ub + 1e-9
+        assert h >= vertex_lb - 1e-9
+        outcomes.checked()
+
+    check()
+    outcomes.assert_mostly_checked(at_least=40, max_refused_fraction=0.25)
 
 
 @settings(max_examples=60, deadline=None)

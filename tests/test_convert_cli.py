@@ -10,15 +10,15 @@ import pytest
 pytest.importorskip("ezdxf")
 pytest.importorskip("meshio")
 
-from io_helpers import SHARED, same_curve, shared_case  # noqa: E402
-
 from sectiondeform.case import load_case  # noqa: E402
 from sectiondeform.cli import main  # noqa: E402
+
+from io_helpers import CASES_DIR, same_curve, shared_case  # noqa: E402
 
 
 def test_convert_json_dxf_svg_json(tmp_path):
     case = shared_case("paper-example")
-    src = SHARED / "cases" / "paper-example.json"
+    src = CASES_DIR / "paper-example.json"
     assert main(["convert", str(src), str(tmp_path / "c.dxf")]) == 0
     assert main(["convert", str(tmp_path / "c.dxf"), str(tmp_path / "c.svg")]) == 0
     assert main(["convert", str(tmp_path / "c.svg"), str(tmp_path / "c.json")]) == 0
@@ -29,9 +29,7 @@ def test_convert_json_dxf_svg_json(tmp_path):
 
 
 def test_deform_dxf_to_dxf_with_meshes(tmp_path, capsys):
-    src = SHARED / "cases" / "paper-example.json"
-    if not src.exists():
-        pytest.skip("shared cases absent")
+    src = CASES_DIR / "paper-example.json"
     assert main(["convert", str(src), str(tmp_path / "profile.dxf")]) == 0
     out = tmp_path / "deformed.dxf"
     argv = ["deform", str(tmp_path / "profile.dxf"), "--area-ratio", "0.8", "-o", str(out),
@@ -62,9 +60,7 @@ def test_case_json_naming_a_drawing(tmp_path):
 
 
 def test_bad_option_values_exit_2(tmp_path, capsys):
-    src = SHARED / "cases" / "paper-example.json"
-    if not src.exists():
-        pytest.skip("shared cases absent")
+    src = CASES_DIR / "paper-example.json"
     assert main(["convert", str(src), str(tmp_path / "c.dxf")]) == 0
     assert main(["deform", str(tmp_path / "c.dxf"), "--snap", "-1", "-o", str(tmp_path / "x.dxf")]) == 2
     assert main(["convert", str(src), str(tmp_path / "c.stl")]) == 2

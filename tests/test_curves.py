@@ -8,6 +8,8 @@ from hypothesis import strategies as st
 from sectiondeform.curves import Arc, BSpline, Chain, Polyline, curve_from_json
 from sectiondeform.errors import CaseError
 
+from conftest import Outcomes
+
 
 def _max_chord_error(curve, pts, fr, probes=9):
     """Largest distance from the curve between vertices to the chord."""
@@ -114,27 +116,35 @@ def test_bad_curves_name_the_field(obj, message):
     assert "\n" not in str(info.value)
 
 
-@settings(max_examples=60, deadline=None)
-@given(
-    st.lists(st.tuples(st.floats(-100, 100), st.floats(-100, 100)), min_size=2, max_size=12),
-    st.lists(st.floats(0, 1), min_size=1, max_size=10),
-)
-def test_polyline_fractions_measure_arc_length(verts, fractions):
-    v = np.array(verts)
-    seg = np.hypot(*np.diff(v, axis=0).T)
-    if seg.sum() < 1e-3:
-        return
-    p = Polyline(v)
-    cum = np.concatenate(([0.0], np.cumsum(seg))) / seg.sum()
-    scale = 1 + np.abs(v).max()
-    # vertices sit at their own cumulative fractions
-    moved = np.concatenate(([True], seg > 1e-9 * scale))
-    assert np.allclose(p.at_fractions(cum[moved]), v[moved], atol=1e-9 * scale)
-    # between two fractions, the chord is never longer than the arc length
-    s = np.sort(np.array(fractions))
-    q = p.at_fractions(s)
-    chords = np.hypot(*np.diff(q, axis=0).T)
-    assert np.all(chords <= np.diff(s) * p.length + 1e-9 * scale)
+def test_polyline_fractions_measure_arc_length():
+    outcomes = Outcomes()
+
+    @settings(max_examples=60, deadline=None)
+    @given(
+        st.lists(st.tuples(st.floats(-100, 100), st.floats(-100, 100)), min_size=2, max_size=12),
+        st.lists(st.floats(0, 1), min_size=1, max_size=10),
+    )
+    def check(verts, fractions):
+        v = np.array(verts)
+        seg = np.hypot(*np.diff(v, axis=0).T)
+        if seg.sum() < 1e-3:
+            outcomes.refused("vertices within 1e-3 of each other")
+            return
+        p = Polyline(v)
+        cum = np.concatenate(([0.0], np.cumsum(seg))) / seg.sum()
+        scale = 1 + np.abs(v).max()
+        # vertices sit at their own cumulative fractions
+        moved = np.concatenate(([True], seg > 1e-9 * scale))
+        assert np.allclose(p.at_fractions(cum[moved]), v[moved], atol=1e-9 * scale)
+        # between two fractions, the chord is never longer than the arc length
+        s = np.sort(np.array(fractions))
+        q = p.at_fractions(s)
+        chords = np.hypot(*np.diff(q, axis=0).T)
+        assert np.all(chords <= np.diff(s) * p.length + 1e-9 * scale)
+        outcomes.checked()
+
+    check()
+    outcomes.assert_mostly_checked(at_least=40, max_refused_fraction=0.25)
 
 
 def test_round_trip_json():

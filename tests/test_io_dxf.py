@@ -4,14 +4,11 @@ from __future__ import annotations
 
 import math
 import random
-import time
 
 import numpy as np
 import pytest
 
 ezdxf = pytest.importorskip("ezdxf")
-
-from io_helpers import SEAL, same_curve, shared_case  # noqa: E402
 
 from sectiondeform.cli import main  # noqa: E402
 from sectiondeform.deform import Deformer  # noqa: E402
@@ -19,6 +16,8 @@ from sectiondeform.errors import CaseError  # noqa: E402
 from sectiondeform.io import read_case, write_case, write_result  # noqa: E402
 from sectiondeform.laws import AreaRatio  # noqa: E402
 from sectiondeform.section import polygon_area  # noqa: E402
+
+from io_helpers import SEAL, same_curve, shared_case  # noqa: E402
 
 
 def new_doc(units=4):
@@ -231,7 +230,7 @@ def test_no_law_and_no_target_errors(tmp_path):
     assert case.target.start[1] == pytest.approx(1.0, rel=1e-9) and case.target.start[0] < case.target.end[0]
 
 
-def test_chaining_5600_lines_is_fast(tmp_path):
+def test_chaining_5600_shuffled_lines_gives_the_ring(tmp_path):
     n = 5600
     t = np.linspace(0, 2 * np.pi, n + 1)
     ring = np.column_stack((20 + 5 * np.cos(t), 5 * np.sin(t)))
@@ -244,36 +243,35 @@ def test_chaining_5600_lines_is_fast(tmp_path):
             a, b = b, a
         msp.add_line(tuple(a), tuple(b))
     doc.saveas(tmp_path / "ring.dxf")
-    from sectiondeform.io.dxf import read_drawing
     from sectiondeform.io.chaining import one_chain
+    from sectiondeform.io.dxf import read_drawing
 
     drawing = read_drawing(tmp_path / "ring.dxf")
-    t0 = time.perf_counter()
-    path, report = one_chain(drawing.pieces, "layer 0", 1e-9, closed=True)
-    assert time.perf_counter() - t0 < 1.5
+    path, report = one_chain(drawing.pieces, "layer 0", 1e-9, closed=True)  # its time: benchmarks/run.py
     assert path.closed and len(path.curve.vertices) == n + 1
     assert abs(polygon_area(path.curve.vertices[:-1])) == pytest.approx(25 * np.pi, rel=1e-5)
 
 
-@pytest.mark.skipif(not SEAL.exists(), reason="../shared/real is absent")
 def test_real_seal_scan_read_and_deformed(tmp_path, capsys):
-    report = []
+    # Figures from the scan's own description (tests/data/real): 5,632 LINEs in mm; the left
+    # section is a 1,983-point polygon of 6.7 x 6.5 mm, area about 27.6 mm² once its 2.08 mm
+    # unscanned gap is closed; its chains meet across a 0.019 mm gap; the base lies at y = 0 to 0.5.
     opts = dict(bbox=(-21, -1, -12, 10), snap=0.05, close_gap=2.5, split=((-19.6, 0.0), (-18.4, 0.0)),
-                simplify=0.01, target_arc=0.05, law=AreaRatio(0.8), report=report)
-    t0 = time.perf_counter()
-    case = read_case(SEAL, **opts)
-    seconds = time.perf_counter() - t0
-    text = "\n".join(report)
-    assert "kept 1981 of 5632 pieces" in text
-    assert "snapped 1 gaps (largest 0.01849" in text
-    assert "closed a gap of 2.083" in text
-    assert case.units == "mm" and seconds < 5
-    assert case.lower.length == pytest.approx(1.165, abs=5e-3)
+                simplify=0.01, target_arc=0.05, law=AreaRatio(0.8))
+    case = read_case(SEAL, **opts)  # its time: benchmarks/run.py
+    assert case.units == "mm"
     ring = np.vstack((case.lower.vertices, case.upper.vertices[1:-1]))
+    width, height = np.ptp(ring, axis=0)
+    assert width == pytest.approx(6.7, abs=0.1) and height == pytest.approx(6.5, abs=0.1)
+    # the lower curve runs between the two split points, on the base
+    np.testing.assert_allclose([case.lower.start[0], case.lower.end[0]], [-19.6, -18.4], atol=0.05)
+    assert np.all((case.lower.vertices[:, 1] > -0.1) & (case.lower.vertices[:, 1] < 0.6))
+    chord = float(np.hypot(*(case.lower.end - case.lower.start)))
+    assert chord <= case.lower.length <= 1.2 * chord  # a nearly flat base
     assert abs(polygon_area(ring)) == pytest.approx(27.6, abs=0.1)
     # Without --close-gap the drawing is refused, naming the gap.
     with pytest.raises(CaseError, match="not closed: a gap of 2.08"):
-        read_case(SEAL, **{**opts, "close_gap": 0.0, "report": None})
+        read_case(SEAL, **{**opts, "close_gap": 0.0})
     out = tmp_path / "seal.dxf"
     argv = ["deform", str(SEAL), "--bbox=-21,-1,-12,10", "--snap", "0.05", "--close-gap", "2.5",
             "--split", "-19.6,0", "-18.4,0", "--simplify", "0.01", "--target-arc", "0.05",

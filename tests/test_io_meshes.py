@@ -7,12 +7,12 @@ import pytest
 
 meshio = pytest.importorskip("meshio")
 
-from io_helpers import shared_case  # noqa: E402
-
 from sectiondeform.deform import Deformer  # noqa: E402
 from sectiondeform.errors import CaseError  # noqa: E402
 from sectiondeform.io import write_result  # noqa: E402
 from sectiondeform.io.meshes import write_mesh  # noqa: E402
+
+from io_helpers import shared_case  # noqa: E402
 
 
 @pytest.fixture(scope="module")

@@ -7,12 +7,12 @@ import pytest
 
 pytest.importorskip("svgelements")
 
-from io_helpers import same_curve, shared_case  # noqa: E402
-
 from sectiondeform.deform import Deformer  # noqa: E402
 from sectiondeform.errors import CaseError  # noqa: E402
 from sectiondeform.io import read_case, write_case, write_result  # noqa: E402
 from sectiondeform.laws import AreaRatio  # noqa: E402
+
+from io_helpers import same_curve, shared_case  # noqa: E402
 
 SVG = """<svg xmlns="http://www.w3.org/2000/svg" width="200mm" height="100mm" viewBox="0 0 100 50">
 <g transform="translate(0,50)">

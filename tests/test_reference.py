@@ -22,7 +22,7 @@ from sectiondeform.reference import solve_reference  # noqa: E402
 from sectiondeform.reference.mesh import triangulate_section  # noqa: E402
 from sectiondeform.reference.solver import MixedProblem, neo_hookean  # noqa: E402
 
-from conftest import SHARED, box_case, rigid  # noqa: E402
+from conftest import CASES_DIR, box_case, rigid  # noqa: E402
 
 BLOCK = [[40.0, 0.0], [40.0, 8.0], [30.0, 10.0], [10.0, 10.0], [0.0, 8.0], [0.0, 0.0]]
 
@@ -140,7 +140,7 @@ def test_refinement_converges_on_a_block():
 
 def test_paper_example_is_converged_at_the_default_mesh():
     """The two finest meshes of a small study on the paper example agree to < 0.5 % of T."""
-    case = sd.load_case(SHARED / "cases" / "paper-example.json")
+    case = sd.load_case(CASES_DIR / "paper-example.json")
     T = sd.build_section(case).thickness
     coarse = solve_reference(case, mesh_size=0.2)
     fine = solve_reference(case)  # the default, 0.1 T

@@ -12,9 +12,9 @@ pytest.importorskip("triangle")
 
 from sectiondeform.cli import main  # noqa: E402
 
-from conftest import SHARED, box_case  # noqa: E402
+from conftest import CASES_DIR, box_case  # noqa: E402
 
-GROOVED = SHARED / "cases" / "grooved-tread.json"
+GROOVED = CASES_DIR / "grooved-tread.json"
 
 
 def _write(tmp_path, obj, name="case.json"):

@@ -126,7 +126,7 @@ class Options:
         out.update(self.user_data)
         return out
 
-    def replace(self, **changes) -> "Options":
+    def replace(self, **changes) -> Options:
         """These options with ``changes`` (any option key, common or a model's), checked."""
         return options_from_json({**self.to_json(), **changes})
 
@@ -222,8 +222,8 @@ class Case:
     def __hash__(self):
         return hash(self._key())
 
-    def replace(self, **changes) -> "Case":
-        """This case with ``changes`` (fields of :class:`Case`); ``options`` may be a dict."""
+    def replace(self, **changes) -> Case:
+        """The case with ``changes`` (fields of :class:`Case`); ``options`` may be a dict."""
         return dataclasses.replace(self, **changes)
 
 

@@ -553,7 +553,7 @@ _PROBES = np.array([0.25, 0.5, 0.75])  # where an interval's chordal error is me
 
 
 def _de_boor(t: np.ndarray, c: np.ndarray, k: int, i: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """de Boor's algorithm: the spline ``(t, c, k)`` at ``x`` ``(K,)``, in knot intervals ``i``, ``(K, 2)``."""
+    """De Boor's algorithm: the spline ``(t, c, k)`` at ``x`` ``(K,)``, in knot intervals ``i``, ``(K, 2)``."""
     d = c[i[:, None] + np.arange(-k, 1)]  # (K, k + 1, 2)
     for r in range(1, k + 1):
         j = i[:, None] + np.arange(r, k + 1)  # every j of this round at once, from the old values
@@ -598,7 +598,7 @@ class _Spline:
             out = out * dx + coef[:, m]
         return out
 
-    def derivative(self) -> "_Spline":
+    def derivative(self) -> _Spline:
         """The derivative, a spline of degree ``k - 1``."""
         t, c, k = self.t, self.c, self.k
         span = t[k + 1 : len(c) + k] - t[1 : len(c)]

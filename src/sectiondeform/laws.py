@@ -20,7 +20,7 @@ __all__ = ["Law", "AreaRatio", "law_from_json", "LAWS", "RATIO_RANGE"]
 RATIO_RANGE = (0.01, 100.0)
 """Accepted area ratios, inclusive: beyond them no rubber section means anything."""
 
-LAWS: dict[str, type["Law"]] = {}
+LAWS: dict[str, type[Law]] = {}
 
 
 class Law:

@@ -21,6 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+
 from .errors import LocateError
 
 __all__ = ["Location", "locate", "place", "bilinear_weights", "inverse_bilinear"]

@@ -5,9 +5,9 @@ from __future__ import annotations
 import dataclasses
 import sys
 
-from ..models import MODEL_NAMES
 from ..errors import CaseError
 from ..laws import AreaRatio
+from ..models import MODEL_NAMES
 
 
 def add_model_args(parser) -> None:

@@ -1,28 +1,52 @@
-"""Measure the speed: pipeline, re-deformation, scaling, peers and command line, in one run.
+"""Time your own case: preparation and re-deformation, medians of repeated runs.
 
-Writes a JSON report and a Markdown table (docs/benchmarks.json and
-docs/benchmarks.md by default), every figure beside its target. --quick
-runs few repetitions and small N, for CI. The same as benchmarks/run.py.
+Prepare is ``Deformer(case)`` (discretisation, initial mesh, location);
+re-deformation is ``deformer.deform()`` on the prepared section, the
+interactive use. Nothing is written. The project's own benchmark, with its
+targets, is ``python benchmarks/run.py`` in the source repository.
 
-Example: sectiondeform bench --quick --json /tmp/b.json --markdown /tmp/b.md
+Example: sectiondeform bench case.json --repeat 50
 """
 
 from __future__ import annotations
 
+import statistics
+import time
 from pathlib import Path
+
+from ..deform import Deformer
+from ..errors import CaseError
+from ._common import add_model_args, apply_overrides
 
 
 def add_args(parser) -> None:
-    """Options shared with ``benchmarks/run.py`` (the benchmark itself is imported only to run)."""
-    parser.add_argument("--quick", action="store_true", help="few repetitions and small N (CI smoke run)")
-    parser.add_argument("--cases", type=Path, help="folder of case files (default: benchmarks/cases)")
-    parser.add_argument("--json", type=Path, default=Path("docs/benchmarks.json"), help="JSON report to write")
-    parser.add_argument("--markdown", type=Path, default=Path("docs/benchmarks.md"), help="Markdown table to write")
-    parser.add_argument("--changes", type=Path, help="Markdown file appended to the table (what changed, what it gained)")
-    parser.add_argument("--no-profile", action="store_true", help="leave pyinstrument's profile out")
+    """``CASE``, ``--repeat`` and the model options."""
+    parser.add_argument("case", type=Path, help="case file (JSON, DXF or SVG)")
+    parser.add_argument("--repeat", type=int, default=20, metavar="N", help="timed runs of each stage (default: 20)")
+    add_model_args(parser)
+
+
+def _median_s(fn, repeat: int) -> float:
+    fn()  # warm-up
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
 
 
 def run(args) -> int:
-    from ..bench import run as _run
+    """Print the median preparation and re-deformation times of the case."""
+    from ..io import read_case
 
-    return _run(args)
+    if not 1 <= args.repeat <= 100_000:
+        raise CaseError("--repeat", f"must be a whole number from 1 to 100000, got {args.repeat}")
+    case = apply_overrides(read_case(args.case), args)
+    deformer = Deformer(case, element_size=args.element_size)
+    prepare = _median_s(lambda: Deformer(case, element_size=args.element_size), args.repeat)
+    redeform = _median_s(deformer.deform, args.repeat)
+    print(f"{case.name}: median of {args.repeat} runs")
+    print(f"  prepare         {1e3 * prepare:10.3f} ms   Deformer(case)")
+    print(f"  re-deformation  {1e3 * redeform:10.3f} ms   deformer.deform()")
+    return 0

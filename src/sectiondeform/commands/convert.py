@@ -3,7 +3,8 @@
 Reads IN (.json, .dxf, .svg; drawings with the same options as deform) and
 writes OUT (.json, .dxf, .svg). The output file is written whole or not at all.
 
-Examples:
+Examples
+--------
   sectiondeform convert case.json case.dxf
   sectiondeform convert profile.dxf case.json --area-ratio 0.8
   sectiondeform convert scan.dxf case.json --area-ratio 0.8 --split -20,0.4 -16.4,0.4 --target-arc 0.3

@@ -41,8 +41,8 @@ def _check_output(path: Path, flag: str) -> None:
 
 
 def run(args) -> int:
-    from ..reference import DEFAULT_MESH_SIZE
     from ..io import check_figure_path
+    from ..reference import DEFAULT_MESH_SIZE
     from ..reference.validation import save_validation_figure, validate_case
 
     case = apply_overrides(read_case(args.case), args)

@@ -1,13 +1,13 @@
-"""The Taylor-Hood triangle: quadratic displacement (P2), linear pressure (P1).
+r"""The Taylor-Hood triangle: quadratic displacement (P2), linear pressure (P1).
 
 Reference triangle with corners (0, 0), (1, 0), (0, 1) and area coordinates
 ``L0 = 1 - xi - eta``, ``L1 = xi``, ``L2 = eta``. Node order (meshio's
 ``triangle6``)::
 
     2
-    | \\
+    | \
     5   4
-    |     \\
+    |     \
     0---3---1
 
 Corner shape functions ``Li (2 Li - 1)``, mid-edge ``4 Li Lj``; the pressure

@@ -54,7 +54,7 @@ class RingGeometry:
     s: np.ndarray
 
     @classmethod
-    def of(cls, points: np.ndarray) -> "RingGeometry":
+    def of(cls, points: np.ndarray) -> RingGeometry:
         seg = np.diff(np.concatenate((points, points[:1])), axis=0)
         return cls(points, np.concatenate(([0.0], np.cumsum(np.hypot(seg[:, 0], seg[:, 1])))))
 
@@ -247,7 +247,7 @@ def coarse_mesh(ring_points: np.ndarray, fixed: np.ndarray, h: float) -> CoarseM
         nb = len(s_b)
         seg = np.column_stack((np.arange(nb), (np.arange(nb) + 1) % nb))
         e = np.concatenate((tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]))
-        key = lambda a: np.minimum(a[:, 0], a[:, 1]) * len(pts) + np.maximum(a[:, 0], a[:, 1])  # noqa: E731
+        key = lambda a: np.minimum(a[:, 0], a[:, 1]) * len(pts) + np.maximum(a[:, 0], a[:, 1])  # noqa: E731, B023 - used in this iteration only
         missing = ~np.isin(key(seg), key(e))
         if not missing.any():
             break

@@ -66,8 +66,8 @@ class Tangent:
     n_free_x: int
     rotation: np.ndarray | None = None
 
-    def rotated(self, q: np.ndarray) -> "Tangent":
-        """This tangent carried to the state rotated by ``q`` ((2, 2))."""
+    def rotated(self, q: np.ndarray) -> Tangent:
+        """The same tangent, carried to the state rotated by ``q`` ((2, 2))."""
         base = self.rotation if self.rotation is not None else np.eye(2)
         return Tangent(self.lu, self.kfd, self.n_free_x, q @ base)
 

@@ -38,7 +38,6 @@ to other units at the end.
 from __future__ import annotations
 
 import argparse
-import json
 import math
 from pathlib import Path
 

@@ -210,7 +210,7 @@ def read_drawing(path, chordal_error: float | None = None) -> Drawing:
     path = Path(path)
     try:
         doc = ezdxf.readfile(str(path))
-    except IOError as exc:
+    except OSError as exc:
         raise CaseError(str(path), f"cannot read the DXF file ({exc})") from None
     except ezdxf.DXFStructureError as exc:
         raise CaseError(str(path), f"not a valid DXF file ({exc})") from None

@@ -305,7 +305,7 @@ class HyperelasticPrepared(Prepared):
         final = MeshData(base.nodes, self.mesh.cells, "triangle6")
         return Placement(upper, final, FinalQuality(), PreviewInfo(area_correction=float(abs(correction))), (), start)
 
-    def _build_preview(self, start: State | None) -> "_PreviewBase":
+    def _build_preview(self, start: State | None) -> _PreviewBase:
         solver, pat = self.solver, self.solver.pattern
         n = len(self.mesh.nodes)
         state = start if start is not None else self.reference

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import LawError, MeshError
+from ..laws import Law
 from ..layers import (
     SMOOTHING_WEIGHTS,
     _Smoother,
@@ -39,7 +40,6 @@ from ..layers import (
     node_frames,
     plan_extension,
 )
-from ..laws import Law
 from ..locate import locate
 from ..section import Section
 from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions, Placement, Prepared

@@ -3,7 +3,9 @@
 :func:`run_benchmark` measures, in one process, medians over repeated runs
 after a warm-up, and returns a JSON-ready report; :func:`to_markdown` turns
 it into the table of ``docs/benchmarks.md``, every figure beside its target.
-``benchmarks/run.py`` and ``sectiondeform bench`` both call :func:`main`.
+``benchmarks/run.py`` runs it and writes the report. It lives outside the
+package: it holds the project's targets and times the command line as a
+process, which are the project's business, not a user's.
 
 What is timed:
 
@@ -19,7 +21,10 @@ What is timed:
    same upper points driven by the lower curve's displacement, and the
    finite-element reference (``sectiondeform.reference.solve_reference``)
    where it is installed; ratios ours / peer;
-5. ``cli``: wall time of ``sectiondeform deform CASE -o OUT`` as a process.
+5. ``cli``: wall time of ``sectiondeform deform CASE -o OUT`` as a process;
+6. ``io``: chaining 5,600 shuffled DXF LINEs into one ring, and reading the
+   real seal scan kept in ``tests/data/real`` (chaining, snapping, closing
+   its gap, simplifying).
 
 Times are seconds in the JSON; the Markdown shows ms or µs. No figure is
 asserted anywhere: the benchmark reports, the reader judges.
@@ -41,7 +46,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["run_benchmark", "to_markdown", "main", "TARGETS", "growth_exponent", "median_time", "median_times"]
+__all__ = ["run_benchmark", "to_markdown", "TARGETS", "growth_exponent", "median_time", "median_times"]
 
 # Targets on a 2-core machine (medians); seconds unless named otherwise.
 TARGETS = {
@@ -51,10 +56,15 @@ TARGETS = {
     "locate_place_peak_mb": 500.0,
     "locate_place_exponent": 1.1,
     "cli_s": 0.4,
+    "chain_5600_s": 1.5,
+    "seal_read_s": 5.0,
     "rbf_area_error_factor": 1e4,
     "fe_full_speedup": 1e3,
     "fe_redeform_speedup": 1e4,
 }
+
+ROOT = Path(__file__).resolve().parents[1]
+SEAL = ROOT / "tests" / "data" / "real" / "vr6000_seal_scan.dxf"
 
 FULL = {"repeats": 60, "warmup": 3, "redeform_steps": 200, "sizes": (100, 1000, 10_000, 100_000, 1_000_000),
         "refinements": 5, "cli_repeats": 7, "peer_repeats": 20, "fe_repeats": 2}
@@ -116,7 +126,7 @@ def machine_info() -> dict:
     import scipy
     import shapely
 
-    from . import __version__
+    from sectiondeform import __version__
 
     return {
         "date": time.strftime("%Y-%m-%d %H:%M:%S"),
@@ -141,9 +151,9 @@ def bench_pipeline(cases: list, cfg: dict) -> list[dict]:
     Every (case, stage) is timed in turn within each repetition, so a burst
     of load from elsewhere falls on all of them alike.
     """
-    from .deform import Deformer
-    from .models import get_model
-    from .section import build_section
+    from sectiondeform.deform import Deformer
+    from sectiondeform.models import get_model
+    from sectiondeform.section import build_section
 
     rows, fns = [], {}
     for i, case in enumerate(cases):
@@ -170,7 +180,7 @@ def bent_targets(deformer, steps: int, extra: float = 0.1) -> list:
 
     Returned as polylines (curves), so each re-deformation resamples its target.
     """
-    from .curves import Polyline
+    from sectiondeform.curves import Polyline
 
     lower = deformer.section.lower
     target = deformer.target_nodes()
@@ -179,7 +189,7 @@ def bent_targets(deformer, steps: int, extra: float = 0.1) -> list:
 
 def _working_targets(deformer, steps: int) -> tuple[list, float]:
     """Bent targets the section accepts: 10 % further bending, else 2 %, else none."""
-    from .errors import SectionDeformError
+    from sectiondeform.errors import SectionDeformError
 
     for extra in (0.1, 0.02, 0.0):
         targets = bent_targets(deformer, steps, extra)
@@ -198,7 +208,7 @@ def bench_redeform(cases: list, cfg: dict) -> list[dict]:
     Also without the contour's simplicity check (``check=False``). The
     passes over the targets alternate between the cases and both checks.
     """
-    from .deform import Deformer
+    from sectiondeform.deform import Deformer
 
     runs, rows = [], []
     for case in cases:
@@ -246,8 +256,8 @@ def sample_inside(deformer, n: int, seed: int = 0) -> np.ndarray:
 
 def bench_locate_scaling(case, cfg: dict) -> dict:
     """Locating N points in the initial mesh and placing them in the final one."""
-    from .deform import Deformer
-    from .locate import locate, place
+    from sectiondeform.deform import Deformer
+    from sectiondeform.locate import locate, place
 
     deformer = Deformer(case)
     mesh = deformer.prepared.mesh
@@ -275,8 +285,8 @@ def bench_locate_scaling(case, cfg: dict) -> dict:
 
 def bench_refinement(case, cfg: dict) -> dict:
     """The full pipeline as the element size is halved again and again (until the method refuses)."""
-    from .deform import Deformer
-    from .errors import SectionDeformError
+    from sectiondeform.deform import Deformer
+    from sectiondeform.errors import SectionDeformError
 
     h0 = Deformer(case).section.element_size
     rows, refused = [], None
@@ -334,8 +344,8 @@ def rbf_morph(lower: np.ndarray, target_nodes: np.ndarray, upper: np.ndarray) ->
 
 def bench_rbf(case, cfg: dict, ours: dict, ours_redeform: dict) -> dict:
     """The RBF morph of the same section onto the same target: time and area error."""
-    from .deform import Deformer
-    from .section import polygon_area
+    from sectiondeform.deform import Deformer
+    from sectiondeform.section import polygon_area
 
     deformer = Deformer(case)
     sec = deformer.section
@@ -360,7 +370,7 @@ def bench_rbf(case, cfg: dict, ours: dict, ours_redeform: dict) -> dict:
 def bench_fe(case, cfg: dict, ours: dict, ours_redeform: dict) -> dict:
     """The finite-element reference, where installed: time and ratios."""
     try:
-        from .reference import solve_reference
+        from sectiondeform.reference import solve_reference
     except ImportError as exc:
         return {"case": case.name, "available": False, "note": f"sectiondeform.reference.solve_reference not importable ({exc})"}
     try:
@@ -410,26 +420,58 @@ def bench_cli(case_path: Path, cfg: dict) -> dict:
 
 
 # --------------------------------------------------------------------------
+# 6. Drawings
+
+
+def bench_io(cfg: dict) -> dict:
+    """Chaining 5,600 shuffled LINEs into one ring; reading the real seal scan. Medians, seconds."""
+    try:
+        import ezdxf
+    except ImportError as exc:
+        return {"available": False, "note": f"ezdxf not importable ({exc})"}
+    from sectiondeform.io import read_case
+    from sectiondeform.io.chaining import one_chain
+    from sectiondeform.io.dxf import read_drawing
+    from sectiondeform.laws import AreaRatio
+
+    n = 5600
+    t = np.linspace(0, 2 * np.pi, n + 1)
+    ring = np.column_stack((20 + 5 * np.cos(t), 5 * np.sin(t)))
+    ring[-1] = ring[0]
+    with tempfile.TemporaryDirectory() as tmp:
+        doc = ezdxf.new("R2010")
+        msp = doc.modelspace()
+        for i in np.random.default_rng(3).permutation(n):
+            a, b = (ring[i + 1], ring[i]) if i % 3 == 0 else (ring[i], ring[i + 1])
+            msp.add_line(tuple(a), tuple(b))
+        doc.saveas(Path(tmp) / "ring.dxf")
+        drawing = read_drawing(Path(tmp) / "ring.dxf")
+    reps = max(1, cfg["cli_repeats"])
+    out = {"available": True, "chain_lines": n,
+           "chain_s": median_time(lambda: one_chain(drawing.pieces, "layer 0", 1e-9, closed=True), reps, 1)}
+    if SEAL.is_file():
+        opts = dict(bbox=(-21, -1, -12, 10), snap=0.05, close_gap=2.5, split=((-19.6, 0.0), (-18.4, 0.0)),
+                    simplify=0.01, target_arc=0.05, law=AreaRatio(0.8))
+        out["seal_read_s"] = median_time(lambda: read_case(SEAL, **opts), reps, 0)
+    return out
+
+
+# --------------------------------------------------------------------------
 # The run
 
 
 def default_cases_dir() -> Path:
-    """``benchmarks/cases`` of the source tree when it exists, else the packaged example's folder."""
-    here = Path(__file__).resolve().parents[2] / "benchmarks" / "cases"
-    if here.is_dir():
-        return here
-    from . import example_case_path
-
-    return example_case_path().parent
+    """``benchmarks/cases``, beside this file."""
+    return Path(__file__).resolve().parent / "cases"
 
 
 def profile_text(case, seconds: float = 2.0) -> str | None:
-    """pyinstrument's view of the pipeline on ``case`` (None without pyinstrument)."""
+    """Pyinstrument's view of the pipeline on ``case`` (None without pyinstrument)."""
     try:
         from pyinstrument import Profiler
     except ImportError:
         return None
-    from .deform import Deformer
+    from sectiondeform.deform import Deformer
 
     profiler = Profiler(interval=1e-4)
     profiler.start()
@@ -456,7 +498,7 @@ def run_benchmark(cases_dir=None, quick: bool = False, profile: bool = True, log
     log : callable
         Progress messages.
     """
-    from .case import load_case
+    from sectiondeform.case import load_case
 
     cfg = QUICK if quick else FULL
     paths = sorted(Path(cases_dir or default_cases_dir()).glob("*.json"))
@@ -479,6 +521,8 @@ def run_benchmark(cases_dir=None, quick: bool = False, profile: bool = True, log
     report["fe"] = bench_fe(ref, cfg, ours, ours_re)
     log("command line ...")
     report["cli"] = bench_cli(paths[[p.stem for p in paths].index(ref_name)], cfg)
+    log("drawings ...")
+    report["io"] = bench_io(cfg)
     report["targets"] = check_targets(report)
     if profile and not quick:
         report["profile"] = profile_text(ref)
@@ -504,6 +548,11 @@ def check_targets(report: dict) -> list[dict]:
         ("re-deformation / RBF morph time", rbf["ratio_redeform"], "<", 1.0, "x"),
         ("RBF area error / ours", rbf["area_error_factor"], ">=", T["rbf_area_error_factor"], "x"),
     ]
+    io = report.get("io", {})
+    if io.get("available"):
+        rows.append((f"chaining {io['chain_lines']} DXF LINEs", io["chain_s"], "<=", T["chain_5600_s"], "s"))
+        if "seal_read_s" in io:
+            rows.append(("reading the real seal scan", io["seal_read_s"], "<=", T["seal_read_s"], "s"))
     if fe.get("available"):
         rows += [
             ("FE reference / full pipeline", fe["speedup_full"], ">=", T["fe_full_speedup"], "x"),
@@ -543,7 +592,7 @@ def to_markdown(report: dict, changes: str = "") -> str:
         "# Benchmarks",
         "",
         f"Produced by `{report.get('command', 'python benchmarks/run.py')}` "
-        f"(the same as `sectiondeform bench`) on {m['date']}, in one process and one run; "
+        f"on {m['date']}, in one process and one run; "
         "every time is a median over repeated runs after a warm-up.",
         "",
         f"Machine: {m['platform']}, {m['processor']}, {m['cpus']} CPUs (shared with other work). "
@@ -601,7 +650,7 @@ def to_markdown(report: dict, changes: str = "") -> str:
     if fe.get("available"):
         lines.append(f"| FE reference | {_fmt(fe['fe_s'])} | | {1 / fe['speedup_full']:.3g} | {1 / fe['speedup_redeform']:.3g} |")
     else:
-        lines.append(f"| FE reference | not measured | | | |")
+        lines.append("| FE reference | not measured | | | |")
     cli = report["cli"]
     lines += ["", "## 5. Command line", "",
               "| process | wall time |", "|---|---|",
@@ -609,6 +658,15 @@ def to_markdown(report: dict, changes: str = "") -> str:
               f"| `python -c '{PARSER_ONLY}'` (imports every command module) | {_fmt(cli['parser_s'])} |",
               f"| `python -c 'import sectiondeform.cli'` | {_fmt(cli['import_s'])} |",
               f"| `python -c pass` | {_fmt(cli['python_bare_s'])} |"]
+    io = report.get("io", {})
+    lines += ["", "## 6. Drawings", ""]
+    if io.get("available"):
+        lines += ["| work | time |", "|---|---|",
+                  f"| chaining {io['chain_lines']} shuffled LINEs into one ring | {_fmt(io['chain_s'])} |"]
+        if "seal_read_s" in io:
+            lines.append(f"| reading the real seal scan (5,632 LINEs: chain, snap, close, simplify) | {_fmt(io['seal_read_s'])} |")
+    else:
+        lines.append(f"Not measured ({io.get('note', 'no figures')}).")
     if changes:
         lines += ["", changes.strip()]
     if report.get("profile"):
@@ -623,36 +681,19 @@ def _json_default(obj):
     raise TypeError(f"cannot write {type(obj).__name__} to JSON")
 
 
-def _command_line() -> str:
-    """How this process was started, for the report: ``python benchmarks/run.py ...`` or ``sectiondeform bench ...``."""
-    first = sys.argv[0] if sys.argv else ""
-    if first.endswith(".py"):
-        return " ".join(["python", os.path.relpath(first)] + sys.argv[1:])
-    return " ".join(["sectiondeform"] + sys.argv[1:])
+def write_report(report: dict, folder: Path, changes: str = "") -> tuple[Path, Path]:
+    """Write ``benchmarks.json`` and ``benchmarks.md`` into ``folder``; returns their paths."""
+    folder.mkdir(parents=True, exist_ok=True)
+    js, md = folder / "benchmarks.json", folder / "benchmarks.md"
+    js.write_text(json.dumps(report, indent=1, default=_json_default) + "\n", encoding="utf-8")
+    md.write_text(to_markdown(report, changes), encoding="utf-8")
+    return js, md
 
 
-def run(args) -> int:
-    """Run the benchmark with parsed ``args``; write the JSON and the Markdown."""
-    report = run_benchmark(args.cases, quick=args.quick, profile=not args.no_profile, log=lambda s: print(s, file=sys.stderr))
-    report["command"] = _command_line()
-    changes = args.changes.read_text(encoding="utf-8") if args.changes else ""
-    for path in (args.json, args.markdown):
-        path.parent.mkdir(parents=True, exist_ok=True)
-    args.json.write_text(json.dumps(report, indent=1, default=_json_default) + "\n", encoding="utf-8")
-    args.markdown.write_text(to_markdown(report, changes), encoding="utf-8")
-    for t in report["targets"]:
-        print(f"{t['figure']:45s} {_fmt(t['value'], t['unit']):>12s}  {t['op']} {_fmt(t['target'], t['unit']):>10s}  "
-              f"{'met' if t['met'] else 'MISSED'}")
-    print(f"wrote {args.json} and {args.markdown}")
-    return 0
-
-
-def main(argv=None) -> int:
-    """``benchmarks/run.py``: parse ``argv`` and :func:`run`."""
-    import argparse
-
-    from .commands.bench import add_args
-
-    parser = argparse.ArgumentParser(prog="benchmarks/run.py", description=__doc__.splitlines()[0])
-    add_args(parser)
-    return run(parser.parse_args(argv))
+def targets_text(report: dict) -> str:
+    """One line per target: figure, measured, target, met or missed."""
+    return "\n".join(
+        f"{t['figure']:45s} {_fmt(t['value'], t['unit']):>12s}  {t['op']} {_fmt(t['target'], t['unit']):>10s}  "
+        f"{'met' if t['met'] else 'MISSED'}"
+        for t in report["targets"]
+    )
