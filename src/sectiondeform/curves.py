@@ -35,6 +35,7 @@ __all__ = [
     "as_points",
     "polygon_area",
     "DEFAULT_CHORDAL_FRACTION",
+    "zigzag_fraction",
 ]
 
 # Default chordal error of the polylines made from curves, as a fraction of
@@ -112,6 +113,38 @@ def polygon_area(points: np.ndarray) -> float:
     x, y = points[:, 0], points[:, 1]
     x1, y1 = np.concatenate((x[1:], x[:1])), np.concatenate((y[1:], y[:1]))  # np.roll(., -1), cheaper
     return 0.5 * float(np.dot(x, y1) - np.dot(x1, y))
+
+
+def zigzag_fraction(points: np.ndarray) -> float:
+    """Fraction of the vertices of a polyline where its turning changes side, in [0, 1].
+
+    About 0 for a smooth curve drawn or discretised (it turns one way over
+    long runs), about 1/2 for a scanned or digitised outline whose noise
+    turns it left and right at random.
+
+    Parameters
+    ----------
+    points : (N, 2) float64 ndarray
+
+    Returns
+    -------
+    float
+        0 when fewer than three vertices turn.
+
+    Examples
+    --------
+    >>> t = np.linspace(0.0, np.pi, 50)
+    >>> zigzag_fraction(np.column_stack((np.cos(t), np.sin(t))))
+    0.0
+    >>> zigzag_fraction(np.array([[0, 0], [1, 1], [2, 0], [3, 1], [4, 0]], dtype=float))
+    1.0
+    """
+    d = np.diff(np.asarray(points, dtype=np.float64), axis=0)
+    turn = np.sign(d[:-1, 0] * d[1:, 1] - d[:-1, 1] * d[1:, 0])
+    turn = turn[turn != 0]
+    if len(turn) < 3:
+        return 0.0
+    return float(np.mean(turn[1:] != turn[:-1]))
 
 
 def _affine(matrix, offset) -> tuple[np.ndarray, np.ndarray]:
@@ -428,6 +461,12 @@ class Arc(Curve):
         (cx, cy), r = self.center, self.radius
         a0, a1 = math.radians(self.start_deg), math.radians(self.end_deg)
         return 0.5 * (r * cx * (math.sin(a1) - math.sin(a0)) - r * cy * (math.cos(a1) - math.cos(a0)) + r * r * (a1 - a0))
+
+    @property
+    def ends(self):
+        a = np.radians([self.start_deg, self.end_deg])
+        pts = self.center + self.radius * np.column_stack((np.cos(a), np.sin(a)))
+        return pts[0], pts[1]
 
     def reversed(self):
         return Arc(self.center, self.radius, self.end_deg, self.start_deg)
