@@ -36,6 +36,7 @@ __all__ = [
     "polygon_area",
     "DEFAULT_CHORDAL_FRACTION",
     "zigzag_fraction",
+    "cross",
 ]
 
 # Default chordal error of the polylines made from curves, as a fraction of
@@ -113,6 +114,17 @@ def polygon_area(points: np.ndarray) -> float:
     x, y = points[:, 0], points[:, 1]
     x1, y1 = np.concatenate((x[1:], x[:1])), np.concatenate((y[1:], y[:1]))  # np.roll(., -1), cheaper
     return 0.5 * float(np.dot(x, y1) - np.dot(x1, y))
+
+
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The z component of the cross product of 2D vectors, ``(..., 2)`` each -> ``(...)``.
+
+    Examples
+    --------
+    >>> float(cross(np.array([1.0, 0.0]), np.array([0.0, 2.0])))
+    2.0
+    """
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 def zigzag_fraction(points: np.ndarray) -> float:

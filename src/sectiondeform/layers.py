@@ -40,7 +40,7 @@ from functools import cached_property
 import numpy as np
 import shapely
 
-from .curves import zigzag_fraction
+from .curves import cross as _cross, zigzag_fraction
 from .errors import MeshError
 
 __all__ = [
@@ -144,10 +144,6 @@ def quad_jacobians(points: np.ndarray, quads: np.ndarray) -> np.ndarray:
     e_next = np.roll(p, -1, axis=1) - p
     e_prev = np.roll(p, 1, axis=1) - p
     return e_next[..., 0] * e_prev[..., 1] - e_next[..., 1] * e_prev[..., 0]
-
-
-def _cross(a, b):
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 def grid_jacobians(nodes: np.ndarray, orientation: int = 1) -> np.ndarray:

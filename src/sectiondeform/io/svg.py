@@ -50,7 +50,7 @@ from .chaining import fmt_point
 from .dxf import read_meta
 from .json import atomic_write
 from .pieces import Drawing, Piece
-from .units import CSS_UNITS, MM_PER_UNIT
+from .units import CSS_UNITS, MM_PER_UNIT, mm_per_unit
 
 __all__ = ["read_drawing", "read_case", "write_case", "write_result"]
 
@@ -200,7 +200,7 @@ def read_drawing(path, chordal_error: float | None = None):
     meta = read_meta(root.get(META_ATTR), f"{path} (attribute {META_ATTR})")
     sx, sy = _document_scale(root)
     units = meta.get("units", "mm")
-    k = 1.0 / MM_PER_UNIT.get(units, 1.0)
+    k = 1.0 / mm_per_unit(units, f"{path} (attribute {META_ATTR}, units)")
     doc = np.array([[sx * k, 0.0], [0.0, -sy * k]])  # user units -> case units, y up
     vb = _floats(root.get("viewBox"))
     size = math.hypot(vb[2], vb[3]) * sx * k if len(vb) == 4 else 100.0
@@ -242,7 +242,7 @@ def read_drawing(path, chordal_error: float | None = None):
 
     for child in root:
         visit(child, svgelements.Matrix(), frozenset())
-    return Drawing(pieces, units, MM_PER_UNIT.get(units, 1.0), meta, path)
+    return Drawing(pieces, units, 1.0 / k, meta, path)
 
 
 def read_case(path, **options):

@@ -28,6 +28,7 @@ import math
 
 import numpy as np
 
+from ..curves import cross as _cross
 from ..errors import LawError, MeshError
 from ..layers import (
     SMOOTHING_WEIGHTS,
@@ -51,10 +52,6 @@ TARGET_SMOOTHING = (0.0,) + SMOOTHING_WEIGHTS + (5e6, 5e7, 5e8, 5e9, 5e10)
 __all__ = ["PaperModel", "PaperPrepared", "MODEL", "solve_scale"]
 
 DENSE_MAP_MAX = 2**21  # entries of each (upper points x columns) placement matrix kept dense
-
-
-def _cross(a, b):
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 def _next(a):
