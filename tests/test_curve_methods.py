@@ -9,7 +9,15 @@ import pytest
 from hypothesis import assume, event, given, settings
 from hypothesis import strategies as st
 
-from sectiondeform.curves import Arc, BSpline, Chain, Curve, Polyline, polygon_area, zigzag_fraction
+from sectiondeform.curves import (
+    Arc,
+    BSpline,
+    Chain,
+    Curve,
+    Polyline,
+    polygon_area,
+    zigzag_fraction,
+)
 
 FR = np.linspace(0.0, 1.0, 41)
 coord = st.floats(-100.0, 100.0, allow_nan=False, allow_infinity=False)

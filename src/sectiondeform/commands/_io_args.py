@@ -7,7 +7,13 @@ import re
 from pathlib import Path
 
 from ..errors import CaseError, require
-from ..io import FIGURE_FORMATS, MESH_FORMATS, RESULT_WRITERS, check_output_path, read_case
+from ..io import (
+    FIGURE_FORMATS,
+    MESH_FORMATS,
+    RESULT_WRITERS,
+    check_output_path,
+    read_case,
+)
 from ..io.drawing import ROLES, SIDES
 from ..laws import AreaRatio
 

@@ -108,7 +108,9 @@ class Path:
 
 def _greedy_pairs(points: np.ndarray, radius: float, forbid) -> list[tuple[int, int, float]]:
     """Pairs of rows of ``points`` within ``radius``, nearest first, each row once."""
-    from scipy.spatial import cKDTree  # imported here: start-up time of the command line
+    from scipy.spatial import (
+        cKDTree,  # imported here: start-up time of the command line
+    )
 
     if len(points) < 2 or radius <= 0:
         return []
@@ -163,7 +165,9 @@ def connect(pieces: list[Piece], where: str, tol: float, snap: float = 0.0, clos
     >>> len(paths), paths[0].curve.vertices.tolist()
     (1, [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [2.0, 1.0]])
     """
-    from scipy.sparse import coo_matrix  # imported here: start-up time of the command line
+    from scipy.sparse import (
+        coo_matrix,  # imported here: start-up time of the command line
+    )
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
 

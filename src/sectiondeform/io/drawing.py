@@ -48,7 +48,14 @@ from types import MappingProxyType
 import numpy as np
 
 from ..case import Case, case_from_dict
-from ..curves import DEFAULT_CHORDAL_FRACTION, Arc, Curve, Polyline, curve_from_json, polygon_area
+from ..curves import (
+    DEFAULT_CHORDAL_FRACTION,
+    Arc,
+    Curve,
+    Polyline,
+    curve_from_json,
+    polygon_area,
+)
 from ..errors import CaseError
 from ..laws import Law, law_from_json
 from .chaining import fmt_point, one_chain

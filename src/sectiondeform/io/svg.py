@@ -39,8 +39,8 @@ import json
 import math
 import re
 import xml.etree.ElementTree as ET
-from xml.sax.saxutils import quoteattr
 from pathlib import Path
+from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
@@ -312,7 +312,8 @@ def _curve_d(curve: Curve, tol: float) -> str:
 
 
 def _insert(spl, x: float, m: int):  # pragma: no cover - scipy < 1.13
-    from scipy.interpolate import BSpline as SciPy, insert
+    from scipy.interpolate import BSpline as SciPy
+    from scipy.interpolate import insert
 
     t, c, k = insert(x, (spl.t, [spl.c[:, 0], spl.c[:, 1]], spl.k), m)
     c = np.column_stack(c)
