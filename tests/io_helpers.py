@@ -9,7 +9,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 SHARED = ROOT.parent / "shared"
-SEAL = SHARED / "real" / "vr6000_seal_scan.dxf"
+SEAL = ROOT / "tests" / "data" / "vr6000_seal_scan.dxf"  # a copy of the shared scan, with its licence
 FRACTIONS = np.linspace(0.0, 1.0, 201)
 
 
