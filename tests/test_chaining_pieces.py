@@ -6,7 +6,7 @@ import shapely
 
 from sectiondeform.curves import Polyline
 from sectiondeform.io.chaining import one_chain
-from sectiondeform.io.pieces import Piece, reverse_curve, transform_curve
+from sectiondeform.io.pieces import Piece
 
 
 def _ring_pieces(n, seed):
@@ -36,11 +36,11 @@ def test_shuffled_reversed_segments_chain_into_the_ring(seed):
 
 def test_reverse_and_transform_keep_the_shape():
     c = Polyline(np.array([[0.0, 0.0], [3.0, 0.0], [3.0, 4.0]]))
-    r = reverse_curve(c)
+    r = c.reversed()
     s = np.linspace(0, 1, 11)
     np.testing.assert_allclose(r.at_fractions(s), c.at_fractions(1 - s), atol=1e-12)
     a = np.radians(30)
     m = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
-    moved = transform_curve(c, m, (5.0, -1.0))
+    moved = c.transformed(m, (5.0, -1.0))
     np.testing.assert_allclose(moved.at_fractions(s), c.at_fractions(s) @ m.T + [5.0, -1.0], atol=1e-12)
     assert moved.length == pytest.approx(c.length)

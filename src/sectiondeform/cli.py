@@ -14,6 +14,7 @@ import pkgutil
 import sys
 
 from . import __version__, commands
+from .commands._io_args import coordinate_tokens
 from .errors import SectionDeformError
 
 __all__ = ["main", "build_parser"]
@@ -45,7 +46,7 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; returns the exit status (0 success, 2 bad input or failure)."""
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args = parser.parse_args(coordinate_tokens(sys.argv[1:] if argv is None else list(argv)))
     try:
         return int(args._run(args) or 0)
     except SectionDeformError as exc:

@@ -34,7 +34,15 @@ __all__ = [
     "Chain",
     "curve_from_json",
     "as_points",
+    "polygon_area",
+    "DEFAULT_CHORDAL_FRACTION",
+    "zigzag_fraction",
+    "cross",
 ]
+
+# Default chordal error of the polylines made from curves, as a fraction of
+# the size (bounding-box diagonal) of what is discretised.
+DEFAULT_CHORDAL_FRACTION = 1e-4
 
 # Gauss-Legendre nodes for arc-length quadrature on each sub-interval.
 # (numpy.polynomial.legendre.leggauss(5), written out: its import costs start-up time)
@@ -119,6 +127,76 @@ def _first_bad_pair(value, field: str) -> None:
 def _number_text(value) -> str:
     text = repr(value)
     return text if len(text) <= 40 else text[:37] + "..."
+def polygon_area(points: np.ndarray) -> float:
+    """Signed area of a closed polygon (shoelace), positive when counter-clockwise.
+
+    Parameters
+    ----------
+    points : (N, 2) float64 ndarray
+        Vertices in order; the closing edge back to the first is implied.
+
+    Returns
+    -------
+    float
+        Area in units².
+
+    Examples
+    --------
+    >>> polygon_area(np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]))
+    2.0
+    """
+    x, y = points[:, 0], points[:, 1]
+    x1, y1 = np.concatenate((x[1:], x[:1])), np.concatenate((y[1:], y[:1]))  # np.roll(., -1), cheaper
+    return 0.5 * float(np.dot(x, y1) - np.dot(x1, y))
+
+
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The z component of the cross product of 2D vectors, ``(..., 2)`` each -> ``(...)``.
+
+    Examples
+    --------
+    >>> float(cross(np.array([1.0, 0.0]), np.array([0.0, 2.0])))
+    2.0
+    """
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def zigzag_fraction(points: np.ndarray) -> float:
+    """Fraction of the vertices of a polyline where its turning changes side, in [0, 1].
+
+    About 0 for a smooth curve drawn or discretised (it turns one way over
+    long runs), about 1/2 for a scanned or digitised outline whose noise
+    turns it left and right at random.
+
+    Parameters
+    ----------
+    points : (N, 2) float64 ndarray
+
+    Returns
+    -------
+    float
+        0 when fewer than three vertices turn.
+
+    Examples
+    --------
+    >>> t = np.linspace(0.0, np.pi, 50)
+    >>> zigzag_fraction(np.column_stack((np.cos(t), np.sin(t))))
+    0.0
+    >>> zigzag_fraction(np.array([[0, 0], [1, 1], [2, 0], [3, 1], [4, 0]], dtype=float))
+    1.0
+    """
+    d = np.diff(np.asarray(points, dtype=np.float64), axis=0)
+    turn = np.sign(d[:-1, 0] * d[1:, 1] - d[:-1, 1] * d[1:, 0])
+    turn = turn[turn != 0]
+    if len(turn) < 3:
+        return 0.0
+    return float(np.mean(turn[1:] != turn[:-1]))
+
+
+def _affine(matrix, offset) -> tuple[np.ndarray, np.ndarray]:
+    """``matrix`` as ``(2, 2)`` and ``offset`` as ``(2,)`` float64 arrays."""
+    return (np.asarray(matrix, dtype=np.float64).reshape(2, 2),
+            np.asarray(offset, dtype=np.float64).reshape(2))
 
 
 def _unique(values: np.ndarray) -> np.ndarray:
@@ -152,6 +230,70 @@ class Curve:
     def end(self) -> np.ndarray:
         """Last point, ``(2,)``."""
         return self.at_fractions(np.array([1.0]))[0]
+
+    @property
+    def ends(self) -> tuple[np.ndarray, np.ndarray]:
+        """Exact first and last point, ``(2,)`` float64 each, units.
+
+        Unlike :attr:`start` and :attr:`end` (evaluated at fractions 0 and
+        1), the stored points where a kind has them (polyline vertices,
+        the end control points of a clamped B-spline).
+        """
+        return self.start, self.end
+
+    def reversed(self) -> Curve:  # pragma: no cover - abstract
+        """The same curve run the other way, of the same kind."""
+        raise NotImplementedError
+
+    def transformed(self, matrix, offset=(0.0, 0.0), tol: float = 1e-3) -> Curve:  # pragma: no cover - abstract
+        """The image of the curve under the affine map ``p -> matrix @ p + offset``.
+
+        Parameters
+        ----------
+        matrix : (2, 2) array_like
+        offset : (2,) array_like
+            Units of the result.
+        tol : float
+            Chordal error of a polyline standing for an image that is not
+            of the same kind (an arc under a non-uniform map), in the units
+            of the result.
+
+        Returns
+        -------
+        Curve
+            Exact for every map where the kind allows it (polylines and
+            B-splines always, arcs under similarities).
+        """
+        raise NotImplementedError
+
+    def scaled(self, factor: float) -> Curve:
+        """The curve scaled by ``factor`` about the origin (a change of units)."""
+        return self.transformed(factor * np.eye(2))
+
+    def with_end_moved(self, at_end: bool, point) -> Curve | None:
+        """The curve with its first (or last, ``at_end``) point exactly at ``point`` ``(2,)``.
+
+        For closing tiny gaps when pieces are joined. None when the kind
+        cannot move an end alone (an arc).
+        """
+        return None
+
+    def joined(self, other: Curve) -> Curve | None:
+        """One curve of this kind for ``self`` then ``other`` (which starts where self ends), or None."""
+        return None
+
+    def simplified(self, tol: float) -> Curve:
+        """The curve with its polyline runs simplified within ``tol`` (ends kept); other kinds as they are."""
+        return self
+
+    @property
+    def point_count(self) -> int:
+        """Points that define the curve for a report: a polyline's vertices, 1 per other piece."""
+        return 1
+
+    def parts(self) -> tuple[Curve, ...]:
+        """The curves that are not chains, in order: ``(self,)`` for every kind but :class:`Chain`."""
+        return (self,)
 
     def at_fractions(self, s: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
         """Points at normalised arc lengths ``s`` (``(K,)`` in [0, 1]); returns ``(K, 2)``."""
@@ -251,6 +393,39 @@ class Polyline(Curve):
     def to_json(self):
         return {"polyline": self.vertices.tolist()}
 
+    @property
+    def ends(self):
+        return self.vertices[0], self.vertices[-1]
+
+    def reversed(self):
+        return Polyline(self.vertices[::-1])
+
+    def transformed(self, matrix, offset=(0.0, 0.0), tol=1e-3):
+        m, b = _affine(matrix, offset)
+        return Polyline(self.vertices @ m.T + b)
+
+    def with_end_moved(self, at_end, point):
+        v = self.vertices.copy()
+        v[-1 if at_end else 0] = point
+        return Polyline(v)
+
+    def joined(self, other):
+        if not isinstance(other, Polyline):
+            return None
+        return Polyline(np.concatenate((self.vertices, other.vertices[1:])))
+
+    def simplified(self, tol):
+        if len(self.vertices) <= 2:
+            return self
+        import shapely  # imported here: start-up time of the command line
+
+        line = shapely.simplify(shapely.LineString(self.vertices), tol, preserve_topology=True)
+        return Polyline(np.asarray(line.coords, dtype=np.float64)[:, :2])
+
+    @property
+    def point_count(self):
+        return len(self.vertices)
+
 
 def _douglas_peucker(points: np.ndarray, tol: float) -> np.ndarray:
     """Indices of the vertices kept by Douglas-Peucker within ``tol`` (ends always kept).
@@ -332,6 +507,32 @@ class Arc(Curve):
         (cx, cy), r = self.center, self.radius
         a0, a1 = math.radians(self.start_deg), math.radians(self.end_deg)
         return 0.5 * (r * cx * (math.sin(a1) - math.sin(a0)) - r * cy * (math.cos(a1) - math.cos(a0)) + r * r * (a1 - a0))
+
+    @property
+    def ends(self):
+        a = np.radians([self.start_deg, self.end_deg])
+        pts = self.center + self.radius * np.column_stack((np.cos(a), np.sin(a)))
+        return pts[0], pts[1]
+
+    def reversed(self):
+        return Arc(self.center, self.radius, self.end_deg, self.start_deg)
+
+    def transformed(self, matrix, offset=(0.0, 0.0), tol=1e-3):
+        # An arc stays an arc under a similarity (uniform scale, rotation,
+        # reflection); under any other map it becomes an ellipse, given back
+        # as a polyline within tol of it.
+        m, b = _affine(matrix, offset)
+        mtm = m.T @ m
+        scale2 = 0.5 * (mtm[0, 0] + mtm[1, 1])
+        if abs(mtm[0, 1]) <= 1e-12 * scale2 and abs(mtm[0, 0] - mtm[1, 1]) <= 1e-12 * scale2:
+            det = float(np.linalg.det(m))
+            ms = m @ (self.start - self.center)
+            a0 = math.degrees(math.atan2(ms[1], ms[0]))
+            sweep = (self.end_deg - self.start_deg) * (1.0 if det > 0 else -1.0)
+            return Arc(m @ self.center + b, self.radius * math.sqrt(abs(det)), a0, a0 + sweep)
+        stretch = math.sqrt(float(np.linalg.eigvalsh(mtm).max()))  # largest stretch of the map
+        pts, _ = self.discretise(tol / stretch)
+        return Polyline(pts @ m.T + b)
 
     def to_json(self):
         return {
@@ -470,6 +671,23 @@ class BSpline(Curve):
         integrand = (p[:, 0] * d[:, 1] - p[:, 1] * d[:, 0]).reshape(-1, len(_GL_X))
         return 0.5 * float(np.sum(half * (integrand @ _GL_W)))
 
+    @property
+    def ends(self):
+        return self.control_points[0], self.control_points[-1]
+
+    def reversed(self):
+        t = self.knots
+        return BSpline(self.degree, self.control_points[::-1], (t[0] + t[-1] - t)[::-1])
+
+    def transformed(self, matrix, offset=(0.0, 0.0), tol=1e-3):
+        m, b = _affine(matrix, offset)  # B-splines are affine invariant
+        return BSpline(self.degree, self.control_points @ m.T + b, self.knots)
+
+    def with_end_moved(self, at_end, point):
+        cp = self.control_points.copy()
+        cp[-1 if at_end else 0] = point
+        return BSpline(self.degree, cp, self.knots)
+
     def to_json(self):
         return {
             "bspline": {
@@ -547,6 +765,35 @@ class Chain(Curve):
 
     def to_json(self):
         return {"chain": [p.to_json() for p in self.pieces]}
+
+    @property
+    def ends(self):
+        return self.pieces[0].ends[0], self.pieces[-1].ends[1]
+
+    def reversed(self):
+        return Chain(tuple(p.reversed() for p in self.pieces[::-1]))
+
+    def transformed(self, matrix, offset=(0.0, 0.0), tol=1e-3):
+        return Chain(tuple(p.transformed(matrix, offset, tol) for p in self.pieces))
+
+    def with_end_moved(self, at_end, point):
+        i = -1 if at_end else 0
+        moved = self.pieces[i].with_end_moved(at_end, point)
+        if moved is None:
+            return None
+        pieces = list(self.pieces)
+        pieces[i] = moved
+        return Chain(tuple(pieces))
+
+    def simplified(self, tol):
+        return Chain(tuple(p.simplified(tol) for p in self.pieces))
+
+    @property
+    def point_count(self):
+        return sum(p.point_count for p in self.pieces)
+
+    def parts(self):
+        return tuple(q for p in self.pieces for q in p.parts())
 
 
 _PROBES = np.array([0.25, 0.5, 0.75])  # where an interval's chordal error is measured

@@ -40,6 +40,8 @@ from functools import cached_property
 import numpy as np
 import shapely
 
+from .curves import cross as _cross
+from .curves import zigzag_fraction
 from .errors import MeshError
 
 __all__ = [
@@ -64,6 +66,8 @@ SPLAY_EXTEND_DEG = 45.0
 # gives a valid strip when none reaches it): squeezed elements above
 # concave corners are spread out before they can fold.
 MIN_RELATIVE_JACOBIAN = 0.2
+# A lower curve of at least this many points turning side at more than this fraction of them is a scan's noise.
+SCAN_MIN_POINTS, SCAN_ZIGZAG = 20, 0.3
 
 
 @dataclass(frozen=True, eq=False)
@@ -141,10 +145,6 @@ def quad_jacobians(points: np.ndarray, quads: np.ndarray) -> np.ndarray:
     e_next = np.roll(p, -1, axis=1) - p
     e_prev = np.roll(p, 1, axis=1) - p
     return e_next[..., 0] * e_prev[..., 1] - e_next[..., 1] * e_prev[..., 0]
-
-
-def _cross(a, b):
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 def grid_jacobians(nodes: np.ndarray, orientation: int = 1) -> np.ndarray:
@@ -593,10 +593,15 @@ def _grow(base, height, orientation, cover, off_base, tol, max_layers, smoother,
             fallback = fallback if fallback is not None else fallback_offset
         new = good if good is not None else fallback
         if new is None:
+            if len(base) >= SCAN_MIN_POINTS and zigzag_fraction(base) > SCAN_ZIGZAG:  # a scan's noise, not a bend
+                advice = (f"the lower curve is a noisy polyline ({len(base)} points, turning left and right at "
+                          f"{100 * zigzag_fraction(base):.0f}% of them, as a scan does): simplify it within a small "
+                          "tolerance (simplify=TOL when reading the drawing, or Curve.simplified(TOL))")
+            else:
+                advice = "the lower curve bends too sharply for this element size: lower options.element_size or smooth the lower curve"
             raise MeshError(
                 f"layer {len(layers)} of the initial mesh folds over whatever the smoothing "
-                f"(element height {height:.6g}); the lower curve bends too sharply for this "
-                "element size: lower options.element_size or smooth the lower curve"
+                f"(element height {height:.6g}); {advice}"
             )
         layers.append(new)
         todo = todo[~_in_strip(below, new, orientation, cover[todo], tol)]

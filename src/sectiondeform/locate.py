@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .curves import cross as _cross
 from .errors import LocateError
 
 __all__ = ["Location", "locate", "place", "bilinear_weights", "inverse_bilinear"]
@@ -82,10 +83,6 @@ def place(points: np.ndarray, location: Location) -> np.ndarray:
     """
     w, nodes = location.weights, location.nodes
     return np.column_stack([np.einsum("pk,pk->p", w, points[:, d][nodes]) for d in (0, 1)])
-
-
-def _cross(a, b):
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 def inverse_bilinear(quad_pts: np.ndarray, x: np.ndarray) -> np.ndarray:

@@ -7,6 +7,7 @@ section over the initial one, with the areas written on it.
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -15,14 +16,22 @@ from .errors import require
 from .io import check_figure_path
 from .models.base import MeshData
 
-__all__ = ["save_figure", "write_figure", "draw_result", "draw_mesh"]
+__all__ = ["save_figure", "write_figure", "draw_result", "draw_mesh", "new_figure"]
 
 
 
-def _pyplot():
-    mpl = require("matplotlib", "plot", "drawing a figure")
-    mpl.use("Agg")
-    return require("matplotlib.pyplot", "plot", "drawing a figure")
+def new_figure(**kw):
+    """A matplotlib figure of its own (not pyplot's), so the user's backend is left alone.
+
+    Keywords go to :class:`matplotlib.figure.Figure` (``figsize``, ``layout``...).
+    """
+    require("matplotlib", "plot", "drawing a figure")
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(**kw)
+    FigureCanvasAgg(fig)
+    return fig
 
 
 def draw_mesh(ax, mesh: MeshData, **style) -> None:
@@ -42,9 +51,8 @@ def _closed(points: np.ndarray) -> np.ndarray:
 
 def draw_result(result, fig=None):
     """Draw the four panels of a :class:`~sectiondeform.result.Result`; returns the figure."""
-    plt = _pyplot()
     if fig is None:
-        fig = plt.figure(figsize=(11, 8), layout="constrained")
+        fig = new_figure(figsize=(11, 8), layout="constrained")
     axes = fig.subplots(2, 2, sharex=True, sharey=True).ravel()
     u = result.units
     low0, up0, low1 = result.initial_lower, result.initial_upper, result.lower
@@ -94,11 +102,11 @@ def write_figure(fig, path) -> Path:
     from .io.json import atomic_write
 
     path = check_figure_path(path)
-    plt = _pyplot()
     try:
         atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=130, format=path.suffix[1:].lower()))
     finally:
-        plt.close(fig)
+        if fig.canvas.manager is not None:  # a pyplot figure of the caller's: pyplot forgets it
+            sys.modules["matplotlib.pyplot"].close(fig)
     return path
 
 

@@ -37,12 +37,11 @@ import numpy as np
 import shapely
 
 from .case import Case
-from .curves import Curve
+from .curves import DEFAULT_CHORDAL_FRACTION, Curve, polygon_area
 from .errors import GeometryError
 
 __all__ = ["Section", "build_section", "polygon_area", "mesh_scale", "DEFAULT_CHORDAL_FRACTION"]
 
-DEFAULT_CHORDAL_FRACTION = 1e-4
 JOIN_FRACTION = 1e-6
 AREA_FRACTION = 1e-5
 AREA_REFINEMENTS = 8
@@ -64,29 +63,6 @@ def mesh_scale(area: float, lower_length: float) -> float:
     (4.0, 6.0)
     """
     return min(area / lower_length, math.sqrt(area))
-
-
-def polygon_area(points: np.ndarray) -> float:
-    """Signed area of a closed polygon (shoelace), positive when counter-clockwise.
-
-    Parameters
-    ----------
-    points : (N, 2) float64 ndarray
-        Vertices in order; the closing edge back to the first is implied.
-
-    Returns
-    -------
-    float
-        Area in units².
-
-    Examples
-    --------
-    >>> polygon_area(np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]))
-    2.0
-    """
-    x, y = points[:, 0], points[:, 1]
-    x1, y1 = np.concatenate((x[1:], x[:1])), np.concatenate((y[1:], y[:1]))  # np.roll(., -1), cheaper
-    return 0.5 * float(np.dot(x, y1) - np.dot(x1, y))
 
 
 @dataclass(frozen=True, eq=False)

@@ -14,8 +14,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..io import add_input_args, input_options, read_case, write_case
+from ..io import write_case
 from ._common import apply_overrides
+from ._io_args import add_input_args, read_input_case
 
 
 def add_args(parser) -> None:
@@ -27,7 +28,7 @@ def add_args(parser) -> None:
 
 def run(args) -> int:
     report: list[str] = []
-    case = apply_overrides(read_case(args.input, **input_options(args, report)), args)
+    case = apply_overrides(read_input_case(args.input, args, report), args)
     write_case(args.output, case)
     for line in report:
         print(f"  {line}")

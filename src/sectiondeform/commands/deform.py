@@ -13,17 +13,9 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..deform import Deformer
-from ..io import (
-    add_input_args,
-    add_output_args,
-    check_outputs,
-    input_options,
-    output_options,
-    read_case,
-    write_meshes,
-    write_result,
-)
+from ..io import write_result
 from ._common import add_model_args, apply_overrides, summary
+from ._io_args import add_input_args, add_output_args, check_outputs, output_options, read_input_case, write_meshes
 
 
 def add_args(parser) -> None:
@@ -40,7 +32,7 @@ def add_args(parser) -> None:
 def run(args) -> int:
     check_outputs(args)
     report: list[str] = []
-    case = apply_overrides(read_case(args.case, **input_options(args, report)), args)
+    case = apply_overrides(read_input_case(args.case, args, report), args)
     result = Deformer(case, element_size=args.element_size).deform()
     options = {"meshes": False} if args.no_meshes and args.output.suffix.lower() == ".json" else output_options(args, args.output)
     write_result(args.output, result, **options)

@@ -51,7 +51,7 @@ def run(args) -> int:
     if args.output is not None:
         _check_output(args.output, "--output")
     if args.plot is not None:
-        check_figure_path(args.plot)
+        check_figure_path(args.plot, "--plot")
     mesh_size = DEFAULT_MESH_SIZE if args.mesh_size is None else args.mesh_size
     validation = validate_case(
         case,

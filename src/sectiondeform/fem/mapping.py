@@ -25,6 +25,7 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
+from ..curves import polygon_area
 from ..errors import LawError
 from .elements import p2_gradients, p2_values
 from .mesh import CoarseMesh
@@ -166,8 +167,7 @@ def correct_area(lower: np.ndarray, upper: np.ndarray, signed_area: float) -> tu
     length = np.sqrt(tang[:, 0] ** 2 + tang[:, 1] ** 2)
     nrm = np.column_stack((tang[:, 1], -tang[:, 0])) / length[:, None]
     ring = np.concatenate((lower, inner))
-    x, y = ring[:, 0], ring[:, 1]
-    area = 0.5 * float(x[:-1] @ y[1:] - x[1:] @ y[:-1] + x[-1] * y[0] - x[0] * y[-1])
+    area = polygon_area(ring)
     # A(k) = area + k c1 + k^2 c2 with c1 = sum n_i x (P_i+1 - P_i-1) / 2 (summation by parts).
     c0 = area - signed_area
     c1 = 0.5 * float(length.sum())  # n x tang = |tang| for the normal (t_y, -t_x)

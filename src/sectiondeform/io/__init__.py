@@ -26,8 +26,7 @@ from __future__ import annotations
 import importlib
 from pathlib import Path
 
-from ..errors import CaseError, require
-from .drawing import add_input_args, input_options
+from ..errors import CaseError
 
 __all__ = [
     "read_case",
@@ -36,13 +35,10 @@ __all__ = [
     "CASE_READERS",
     "CASE_WRITERS",
     "RESULT_WRITERS",
-    "add_input_args",
-    "input_options",
-    "add_output_args",
-    "check_outputs",
     "check_output_path",
     "check_figure_path",
-    "output_options",
+    "MESH_FORMATS",
+    "FIGURE_FORMATS",
 ]
 
 # extension -> (module, function); modules are imported on first use.
@@ -104,7 +100,7 @@ def check_output_path(path, option: str, formats, what: str = "output") -> Path:
     ----------
     path : str or Path
     option : str
-        The command-line option or field that named it, for the message.
+        What named the path (a field, or the command line's option), for the message.
     formats : sequence of str
         Accepted extensions, with the dot.
     what : str
@@ -123,66 +119,6 @@ def check_output_path(path, option: str, formats, what: str = "output") -> Path:
     return path
 
 
-def check_figure_path(path) -> Path:
-    """:func:`check_output_path` for a ``--plot`` figure (.png, .svg, .pdf)."""
-    return check_output_path(path, "--plot", FIGURE_FORMATS, "figure")
-
-
-def check_outputs(args) -> None:
-    """Check every output path's format before any work is done.
-
-    Raises
-    ------
-    CaseError
-        Naming the option and the formats it accepts, so that a bad name
-        never leaves the other outputs half written.
-    """
-    if getattr(args, "output", None) is not None:
-        check_output_path(args.output, "--output", RESULT_WRITERS)
-    for option in ("mesh_out", "initial_mesh_out"):
-        for p in getattr(args, option, None) or []:
-            check_output_path(p, f"--{option.replace('_', '-')}", MESH_FORMATS, "mesh")
-    plot = getattr(args, "plot", None)
-    if plot is not None:
-        check_figure_path(plot)
-    # The optional packages the outputs need, before anything is written.
-    needs = {".dxf": ("ezdxf", "cad"), **{ext: ("meshio", "cad") for ext in MESH_FORMATS}}
-    paths = [getattr(args, "output", None), *(getattr(args, "mesh_out", None) or []),
-             *(getattr(args, "initial_mesh_out", None) or [])]
-    for p in paths:
-        if p is not None and p.suffix.lower() in needs:
-            module, extra = needs[p.suffix.lower()]
-            require(module, extra, f"writing {p.suffix} files")
-    if plot is not None:
-        require("matplotlib", "plot", "drawing a figure")
-
-
-def add_output_args(parser) -> None:
-    """Add the output options of ``deform``: ``--mesh-out``, ``--initial-mesh-out``, ``--dxf-spline``."""
-    g = parser.add_argument_group("output")
-    g.add_argument("--mesh-out", type=Path, action="append", default=[], metavar="FILE",
-                   help="also write the final mesh (.vtu, .vtk, .msh, .inp); repeatable")
-    g.add_argument("--initial-mesh-out", type=Path, action="append", default=[], metavar="FILE",
-                   help="also write the initial mesh (.vtu, .vtk, .msh, .inp); repeatable")
-    g.add_argument("--dxf-spline", action="store_true",
-                   help="DXF output: the deformed section as SPLINEs fitted within the chordal error")
-
-
-def output_options(args, path: Path) -> dict:
-    """Writer options for ``path`` from parsed arguments (see :func:`add_output_args`)."""
-    ext = Path(path).suffix.lower()
-    if ext == ".dxf" and getattr(args, "dxf_spline", False):
-        return {"spline": True, "chordal_error": getattr(args, "chordal_error", None)}
-    return {}
-
-
-def write_meshes(args, result) -> list[Path]:
-    """Write the meshes asked for by ``--mesh-out`` and ``--initial-mesh-out``; the paths written."""
-    from .meshes import write_mesh
-
-    written = []
-    for which, paths in (("final", getattr(args, "mesh_out", [])), ("initial", getattr(args, "initial_mesh_out", []))):
-        for p in paths:
-            write_mesh(p, result, which)
-            written.append(p)
-    return written
+def check_figure_path(path, field: str = "figure") -> Path:
+    """:func:`check_output_path` for a figure (.png, .svg, .pdf); ``field`` names it in messages."""
+    return check_output_path(path, field, FIGURE_FORMATS, "figure")

@@ -27,9 +27,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..curves import BSpline, Chain, Curve, Polyline
+from ..curves import Chain, Curve, Polyline
 from ..errors import CaseError
-from .pieces import Piece, curve_ends, merge_polylines, reverse_curve
+from .pieces import Piece, merge_runs
 
 __all__ = ["ChainReport", "Path", "connect", "one_chain", "fmt_point"]
 
@@ -103,18 +103,14 @@ class Path:
     @property
     def ends(self) -> tuple[np.ndarray, np.ndarray]:
         """First and last point, ``(2,)`` each."""
-        return curve_ends(self.curve)
-
-
-def _piece_length_lower_bound(curve: Curve, a: np.ndarray, b: np.ndarray) -> float:
-    if isinstance(curve, Polyline):
-        return float(np.hypot(*np.diff(curve.vertices, axis=0).T).sum())
-    return curve.length
+        return self.curve.ends
 
 
 def _greedy_pairs(points: np.ndarray, radius: float, forbid) -> list[tuple[int, int, float]]:
     """Pairs of rows of ``points`` within ``radius``, nearest first, each row once."""
-    from scipy.spatial import cKDTree  # imported here: start-up time of the command line
+    from scipy.spatial import (
+        cKDTree,  # imported here: start-up time of the command line
+    )
 
     if len(points) < 2 or radius <= 0:
         return []
@@ -169,14 +165,16 @@ def connect(pieces: list[Piece], where: str, tol: float, snap: float = 0.0, clos
     >>> len(paths), paths[0].curve.vertices.tolist()
     (1, [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [2.0, 1.0]])
     """
-    from scipy.sparse import coo_matrix  # imported here: start-up time of the command line
+    from scipy.sparse import (
+        coo_matrix,  # imported here: start-up time of the command line
+    )
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
 
     report = ChainReport(pieces=len(pieces))
     if not pieces:
         return [], report
-    ends = [curve_ends(p.curve) for p in pieces]
+    ends = [p.curve.ends for p in pieces]
     starts = np.array([e[0] for e in ends], dtype=np.float64)
     stops = np.array([e[1] for e in ends], dtype=np.float64)
     m = len(pieces)
@@ -193,7 +191,7 @@ def connect(pieces: list[Piece], where: str, tol: float, snap: float = 0.0, clos
     # Collapsed pieces: both ends at one node, and shorter than the tolerance.
     loop = np.flatnonzero(node[:m] == node[m:])
     for k in loop:
-        if _piece_length_lower_bound(pieces[k].curve, starts[k], stops[k]) <= 2 * tol:
+        if pieces[k].curve.length <= 2 * tol:
             keep[k] = False
             report.collapsed += 1
     # Duplicates: same pair of nodes and the same middle point.
@@ -234,12 +232,6 @@ def connect(pieces: list[Piece], where: str, tol: float, snap: float = 0.0, clos
             f"branch at {fmt_point(pts[at[0]])}: {int(deg[b])} pieces meet there ({names}); "
             "a curve must be one chain without forks (remove overlapping or stray pieces)",
         )
-
-    def node_coords(nodes):
-        out = np.zeros((n_nodes, 2))
-        cnt = np.bincount(node[alive], minlength=n_nodes)
-        np.add.at(out, node[alive], pts[alive])
-        return out[nodes] / np.maximum(cnt[nodes], 1)[:, None]
 
     def free_endpoints():
         d = degrees()
@@ -311,32 +303,24 @@ def connect(pieces: list[Piece], where: str, tol: float, snap: float = 0.0, clos
 
 
 def _fit_ends(curves: list[Curve], closed: bool, scale: float) -> list[Curve]:
-    """Make each curve start exactly where the one before ends (moving polyline or spline ends)."""
+    """Make each curve start exactly where the one before ends.
+
+    The next curve's start is moved if its kind can move an end alone
+    (polyline vertex, spline control point), else the previous curve's end;
+    between two arcs a visible gap is bridged with a straight piece.
+    """
     out = [curves[0]]
     for c in curves[1:] + ([None] if closed and len(curves) > 1 else []):
         prev = out[-1]
         nxt = c if c is not None else out[0]
-        p_end, n_start = curve_ends(prev)[1], curve_ends(nxt)[0]
+        p_end, n_start = prev.ends[1], nxt.ends[0]
         fixed = None
         if np.array_equal(p_end, n_start):
             fixed = nxt
-        elif isinstance(nxt, Polyline):
-            v = nxt.vertices.copy()
-            v[0] = p_end
-            fixed = Polyline(v)
-        elif isinstance(prev, Polyline):
-            v = prev.vertices.copy()
-            v[-1] = n_start
-            out[-1] = Polyline(v)
-            fixed = nxt
-        elif isinstance(nxt, BSpline):
-            cp = nxt.control_points.copy()
-            cp[0] = p_end
-            fixed = BSpline(nxt.degree, cp, nxt.knots)
-        elif isinstance(prev, BSpline):
-            cp = prev.control_points.copy()
-            cp[-1] = n_start
-            out[-1] = BSpline(prev.degree, cp, prev.knots)
+        elif (moved := nxt.with_end_moved(False, p_end)) is not None:
+            fixed = moved
+        elif (moved := prev.with_end_moved(True, n_start)) is not None:
+            out[-1] = moved
             fixed = nxt
         else:  # two arcs: bridge a visible gap with a straight piece
             if np.hypot(*(p_end - n_start)) > 1e-9 * scale:
@@ -353,10 +337,10 @@ def _assemble(pieces: list[Piece], seq: list[int], m: int, closed: bool) -> Path
     curves = []
     for e in seq:
         c = pieces[e % m].curve
-        curves.append(reverse_curve(c) if e >= m else c)
-    pts = np.concatenate([np.vstack(curve_ends(c)) for c in curves])
+        curves.append(c.reversed() if e >= m else c)
+    pts = np.concatenate([np.vstack(c.ends) for c in curves])
     scale = float(np.hypot(*np.ptp(pts, axis=0))) or 1.0
-    curves = merge_polylines(_fit_ends(curves, closed, scale))
+    curves = merge_runs(_fit_ends(curves, closed, scale))
     curve = curves[0] if len(curves) == 1 else Chain(tuple(curves))
     return Path(curve, closed, tuple(pieces[e % m].source for e in seq))
 
@@ -399,8 +383,8 @@ def one_chain(pieces: list[Piece], where: str, tol: float, snap: float = 0.0, cl
                 where,
                 f"the pieces form {len(paths)} separate chains, not one; the nearest gap is "
                 f"{d[i, j]:.4g} between {fmt_point(ends[i])} and {fmt_point(ends[j])}; join them in the "
-                f"drawing, or allow it with --snap {d[i, j] * 1.01:.3g} (move the ends together) or "
-                f"--close-gap {d[i, j] * 1.01:.3g} (add a straight piece)",
+                f"drawing, or allow it with snap={d[i, j] * 1.01:.3g} (move the ends together) or "
+                f"close_gap={d[i, j] * 1.01:.3g} (add a straight piece)",
             )
         raise CaseError(where, f"the pieces form {len(paths)} separate chains ({sum(p.closed for p in paths)} closed), not one")
     path = paths[0]
@@ -410,7 +394,7 @@ def one_chain(pieces: list[Piece], where: str, tol: float, snap: float = 0.0, cl
         raise CaseError(
             where,
             f"the contour is not closed: a gap of {gap:.4g} between {fmt_point(a)} and {fmt_point(b)}; "
-            f"close it in the drawing or with --close-gap {gap * 1.01:.3g}",
+            f"close it in the drawing or with close_gap={gap * 1.01:.3g}",
         )
     if closed is False and path.closed:
         raise CaseError(where, "is a closed loop; an open curve is expected here")

@@ -15,7 +15,7 @@ written by this package stores A and A' and restores them exactly.
 if there is no such name, every piece that is not on the target) must form
 one closed loop. It is turned into a polyline within the chordal error; A
 and B are the points of the loop nearest to the two points given (inserted
-as vertices); the lower curve is the way round from A to B named by
+as vertices; a point farther than ``split_tol`` from the loop is an error); the lower curve is the way round from A to B named by
 ``lower_side`` (``"shorter"``, the default, ``"longer"``, ``"ccw"`` or
 ``"cw"`` around the section) and the upper curve the rest, from B to A.
 
@@ -32,41 +32,53 @@ Messy drawings: ``bbox`` keeps only the pieces with both ends inside it;
 with a straight piece; ``simplify`` simplifies polylines within that
 distance (Douglas-Peucker, shapely; A and B kept). Every such change is
 reported. All lengths are in drawing units; ``units`` converts the case
-to other units at the end.
+to other units at the end. The options are a :class:`DrawingOptions`.
 """
 
 from __future__ import annotations
 
-import argparse
+import difflib
 import math
+from collections.abc import Mapping
+from dataclasses import dataclass, fields, replace
 from pathlib import Path
+from types import MappingProxyType
 
 import numpy as np
 
 from ..case import Case, case_from_dict, read_json
-from ..curves import Arc, Chain, Curve, Polyline, curve_from_json
+from ..curves import (
+    DEFAULT_CHORDAL_FRACTION,
+    Arc,
+    Curve,
+    Polyline,
+    curve_from_json,
+    polygon_area,
+)
 from ..errors import CaseError
-from ..laws import AreaRatio, law_from_json
+from ..laws import Law, law_from_json
 from .chaining import fmt_point, one_chain
-from .pieces import curve_ends, curve_points, pin_ends, reverse_curve, transform_curve
+from .pieces import Drawing, Piece, pin_ends
+from .units import mm_per_unit
 
 __all__ = [
+    "DrawingOptions",
     "case_from_drawing",
+    "convert_units",
     "make_target_arc",
     "read_json_case",
-    "add_input_args",
-    "input_options",
     "ROLES",
-    "MM_PER_UNIT",
+    "SIDES",
+    "SPLIT_FRACTION",
 ]
 
 ROLES = ("lower", "upper", "target", "contour")
 SIDES = ("shorter", "longer", "ccw", "cw")
-MM_PER_UNIT = {
-    "mm": 1.0, "cm": 10.0, "dm": 100.0, "m": 1000.0, "km": 1e6, "um": 1e-3, "nm": 1e-6,
-    "in": 25.4, "ft": 304.8, "yd": 914.4, "mil": 0.0254, "uin": 25.4e-6, "pt": 25.4 / 72, "pc": 25.4 / 6,
-    "px": 25.4 / 96,
-}
+# Largest distance of a split point from the contour, as a fraction of the contour's diagonal.
+SPLIT_FRACTION = 0.02
+# The options a case JSON's "drawing" object may give (the others come from the case itself).
+JSON_KEYS = ("layers", "split", "split_tol", "lower_side", "target_arc", "bbox", "snap", "close_gap", "join_tol",
+             "simplify", "units")
 
 
 def _say(report, line: str) -> None:
@@ -74,9 +86,147 @@ def _say(report, line: str) -> None:
         report.append(line)
 
 
-def _signed_area(points: np.ndarray) -> float:
-    x, y = points[:, 0], points[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+def _length(value, name: str, allow_none: bool = True) -> float | None:
+    """A finite length >= 0 (or None), else a one-line error naming ``name``."""
+    if value is None and allow_none:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
+        raise CaseError(name, f"must be a finite number >= 0, got {value!r}")
+    return float(value)
+
+
+def _points(value, name: str, count: int) -> tuple:
+    try:
+        arr = np.array(value, dtype=np.float64).reshape(count, 2)
+    except (TypeError, ValueError, OverflowError):
+        raise CaseError(name, f"expected {count} points [x, y], got {value!r}") from None
+    if not np.isfinite(arr).all():
+        raise CaseError(name, f"coordinates must be finite numbers, got {value!r}")
+    return tuple(tuple(p) for p in arr.tolist())
+
+
+@dataclass(frozen=True)
+class DrawingOptions:
+    """How the pieces of a drawing become a case (see the module docstring).
+
+    Every length is in drawing units. Unknown keys are refused by
+    :meth:`from_mapping`, naming the nearest known one.
+
+    Attributes
+    ----------
+    layers : Mapping, optional
+        Role (``lower``, ``upper``, ``target``, ``contour``) -> name.
+    split : ((2,), (2,)), optional
+        Points near A and B on a single closed contour.
+    split_tol : float, optional
+        Largest distance of a split point from the contour; default
+        :data:`SPLIT_FRACTION` of the contour's diagonal.
+    lower_side : str
+        ``"shorter"`` (default), ``"longer"``, ``"ccw"`` or ``"cw"``.
+    target_arc : float, optional
+        Sagitta of the built-in target arc.
+    bbox : (4,) float, optional
+        ``xmin, ymin, xmax, ymax``: keep pieces with both ends inside.
+    snap, close_gap : float
+        Gap snapping and closing distances (0: never).
+    join_tol : float, optional
+        End points closer than this are one point; default 1e-6 of the
+        selection's diagonal.
+    simplify : float, optional
+        Simplify polylines within this distance.
+    chordal_error : float, optional
+        Chordal error of the polylines made from curves; also written to
+        the case's options.
+    units : str, optional
+        Convert the case to these units (``"mm"``, ``"in"``...).
+    law : Law, optional
+        Overrides the law stored in the drawing.
+    name : str, optional
+    target : Curve, optional
+        Target given elsewhere (a case JSON), drawing units.
+    """
+
+    layers: Mapping | None = None
+    split: tuple | None = None
+    split_tol: float | None = None
+    lower_side: str = "shorter"
+    target_arc: float | None = None
+    bbox: tuple | None = None
+    snap: float = 0.0
+    close_gap: float = 0.0
+    join_tol: float | None = None
+    simplify: float | None = None
+    chordal_error: float | None = None
+    units: str | None = None
+    law: Law | None = None
+    name: str | None = None
+    target: Curve | None = None
+
+    def __post_init__(self):
+        set_ = lambda key, value: object.__setattr__(self, key, value)  # noqa: E731 - frozen
+        if self.layers is not None:
+            if not isinstance(self.layers, Mapping):
+                raise CaseError("layers", f"expected a mapping of role to name, got {type(self.layers).__name__}")
+            for role, value in self.layers.items():
+                if role not in ROLES:
+                    raise CaseError("layers", f"unknown role {role!r}; use {', '.join(ROLES)}")
+                if not isinstance(value, str) or not value:
+                    raise CaseError(f"layers.{role}", f"expected a name, got {value!r}")
+            set_("layers", MappingProxyType(dict(self.layers)))
+        if self.split is not None:
+            set_("split", _points(self.split, "split", 2))
+        if self.bbox is not None:
+            box = _points(self.bbox, "bbox", 2)
+            (x0, y0), (x1, y1) = box
+            if not (x0 < x1 and y0 < y1):
+                raise CaseError("bbox", f"expected xmin, ymin, xmax, ymax with xmin < xmax and ymin < ymax, got {list(self.bbox)}")
+            set_("bbox", (x0, y0, x1, y1))
+        if self.lower_side not in SIDES:
+            raise CaseError("lower_side", f"unknown side {self.lower_side!r}; use one of {', '.join(SIDES)}")
+        for key in ("snap", "close_gap"):
+            set_(key, _length(getattr(self, key) or 0.0, key, allow_none=False))
+        for key in ("split_tol", "join_tol", "simplify", "chordal_error"):
+            set_(key, _length(getattr(self, key), key))
+        if self.target_arc is not None:
+            t = self.target_arc
+            if isinstance(t, bool) or not isinstance(t, (int, float)) or not math.isfinite(t):
+                raise CaseError("target_arc", f"must be a finite number, got {t!r}")
+            set_("target_arc", float(t))
+        if self.units is not None:
+            mm_per_unit(self.units, "units")
+
+    @classmethod
+    def from_mapping(cls, mapping: Mapping, field: str = "", allowed=None) -> DrawingOptions:
+        """Options from a mapping of names to values; an unknown name is an error naming the nearest one.
+
+        Parameters
+        ----------
+        mapping : Mapping
+            Keys among the attributes of this class; None values are left out.
+        field : str
+            Where the mapping sits (``"drawing"`` in a case JSON), for messages.
+        allowed : sequence of str, optional
+            The keys accepted there; default every attribute.
+
+        Raises
+        ------
+        CaseError
+            An unknown key, or a value out of range.
+
+        Examples
+        --------
+        >>> DrawingOptions.from_mapping({"snapp": 0.1})
+        Traceback (most recent call last):
+        ...
+        sectiondeform.errors.CaseError: snapp: unknown drawing option; did you mean snap?
+        """
+        known = tuple(allowed or (f.name for f in fields(cls)))
+        for key in mapping:
+            if key not in known:
+                close = difflib.get_close_matches(str(key), known, n=1)
+                hint = f"did you mean {close[0]}?" if close else f"use one of {', '.join(known)}"
+                raise CaseError(f"{field}.{key}" if field else str(key), f"unknown drawing option; {hint}")
+        return cls(**{k: v for k, v in mapping.items() if v is not None})
 
 
 def make_target_arc(a, b, length: float, sagitta: float, section_side: float) -> Curve:
@@ -119,14 +269,14 @@ def make_target_arc(a, b, length: float, sagitta: float, section_side: float) ->
     chord = b - a
     c = math.hypot(*chord)
     if c == 0:
-        raise CaseError("--target-arc", "A and B coincide; the lower curve has no chord")
+        raise CaseError("target_arc", "A and B coincide; the lower curve has no chord")
     u = chord / c
     mid = 0.5 * (a + b)
     if sagitta == 0:
         return Polyline(np.vstack((mid - 0.5 * length * u, mid + 0.5 * length * u)))
     ratio = abs(sagitta) / length
     if ratio >= 1.0 / math.pi:
-        raise CaseError("--target-arc", f"the sagitta {sagitta} is too deep for an arc of length {length:.6g}; keep it below {length / math.pi:.6g} (a half circle)")
+        raise CaseError("target_arc", f"the sagitta {sagitta} is too deep for an arc of length {length:.6g}; keep it below {length / math.pi:.6g} (a half circle)")
     theta = brentq(lambda t: (1.0 - math.cos(t)) / (2.0 * t) - ratio, 1e-12, math.pi)
     radius = length / (2.0 * theta)
     towards = section_side * np.array([-u[1], u[0]])
@@ -135,58 +285,218 @@ def make_target_arc(a, b, length: float, sagitta: float, section_side: float) ->
     half = math.degrees(theta)
     arc = Arc(center, radius, phi - half, phi + half)
     if np.dot(arc.end - arc.start, u) < 0:
-        arc = reverse_curve(arc)
+        arc = arc.reversed()
     return arc
 
 
-def _nearest_on_ring(ring: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, int]:
-    """``ring`` ((N, 2), closed implicitly) with the point nearest ``p`` inserted; its index."""
+def _nearest_on_ring(ring: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, int, float]:
+    """``ring`` ((N, 2), closed implicitly) with the point nearest ``p`` inserted; its index and distance."""
     s0, s1 = ring, np.roll(ring, -1, axis=0)
     d = s1 - s0
     dd = np.einsum("ij,ij->i", d, d)
     t = np.clip(np.einsum("ij,ij->i", p - s0, d) / np.where(dd > 0, dd, 1.0), 0.0, 1.0)
     proj = s0 + t[:, None] * d
-    i = int(np.argmin(np.hypot(*(proj - p).T)))
+    dist = np.hypot(*(proj - p).T)
+    i = int(np.argmin(dist))
     q = proj[i]
     if np.array_equal(q, s0[i]):
-        return ring, i
+        return ring, i, float(dist[i])
     if np.array_equal(q, s1[i]):
-        return ring, (i + 1) % len(ring)
-    return np.insert(ring, i + 1, q, axis=0), i + 1
+        return ring, (i + 1) % len(ring), float(dist[i])
+    return np.insert(ring, i + 1, q, axis=0), i + 1, float(dist[i])
 
 
-def _simplify(curve: Curve, tol: float) -> Curve:
-    """Polylines of ``curve`` simplified within ``tol`` (ends kept)."""
-    import shapely
+@dataclass(frozen=True)
+class _Context:
+    """What the steps of :func:`case_from_drawing` share: names and tolerances."""
 
-    if isinstance(curve, Chain):
-        parts = [_simplify(p, tol) for p in curve.pieces]
-        return Chain(tuple(parts))
-    if isinstance(curve, Polyline) and len(curve.vertices) > 2:
-        line = shapely.simplify(shapely.LineString(curve.vertices), tol, preserve_topology=True)
-        return Polyline(np.asarray(line.coords, dtype=np.float64)[:, :2])
-    return curve
+    what: str  # "layer" (DXF) or "id/class" (SVG)
+    roles: Mapping  # role -> name as given
+    tol: float  # join tolerance
+    chord: float  # chordal error of polylines made from curves
+    diag: float  # diagonal of the pieces' ends
+    options: DrawingOptions
+
+    def where(self, role: str) -> str:
+        return f"{self.what} {self.roles[role]}"
+
+    def has(self, pieces, role: str) -> bool:
+        key = self.roles[role].upper()
+        return any(key in p.tags for p in pieces)
+
+    def select(self, pieces, role: str) -> list[Piece]:
+        key = self.roles[role].upper()
+        chosen = [p for p in pieces if key in p.tags]
+        bad = [p for p in chosen if p.curve is None]
+        if bad:
+            raise CaseError(self.where(role), f"unsupported entity {bad[0].source}; use LINE, ARC, CIRCLE, LWPOLYLINE, POLYLINE, SPLINE or ELLIPSE (paths, lines, polylines, polygons, circles in SVG)")
+        return chosen
+
+    def chain(self, pieces, where: str, closed: bool, report):
+        o = self.options
+        path, rep = one_chain(pieces, where, self.tol, o.snap, o.close_gap, closed=closed)
+        for line in rep.lines(where):
+            _say(report, line)
+        return path.curve
 
 
-def _count(curve: Curve) -> int:
-    if isinstance(curve, Chain):
-        return sum(_count(p) for p in curve.pieces)
-    return len(curve.vertices) if isinstance(curve, Polyline) else 1
+def _inside_bbox(pieces, bbox, report) -> list[Piece]:
+    """The pieces with both ends inside ``bbox`` (pieces without a curve are kept, to be refused if used)."""
+    x0, y0, x1, y1 = bbox
+
+    def inside(p):
+        e = np.vstack(p.curve.ends)
+        return np.all((e[:, 0] >= x0) & (e[:, 0] <= x1) & (e[:, 1] >= y0) & (e[:, 1] <= y1))
+
+    kept = [p for p in pieces if p.curve is None or inside(p)]
+    _say(report, f"bbox: kept {sum(p.curve is not None for p in kept)} of {sum(p.curve is not None for p in pieces)} pieces")
+    return kept
+
+
+def _split_ring(ring: np.ndarray, pa: np.ndarray, pb: np.ndarray, lower_side: str, limit: float, where: str):
+    """Lower and upper point runs of a closed ring split at the points nearest ``pa`` and ``pb``.
+
+    Returns ``(lower, upper, lower_length)``; the lower run goes A -> B, the
+    upper one B -> A. A split point farther than ``limit`` from the ring is
+    an error naming the distance.
+    """
+    ring, ia, da = _nearest_on_ring(ring, pa)
+    ring = np.roll(ring, -ia, axis=0)
+    ring, ib, db = _nearest_on_ring(ring, pb)
+    for label, p, d in (("A", pa, da), ("B", pb, db)):
+        if d > limit:
+            raise CaseError("split", f"{label} {fmt_point(p)} is {d:.4g} from the {where}, more than split_tol={limit:.4g}; "
+                                     "give a point on the contour")
+    if ib == 0:
+        raise CaseError("split", f"A {fmt_point(pa)} and B {fmt_point(pb)} fall on the same contour point")
+    forward = ring[: ib + 1]
+    backward = np.vstack((ring[ib:], ring[:1]))[::-1]
+    ccw = polygon_area(ring) > 0
+    lens = [float(np.hypot(*np.diff(w, axis=0).T).sum()) for w in (forward, backward)]
+    pick = {"shorter": int(lens[1] < lens[0]), "longer": int(lens[1] >= lens[0]),
+            "ccw": 0 if ccw else 1, "cw": 1 if ccw else 0}[lower_side]
+    return (forward, backward)[pick], (backward, forward)[pick][::-1], lens[pick]
+
+
+def _from_contour(pieces, ctx: _Context, report) -> tuple[Curve, Curve]:
+    """Lower and upper curves from one closed contour split at ``options.split``."""
+    if ctx.has(pieces, "contour"):
+        where = ctx.where("contour")
+        chosen = ctx.select(pieces, "contour")
+    else:
+        where = "contour"
+        target_key = ctx.roles["target"].upper()
+        chosen = [p for p in pieces if target_key not in p.tags]
+        bad = [p for p in chosen if p.curve is None]
+        if bad:
+            raise CaseError(where, f"unsupported entity {bad[0].source}; restrict the contour with layers={{contour: NAME}} or bbox=(XMIN, YMIN, XMAX, YMAX)")
+    ring = ctx.chain(chosen, where, True, report).characteristic_points(ctx.chord)[:-1]
+    pa, pb = (np.asarray(p, dtype=np.float64) for p in ctx.options.split)
+    size = float(np.hypot(*np.ptp(ring, axis=0))) or 1.0
+    limit = ctx.options.split_tol if ctx.options.split_tol is not None else SPLIT_FRACTION * size
+    lower_pts, upper_pts, length = _split_ring(ring, pa, pb, ctx.options.lower_side, limit, where)
+    _say(report, f"{where}: A {fmt_point(lower_pts[0])}, B {fmt_point(lower_pts[-1])}; lower {len(lower_pts)} points "
+                 f"(length {length:.6g}), upper {len(upper_pts)} points")
+    return Polyline(lower_pts), Polyline(upper_pts)
+
+
+def _fit_upper(lower: Curve, upper: Curve) -> tuple[Curve, float]:
+    """``upper`` turned to run from the lower curve's end back to its start; the gap left."""
+    a, b = lower.ends
+    s, e = upper.ends
+    same = np.hypot(*(s - b)) + np.hypot(*(e - a))
+    swap = np.hypot(*(e - b)) + np.hypot(*(s - a))
+    return (upper, same) if same <= swap else (upper.reversed(), swap)
+
+
+def _from_layers(pieces, ctx: _Context, meta: dict, path: Path, report) -> tuple[Curve, Curve]:
+    """Lower and upper curves from their own layers (ids/classes), oriented counter-clockwise."""
+    missing = [ctx.roles[r] for r in ("lower", "upper") if not ctx.has(pieces, r)]
+    if missing:
+        found = sorted({t for p in pieces for t in p.tags if t})
+        raise CaseError(
+            str(path),
+            f"{ctx.what} {' and '.join(repr(m) for m in missing)} not found (the drawing has: {', '.join(found) or 'none'}); "
+            "name them with layers={lower: NAME, upper: NAME}, or give split=(A, B) for one closed contour",
+        )
+    lower = ctx.chain(ctx.select(pieces, "lower"), ctx.where("lower"), False, report)
+    upper = ctx.chain(ctx.select(pieces, "upper"), ctx.where("upper"), False, report)
+    upper, gap = _fit_upper(lower, upper)
+    if gap > max(2 * ctx.tol, 2 * ctx.options.snap):
+        a, b = lower.ends
+        s, e = upper.ends
+        where_gap = a if np.hypot(*(e - a)) > np.hypot(*(s - b)) else b
+        raise CaseError(
+            ctx.where("upper"),
+            f"does not meet the ends of {ctx.where('lower')}: a gap of {gap:.4g} near {fmt_point(where_gap)}; "
+            "lower and upper must together make one closed contour",
+        )
+    hint = meta.get("lower_start")
+    if hint is not None:
+        a, b = lower.ends
+        h = np.asarray(hint, dtype=np.float64)
+        flip = np.hypot(*(b - h)) < np.hypot(*(a - h))
+    else:
+        ring = np.vstack((lower.characteristic_points(ctx.chord), upper.characteristic_points(ctx.chord)[1:-1]))
+        flip = polygon_area(ring) < 0
+    if flip:
+        lower, upper = lower.reversed(), upper.reversed()
+    a, b = lower.ends
+    return lower, pin_ends(upper, b, a, ctx.diag)
 
 
 def _orient_target(target: Curve, a, b, hint) -> Curve:
-    s, e = curve_ends(target)
+    s, e = target.ends
     if hint is not None:
         h = np.asarray(hint, dtype=np.float64)
         flip = np.hypot(*(e - h)) < np.hypot(*(s - h))
     else:
         flip = np.dot(e - s, np.asarray(b) - np.asarray(a)) < 0
-    return reverse_curve(target) if flip else target
+    return target.reversed() if flip else target
 
 
-def case_from_drawing(drawing, *, layers=None, split=None, lower_side="shorter", target_arc=None, bbox=None,
-                      snap=0.0, close_gap=0.0, join_tol=None, simplify=None, chordal_error=None, units=None,
-                      law=None, name=None, target=None, report=None, **_ignored) -> Case:
+def _target(pieces, lower: Curve, upper: Curve, ctx: _Context, meta: dict, path: Path, report) -> Curve:
+    """The target: drawn, the built-in arc, or given; else an error saying how to give one."""
+    o = ctx.options
+    a, b = lower.ends
+    if ctx.has(pieces, "target") and o.target_arc is None:
+        drawn = ctx.chain(ctx.select(pieces, "target"), ctx.where("target"), False, None)
+        return _orient_target(drawn, a, b, meta.get("target_start"))
+    if o.target_arc is not None:
+        inner = np.vstack((upper.characteristic_points(ctx.chord), lower.characteristic_points(ctx.chord)))
+        u = b - a
+        side = 1.0 if (u[0] * (inner[:, 1].mean() - a[1]) - u[1] * (inner[:, 0].mean() - a[0])) >= 0 else -1.0
+        _say(report, f"target: arc of length {lower.length:.6g}, sagitta {o.target_arc:g}")
+        return make_target_arc(a, b, lower.length, o.target_arc, side)
+    if o.target is not None:
+        return o.target
+    raise CaseError(
+        str(path),
+        f"no target: draw it on {ctx.where('target')!r}, give target_arc=SAGITTA (an arc target), "
+        "or a target in the case JSON",
+    )
+
+
+def convert_units(case: Case, units: str, report=None) -> Case:
+    """The case in other length units: curves scaled, lengths among its options too.
+
+    Raises
+    ------
+    CaseError
+        Naming the nearest known unit when either is unknown.
+    """
+    if units == case.units:
+        return case
+    k = mm_per_unit(case.units, "units") / mm_per_unit(units, "units")
+    scaled = {key: getattr(case.options, key) * k for key in ("chordal_error", "element_size")
+              if getattr(case.options, key) is not None}
+    options = case.options.replace(**scaled) if scaled else case.options
+    _say(report, f"units: {case.units} -> {units} (x {k:g})")
+    return replace(case, lower=case.lower.scaled(k), upper=case.upper.scaled(k), target=case.target.scaled(k),
+                   units=units, options=options)
+
+
+def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *, report=None, **keywords) -> Case:
     """Build a case from the pieces of a drawing (see the module docstring).
 
     Parameters
@@ -194,35 +504,12 @@ def case_from_drawing(drawing, *, layers=None, split=None, lower_side="shorter",
     drawing : Drawing
         From :func:`sectiondeform.io.dxf.read_drawing` or
         :func:`sectiondeform.io.svg.read_drawing`.
-    layers : dict, optional
-        Role (``lower``, ``upper``, ``target``, ``contour``) -> name.
-    split : ((2,), (2,)), optional
-        Points near A and B on a single closed contour, drawing units.
-    lower_side : str
-        ``"shorter"``, ``"longer"``, ``"ccw"`` or ``"cw"``.
-    target_arc : float, optional
-        Sagitta of the built-in target arc, drawing units.
-    bbox : (4,) float, optional
-        ``xmin, ymin, xmax, ymax``: keep pieces with both ends inside.
-    snap, close_gap : float
-        Gap snapping and closing distances, drawing units (0: never).
-    join_tol : float, optional
-        End points closer than this are one point; default 1e-6 of the
-        selection's diagonal.
-    simplify : float, optional
-        Simplify polylines within this distance, drawing units.
-    chordal_error : float, optional
-        Chordal error of the polylines made from curves; also written to
-        the case's options.
-    units : str, optional
-        Convert the case to these units (``"mm"``, ``"in"``...).
-    law : Law, optional
-        Overrides the law stored in the drawing.
-    name : str, optional
-    target : Curve, optional
-        Target given elsewhere (a case JSON), drawing units.
+    options : DrawingOptions, optional
     report : list, optional
         Lines saying what was done (pieces, snapped gaps...) are appended.
+    **keywords
+        Instead of ``options``: its attributes by name (a misspelt name is
+        an error).
 
     Returns
     -------
@@ -232,174 +519,47 @@ def case_from_drawing(drawing, *, layers=None, split=None, lower_side="shorter",
     ------
     CaseError
         A missing layer, a gap, a branch, an unsupported entity, no law,
-        no target; each names where.
+        no target, an unknown option; each names where.
     """
+    if options is None:
+        options = DrawingOptions.from_mapping(keywords)
+    elif keywords:
+        raise CaseError(next(iter(keywords)), "give the options either as DrawingOptions or as keywords, not both")
+    o = options
     meta = dict(drawing.meta or {})
-    snap, close_gap = float(snap or 0.0), float(close_gap or 0.0)
-    roles = {"lower": "LOWER", "upper": "UPPER", "target": "TARGET", "contour": "CONTOUR"}
-    for role, value in (layers or {}).items():
-        if role not in ROLES:
-            raise CaseError("--layers", f"unknown role {role!r}; use {', '.join(ROLES)}")
-        roles[role] = str(value)
-    keys = {r: v.upper() for r, v in roles.items()}
+    roles = {"lower": "LOWER", "upper": "UPPER", "target": "TARGET", "contour": "CONTOUR", **(o.layers or {})}
     pieces = list(drawing.pieces)
-    if bbox is not None:
-        x0, y0, x1, y1 = bbox
-        inside = []
-        for p in pieces:
-            if p.curve is None:
-                inside.append(p)
-                continue
-            e = np.vstack(curve_ends(p.curve))
-            if np.all((e[:, 0] >= x0) & (e[:, 0] <= x1) & (e[:, 1] >= y0) & (e[:, 1] <= y1)):
-                inside.append(p)
-        _say(report, f"bbox: kept {sum(p.curve is not None for p in inside)} of {sum(p.curve is not None for p in pieces)} pieces")
-        pieces = inside
-    found = sorted({t for p in pieces for t in p.tags if t})
-    if getattr(drawing, "unitless", False):
+    if o.bbox is not None:
+        pieces = _inside_bbox(pieces, o.bbox, report)
+    if drawing.unitless:
         _say(report, f"the drawing declares no units ($INSUNITS): taken as {drawing.units}")
-
-    def select(role: str, where: str):
-        chosen = [p for p in pieces if keys[role] in p.tags]
-        bad = [p for p in chosen if p.curve is None]
-        if bad:
-            raise CaseError(where, f"unsupported entity {bad[0].source}; use LINE, ARC, CIRCLE, LWPOLYLINE, POLYLINE, SPLINE or ELLIPSE (paths, lines, polylines, polygons, circles in SVG)")
-        return chosen
-
-    has_target = any(keys["target"] in p.tags for p in pieces)
     curves = [p for p in pieces if p.curve is not None]
     if not curves:
-        raise CaseError(str(drawing.path), "the drawing has no curves" + (" inside the bbox" if bbox is not None else ""))
-    ends = np.concatenate([np.vstack(curve_ends(p.curve)) for p in curves])
+        raise CaseError(str(drawing.path), "the drawing has no curves" + (" inside the bbox" if o.bbox is not None else ""))
+    ends = np.concatenate([np.vstack(p.curve.ends) for p in curves])
     diag = float(np.hypot(*np.ptp(ends, axis=0))) or 1.0
-    tol = join_tol if join_tol is not None else 1e-6 * diag
-    chord = chordal_error or 1e-4 * diag
-    what = "layer" if drawing.path.suffix.lower() == ".dxf" else "id/class"
-
-    if split is not None:
-        if any(keys["contour"] in p.tags for p in pieces):
-            chosen, where = select("contour", f"{what} {roles['contour']}"), f"{what} {roles['contour']}"
-        else:
-            where = "contour"
-            chosen = [p for p in pieces if keys["target"] not in p.tags]
-            bad = [p for p in chosen if p.curve is None]
-            if bad:
-                raise CaseError(where, f"unsupported entity {bad[0].source}; restrict the contour with --layers contour=NAME or --bbox")
-        path, rep = one_chain(chosen, where, tol, snap, close_gap, closed=True)
-        for line in rep.lines(where):
-            _say(report, line)
-        ring = curve_points(path.curve, chord)[:-1]
-        if lower_side not in SIDES:
-            raise CaseError("--lower-side", f"unknown side {lower_side!r}; use one of {', '.join(SIDES)}")
-        pa, pb = (np.asarray(p, dtype=np.float64).reshape(2) for p in split)
-        ring, ia = _nearest_on_ring(ring, pa)
-        ring = np.roll(ring, -ia, axis=0)
-        ring, ib = _nearest_on_ring(ring, pb)
-        if ib == 0:
-            raise CaseError("--split", f"A {fmt_point(pa)} and B {fmt_point(pb)} fall on the same contour point")
-        forward = ring[: ib + 1]
-        backward = np.vstack((ring[ib:], ring[:1]))[::-1]
-        ccw = _signed_area(ring) > 0
-        lens = [float(np.hypot(*np.diff(w, axis=0).T).sum()) for w in (forward, backward)]
-        pick = {"shorter": int(lens[1] < lens[0]), "longer": int(lens[1] >= lens[0]),
-                "ccw": 0 if ccw else 1, "cw": 1 if ccw else 0}[lower_side]
-        lower_pts = (forward, backward)[pick]
-        upper_pts = (backward, forward)[pick][::-1]
-        lower, upper = Polyline(lower_pts), Polyline(upper_pts)
-        _say(report, f"{where}: A {fmt_point(lower_pts[0])}, B {fmt_point(lower_pts[-1])}; lower {len(lower_pts)} points "
-                     f"(length {lens[pick]:.6g}), upper {len(upper_pts)} points")
+    ctx = _Context(what="layer" if drawing.path.suffix.lower() == ".dxf" else "id/class", roles=roles,
+                   tol=o.join_tol if o.join_tol is not None else 1e-6 * diag,
+                   chord=o.chordal_error or DEFAULT_CHORDAL_FRACTION * diag, diag=diag, options=o)
+    if o.split is not None:
+        lower, upper = _from_contour(pieces, ctx, report)
     else:
-        missing = [roles[r] for r in ("lower", "upper") if not any(keys[r] in p.tags for p in pieces)]
-        if missing:
-            raise CaseError(
-                str(drawing.path),
-                f"{what} {' and '.join(repr(m) for m in missing)} not found (the drawing has: {', '.join(found) or 'none'}); "
-                "name them with --layers lower=NAME,upper=NAME, or give --split XA,YA XB,YB for one closed contour",
-            )
-        lp, rep = one_chain(select("lower", f"{what} {roles['lower']}"), f"{what} {roles['lower']}", tol, snap, close_gap, closed=False)
-        for line in rep.lines(f"{what} {roles['lower']}"):
-            _say(report, line)
-        up, rep = one_chain(select("upper", f"{what} {roles['upper']}"), f"{what} {roles['upper']}", tol, snap, close_gap, closed=False)
-        for line in rep.lines(f"{what} {roles['upper']}"):
-            _say(report, line)
-        lower, upper = lp.curve, up.curve
-
-        def fit_upper(lo: Curve, upc: Curve) -> tuple[Curve, float]:
-            a, b = curve_ends(lo)
-            s, e = curve_ends(upc)
-            same = np.hypot(*(s - b)) + np.hypot(*(e - a))
-            swap = np.hypot(*(e - b)) + np.hypot(*(s - a))
-            return (upc, same) if same <= swap else (reverse_curve(upc), swap)
-
-        upper, gap = fit_upper(lower, upper)
-        if gap > max(2 * tol, 2 * snap):
-            a, b = curve_ends(lower)
-            s, e = curve_ends(upper)
-            where_gap = a if np.hypot(*(e - a)) > np.hypot(*(s - b)) else b
-            raise CaseError(
-                f"{what} {roles['upper']}",
-                f"does not meet the ends of {what} {roles['lower']}: a gap of {gap:.4g} near {fmt_point(where_gap)}; "
-                "lower and upper must together make one closed contour",
-            )
-        hint = meta.get("lower_start")
-        if hint is not None:
-            a, b = curve_ends(lower)
-            h = np.asarray(hint, dtype=np.float64)
-            flip = np.hypot(*(b - h)) < np.hypot(*(a - h))
-        else:
-            ring = np.vstack((curve_points(lower, chord), curve_points(upper, chord)[1:-1]))
-            flip = _signed_area(ring) < 0
-        if flip:
-            lower = reverse_curve(lower)
-            upper = reverse_curve(upper)
-        a, b = curve_ends(lower)
-        upper = pin_ends(upper, b, a, diag)
-
-    a, b = curve_ends(lower)
-    if simplify:
-        before = _count(lower) + _count(upper)
-        lower, upper = _simplify(lower, simplify), _simplify(upper, simplify)
-        _say(report, f"simplified within {simplify:g}: {before} -> {_count(lower) + _count(upper)} points "
-                     f"(lower {_count(lower)}, upper {_count(upper)})")
-
-    if has_target and target_arc is None:
-        tp, rep = one_chain(select("target", f"{what} {roles['target']}"), f"{what} {roles['target']}", tol, snap, close_gap, closed=False)
-        tgt = _orient_target(tp.curve, a, b, meta.get("target_start"))
-    elif target_arc is not None:
-        inner = np.vstack((curve_points(upper, chord), curve_points(lower, chord)))
-        u = b - a
-        side = 1.0 if (u[0] * (inner[:, 1].mean() - a[1]) - u[1] * (inner[:, 0].mean() - a[0])) >= 0 else -1.0
-        tgt = make_target_arc(a, b, lower.length, float(target_arc), side)
-        _say(report, f"target: arc of length {lower.length:.6g}, sagitta {target_arc:g}")
-    elif target is not None:
-        tgt = target
-    else:
-        raise CaseError(
-            str(drawing.path),
-            f"no target: draw it on {what} {roles['target']!r}, give --target-arc SAGITTA, or a target in the case JSON",
-        )
-
+        lower, upper = _from_layers(pieces, ctx, meta, drawing.path, report)
+    if o.simplify:
+        before = lower.point_count + upper.point_count
+        lower, upper = lower.simplified(o.simplify), upper.simplified(o.simplify)
+        _say(report, f"simplified within {o.simplify:g}: {before} -> {lower.point_count + upper.point_count} points "
+                     f"(lower {lower.point_count}, upper {upper.point_count})")
+    target = _target(pieces, lower, upper, ctx, meta, drawing.path, report)
+    law = o.law
     if law is None:
         if "law" not in meta:
-            raise CaseError("law", "the drawing gives no law; give --area-ratio R (final area = R x initial area)")
+            raise CaseError("law", "the drawing gives no law; give law=AreaRatio(R) (final area = R x initial area)")
         law = law_from_json(meta["law"])
-    options = dict(meta.get("options") or {})
-    case_units = drawing.units
-    if units and units != case_units:
-        if units not in MM_PER_UNIT or case_units not in MM_PER_UNIT:
-            raise CaseError("--units", f"cannot convert {case_units!r} to {units!r}; use one of {', '.join(MM_PER_UNIT)}")
-        k = MM_PER_UNIT[case_units] / MM_PER_UNIT[units]
-        lower, upper, tgt = (transform_curve(c, k * np.eye(2)) for c in (lower, upper, tgt))
-        for key in ("chordal_error", "element_size"):
-            if key in options:
-                options[key] *= k
-        _say(report, f"units: {case_units} -> {units} (x {k:g})")
-        case_units = units
-        chordal_error = chordal_error * k if chordal_error else None
-    if chordal_error:
-        options["chordal_error"] = float(chordal_error)
-    return Case(lower=lower, upper=upper, target=tgt, law=law,
-                name=name or meta.get("name") or drawing.path.stem, units=case_units, options=options)
+    case_options = {**(meta.get("options") or {}), **({"chordal_error": o.chordal_error} if o.chordal_error else {})}
+    case = Case(lower=lower, upper=upper, target=target, law=law,
+                name=o.name or meta.get("name") or drawing.path.stem, units=drawing.units, options=case_options)
+    return convert_units(case, o.units, report) if o.units else case
 
 
 # --------------------------------------------------------------------------
@@ -419,46 +579,55 @@ def read_drawing_file(path, chordal_error=None):
     return read_drawing(path, chordal_error)
 
 
-def _drawing_options(d: dict, field: str) -> dict:
-    opts = {}
-    allowed = {"layers", "split", "lower_side", "target_arc", "bbox", "snap", "close_gap", "join_tol", "simplify", "units"}
-    for key, value in d.items():
-        if key == "file":
-            continue
-        if key not in allowed:
-            raise CaseError(f"{field}.{key}", f"unknown key; use file, {', '.join(sorted(allowed))}")
-        opts[key] = value
-    return opts
+def _plain_case(path: Path, options: DrawingOptions, given, report) -> Case:
+    """A case JSON without a drawing, with the options that apply to any case (units, law, chordal error)."""
+    from .json import read_case as read_plain
+
+    drawing_only = [k for k in given if k not in ("units", "law", "chordal_error", "name")]
+    if drawing_only:
+        raise CaseError(drawing_only[0], f"applies to drawings (DXF, SVG) only, and {path.name} is a case JSON without one")
+    case = read_plain(path)
+    if options.law is not None:
+        case = replace(case, law=options.law)
+    if options.name is not None:
+        case = replace(case, name=options.name)
+    if options.chordal_error:
+        case = replace(case, options=case.options.replace(chordal_error=options.chordal_error))
+    return convert_units(case, options.units, report) if options.units else case
 
 
-def read_json_case(path, **options) -> Case:
+def read_json_case(path, *, report=None, **options) -> Case:
     """Read a case JSON file; one with a ``"drawing"`` key takes its curves from a DXF or SVG.
 
     ``"drawing": {"file": "profile.dxf", "layers": {"lower": "BASE"}, ...}``
-    (file relative to the JSON's folder; the other keys are the options of
-    :func:`case_from_drawing`). Curves given in the JSON (``lower``,
+    (file relative to the JSON's folder; the other keys are
+    :class:`DrawingOptions`). Curves given in the JSON (``lower``,
     ``upper``, ``target``) take precedence over the drawing's; ``law``,
     ``name``, ``units`` and ``options`` are read as usual. Options given
-    here (the command line's) override the JSON's ``drawing`` keys.
+    here (the :class:`DrawingOptions` attributes, by name) override the
+    JSON's ``drawing`` keys; for a case JSON without a drawing only
+    ``units``, ``law``, ``name`` and ``chordal_error`` apply, and the
+    others are an error.
     """
-    from .json import read_case as read_plain
-
     path = Path(path)
+    given = {k: v for k, v in options.items() if v is not None}
+    overrides = DrawingOptions.from_mapping(given)
     data = read_json(path)
     if not isinstance(data, dict) or "drawing" not in data:
-        return read_plain(path)
+        return _plain_case(path, overrides, given, report)
     d = data["drawing"]
     if not isinstance(d, dict) or not isinstance(d.get("file"), str):
         raise CaseError("drawing.file", "expected {\"file\": \"profile.dxf\", ...} naming a DXF or SVG file")
-    opts = _drawing_options(d, "drawing")
-    opts.update({k: v for k, v in options.items() if v is not None and k != "report"})
-    if "law" in data and options.get("law") is None:
+    opts = {k: v for k, v in d.items() if k != "file"}
+    DrawingOptions.from_mapping(opts, "drawing", allowed=JSON_KEYS)
+    opts.update(given)
+    if "law" in data and overrides.law is None:
         opts["law"] = law_from_json(data["law"])
     if "target" in data:
         opts["target"] = curve_from_json(data["target"], "target")
     chordal = (data.get("options") or {}).get("chordal_error")
     drawing = read_drawing_file(path.parent / d["file"], opts.get("chordal_error") or chordal)
-    case = case_from_drawing(drawing, report=options.get("report"), **{k: v for k, v in opts.items() if k != "report"})
+    case = case_from_drawing(drawing, DrawingOptions.from_mapping(opts), report=report)
     merged = {"format": data.get("format", "section-case/1"), "lower": case.lower.to_json(), "upper": case.upper.to_json(),
               "target": case.target.to_json(), "law": case.law.to_json(), "name": data.get("name", case.name),
               "units": data.get("units", case.units), "options": {**case.options.to_json(), **(data.get("options") or {})}}
@@ -466,83 +635,3 @@ def read_json_case(path, **options) -> Case:
         if key in data:
             merged[key] = data[key]
     return case_from_dict(merged)
-
-
-# --------------------------------------------------------------------------
-# Command-line options
-
-
-def _point(text: str):
-    try:
-        x, y = (float(v) for v in text.split(","))
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected X,Y, got {text!r}") from None
-    return (x, y)
-
-
-def _box(text: str):
-    try:
-        v = tuple(float(t) for t in text.split(","))
-    except ValueError:
-        v = ()
-    if len(v) != 4 or v[0] >= v[2] or v[1] >= v[3]:
-        raise argparse.ArgumentTypeError(f"expected XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX, got {text!r}")
-    return v
-
-
-def _roles(text: str):
-    out = {}
-    for item in text.split(","):
-        role, sep, name = item.partition("=")
-        if not sep or role.strip() not in ROLES or not name.strip():
-            raise argparse.ArgumentTypeError(f"expected ROLE=NAME[,ROLE=NAME...] with ROLE in {', '.join(ROLES)}, got {item!r}")
-        out[role.strip()] = name.strip()
-    return out
-
-
-def add_input_args(parser) -> None:
-    """Add the options for reading DXF and SVG drawings to an argparse parser.
-
-    Coordinates such as ``-19.6,0`` are taken as values, not options (argparse
-    alone only knows plain negative numbers).
-    """
-    import re
-
-    parser._negative_number_matcher = re.compile(r"^-\.?\d[\d.,eE+-]*$")
-    g = parser.add_argument_group("drawing input (DXF, SVG; lengths in drawing units)")
-    g.add_argument("--layers", type=_roles, metavar="ROLE=NAME,...",
-                   help="layer (DXF) or id/class (SVG) of each role: lower, upper, target, contour "
-                        "(default LOWER, UPPER, TARGET, CONTOUR)")
-    g.add_argument("--split", type=_point, nargs=2, metavar=("XA,YA", "XB,YB"),
-                   help="one closed contour: the lower curve runs between the contour points nearest these")
-    g.add_argument("--lower-side", choices=SIDES, default="shorter",
-                   help="with --split, which way round from A to B is the lower curve (default shorter)")
-    g.add_argument("--target-arc", type=float, metavar="SAGITTA",
-                   help="target: an arc as long as the lower curve, tangent to AB at its midpoint; "
-                        "SAGITTA > 0 bends its ends towards the section")
-    g.add_argument("--bbox", type=_box, metavar="XMIN,YMIN,XMAX,YMAX", help="keep only the pieces inside this box")
-    g.add_argument("--snap", type=float, metavar="D", help="snap free ends closer than D together (reported)")
-    g.add_argument("--close-gap", type=float, metavar="MAXLEN",
-                   help="close gaps up to MAXLEN with a straight piece (reported)")
-    g.add_argument("--join-tol", type=float, metavar="D", help="ends closer than D are one point (default 1e-6 of the drawing)")
-    g.add_argument("--simplify", type=float, metavar="TOL", help="simplify polylines within TOL (Douglas-Peucker)")
-    g.add_argument("--chordal-error", type=float, metavar="TOL", help="chordal error of polylines made from curves")
-    g.add_argument("--units", metavar="UNIT", help="convert the case to these units (mm, cm, m, in...)")
-
-
-def input_options(args, report: list | None = None) -> dict:
-    """Reader options from parsed arguments (see :func:`add_input_args`); ``--area-ratio`` gives the law."""
-    opts = {"report": report}
-    for key in ("layers", "split", "lower_side", "target_arc", "bbox", "snap", "close_gap", "join_tol", "simplify",
-                "chordal_error", "units"):
-        value = getattr(args, key, None)
-        if value is not None:
-            opts[key] = value
-    for key in ("snap", "close_gap", "join_tol", "simplify", "chordal_error"):
-        if key in opts and opts[key] < 0:
-            raise CaseError(f"--{key.replace('_', '-')}", f"must be >= 0, got {opts[key]}")
-    if getattr(args, "lower_side", None) == "shorter":
-        opts.pop("lower_side")
-    if getattr(args, "area_ratio", None) is not None:
-        opts["law"] = AreaRatio(args.area_ratio)
-    return opts

@@ -46,47 +46,20 @@ from pathlib import Path
 
 import numpy as np
 
-from ..curves import Arc, BSpline, Chain, Curve, Polyline
+from ..curves import DEFAULT_CHORDAL_FRACTION, Arc, BSpline, Curve, Polyline
 from ..errors import CaseError, require
 from .chaining import fmt_point
 from .json import atomic_write
-from .pieces import Piece, transform_curve
+from .pieces import Drawing, Piece
+from .units import DXF_UNITS, MM_PER_UNIT
 
-__all__ = ["read_drawing", "read_case", "write_case", "write_result", "UNITS", "fit_spline"]
+__all__ = ["read_drawing", "read_case", "write_case", "write_result", "fit_spline", "read_meta"]
 
-# $INSUNITS code -> (case units name, millimetres per unit)
-UNITS = {
-    1: ("in", 25.4), 2: ("ft", 304.8), 4: ("mm", 1.0), 5: ("cm", 10.0), 6: ("m", 1000.0),
-    7: ("km", 1e6), 8: ("uin", 25.4e-6), 9: ("mil", 0.0254), 10: ("yd", 914.4),
-    11: ("angstrom", 1e-7), 12: ("nm", 1e-6), 13: ("um", 1e-3), 14: ("dm", 100.0),
-}
-INSUNITS = {name: code for code, (name, _) in UNITS.items()}
+INSUNITS = {name: code for code, name in DXF_UNITS.items()}
 IGNORED = {"TEXT", "MTEXT", "DIMENSION", "ARC_DIMENSION", "LARGE_RADIAL_DIMENSION", "POINT", "HATCH",
            "LEADER", "MULTILEADER", "MLEADER", "ATTDEF", "TOLERANCE", "IMAGE", "WIPEOUT", "VIEWPORT"}
 META_KEY = "sectiondeform"
 MIRROR_X = np.array([[-1.0, 0.0], [0.0, 1.0]])
-
-
-class Drawing:
-    """Pieces of a drawing with its units and stored case data.
-
-    Attributes
-    ----------
-    pieces : list of Piece
-    units : str
-        Length unit of the coordinates, e.g. ``"mm"``.
-    mm_per_unit : float
-    meta : dict
-        Case data stored in the file by :func:`write_case` (``law``,
-        ``name``, ``options``, ``lower_start``, ``target_start``), else {}.
-    ignored : list of str
-        Entities skipped (annotation).
-    path : Path
-    """
-
-    def __init__(self, pieces, units, mm_per_unit, meta, ignored, path, unitless=False):
-        self.pieces, self.units, self.mm_per_unit = pieces, units, mm_per_unit
-        self.meta, self.ignored, self.path, self.unitless = meta, ignored, path, unitless
 
 
 def _flat(p) -> np.ndarray:
@@ -169,21 +142,50 @@ def _entity_curves(e, tol: float) -> list[Curve] | None:
     else:
         return None
     if mirror:
-        curves = [transform_curve(c, MIRROR_X, tol=tol) for c in curves]
+        curves = [c.transformed(MIRROR_X, tol=tol) for c in curves]
     return curves
 
 
 def _extent(msp) -> float:
-    """Diagonal of the drawing's extents, for default tolerances."""
-    try:
-        from ezdxf import bbox
+    """Diagonal of the drawing's extents, for default tolerances (1 for an empty drawing)."""
+    from ezdxf import bbox
 
-        box = bbox.extents(msp, fast=True)
-        if box.has_data:
-            return float(math.hypot(box.size.x, box.size.y)) or 1.0
-    except Exception:  # pragma: no cover - extents are only a hint
-        pass
+    box = bbox.extents(msp, fast=True)
+    if box.has_data:
+        return float(math.hypot(box.size.x, box.size.y)) or 1.0
     return 1.0
+
+
+def read_meta(text: str | None, where: str) -> dict:
+    """The case data a writer of this package stored in a drawing, from its JSON text.
+
+    Parameters
+    ----------
+    text : str or None
+        The stored JSON; None or empty when the drawing stores none.
+    where : str
+        Where it is stored, for the message (file and property).
+
+    Returns
+    -------
+    dict
+        {} when nothing is stored.
+
+    Raises
+    ------
+    CaseError
+        If the stored text is not a JSON object: the data is corrupt, and
+        reading on without it would give a misleading error later.
+    """
+    if not text:
+        return {}
+    try:
+        meta = json.loads(text)
+    except (TypeError, ValueError) as exc:
+        raise CaseError(where, f"the stored case data is not valid JSON ({exc}); remove it or write the file again") from None
+    if not isinstance(meta, dict):
+        raise CaseError(where, f"the stored case data is a JSON {type(meta).__name__}, not an object; remove it or write the file again")
+    return meta
 
 
 def read_drawing(path, chordal_error: float | None = None) -> Drawing:
@@ -215,18 +217,16 @@ def read_drawing(path, chordal_error: float | None = None) -> Drawing:
     except ezdxf.DXFStructureError as exc:
         raise CaseError(str(path), f"not a valid DXF file ({exc})") from None
     msp = doc.modelspace()
-    tol = chordal_error or 1e-4 * _extent(msp)
+    tol = chordal_error or DEFAULT_CHORDAL_FRACTION * _extent(msp)
     # ezdxf fills a missing header with defaults ($INSUNITS 6, metres): look in the file itself.
     with open(path, "rb") as fh:
         declared = b"$INSUNITS" in fh.read(4_000_000)
     code = int(doc.header.get("$INSUNITS", 0) or 0) if declared else 0
-    units, mm = UNITS.get(code, ("mm", 1.0))
+    units = DXF_UNITS.get(code, "mm")
+    mm = MM_PER_UNIT[units]
     meta = {}
     if doc.header.custom_vars.has_tag(META_KEY):
-        try:
-            meta = json.loads(doc.header.custom_vars.get(META_KEY))
-        except (TypeError, ValueError):
-            meta = {}
+        meta = read_meta(doc.header.custom_vars.get(META_KEY), f"{path} (header property {META_KEY})")
     pieces, ignored = [], []
     for i, e in enumerate(msp):
         kind = e.dxftype()
@@ -247,7 +247,7 @@ def read_drawing(path, chordal_error: float | None = None) -> Drawing:
             if not c.length > 0:
                 raise CaseError(f"layer {layer}", f"zero-length {source} at {fmt_point(c.at_fractions(np.array([0.0]))[0])}; delete it")
             pieces.append(Piece(c, tags, source))
-    return Drawing(pieces, units, mm, meta, ignored, path, unitless=code not in UNITS)
+    return Drawing(pieces, units, mm, meta, path, ignored, unitless=code not in DXF_UNITS)
 
 
 def read_case(path, **options):
@@ -274,24 +274,36 @@ def _layer(doc, name: str, color: int) -> None:
         doc.layers.add(name, color=color)
 
 
-def _add_curve(msp, curve: Curve, layer: str) -> None:
+def _add_polyline(msp, curve: Polyline, attribs: dict) -> None:
+    msp.add_lwpolyline(curve.vertices.tolist(), format="xy", dxfattribs=attribs)
+
+
+def _add_arc(msp, curve: Arc, attribs: dict) -> None:
+    a0, a1 = sorted((float(curve.start_deg), float(curve.end_deg)))
+    if abs(a1 - a0) >= 360.0:
+        msp.add_circle(curve.center.tolist(), float(curve.radius), dxfattribs=attribs)
+    else:
+        msp.add_arc(curve.center.tolist(), float(curve.radius), a0, a1, dxfattribs=attribs)
+
+
+def _add_bspline(msp, curve: BSpline, attribs: dict) -> None:
+    msp.add_open_spline(curve.control_points.tolist(), degree=int(curve.degree),
+                        knots=_dxf_knots(curve.knots).tolist(), dxfattribs=attribs)
+
+
+# Curve kind -> its native DXF entity; any other kind is written as a polyline.
+_NATIVE = {"polyline": _add_polyline, "arc": _add_arc, "bspline": _add_bspline}
+
+
+def _add_curve(msp, curve: Curve, layer: str, tol: float) -> None:
+    """Add a curve as native entities; a kind without one as an LWPOLYLINE within ``tol``."""
     attribs = {"layer": layer}
-    if isinstance(curve, Chain):
-        for p in curve.pieces:
-            _add_curve(msp, p, layer)
-    elif isinstance(curve, Polyline):
-        msp.add_lwpolyline(curve.vertices.tolist(), format="xy", dxfattribs=attribs)
-    elif isinstance(curve, Arc):
-        a0, a1 = sorted((float(curve.start_deg), float(curve.end_deg)))
-        if abs(a1 - a0) >= 360.0:
-            msp.add_circle(curve.center.tolist(), float(curve.radius), dxfattribs=attribs)
+    for part in curve.parts():
+        add = _NATIVE.get(part.kind)
+        if add is None:
+            msp.add_lwpolyline(part.characteristic_points(tol).tolist(), format="xy", dxfattribs=attribs)
         else:
-            msp.add_arc(curve.center.tolist(), float(curve.radius), a0, a1, dxfattribs=attribs)
-    elif isinstance(curve, BSpline):
-        msp.add_open_spline(curve.control_points.tolist(), degree=int(curve.degree),
-                            knots=_dxf_knots(curve.knots).tolist(), dxfattribs=attribs)
-    else:  # pragma: no cover - every curve kind is handled above
-        raise TypeError(type(curve).__name__)
+            add(msp, part, attribs)
 
 
 def _dxf_knots(t: np.ndarray) -> np.ndarray:
@@ -316,9 +328,12 @@ def write_case(path, case) -> None:
     """
     doc = _new_doc(case.units)
     msp = doc.modelspace()
-    for name, color, curve in (("LOWER", 1, case.lower), ("UPPER", 7, case.upper), ("TARGET", 5, case.target)):
+    curves = (("LOWER", 1, case.lower), ("UPPER", 7, case.upper), ("TARGET", 5, case.target))
+    size = float(np.hypot(*np.ptp(np.concatenate([np.vstack(c.ends) for _, _, c in curves]), axis=0))) or 1.0
+    tol = case.options.chordal_error or DEFAULT_CHORDAL_FRACTION * size
+    for name, color, curve in curves:
         _layer(doc, name, color)
-        _add_curve(msp, curve, name)
+        _add_curve(msp, curve, name, tol)
     meta = {
         "law": case.law.to_json(), "name": case.name, "options": case.options.to_json(),
         "lower_start": case.lower.start.tolist(), "target_start": case.target.start.tolist(),
@@ -408,7 +423,7 @@ def write_result(path, result, spline: bool = False, chordal_error: float | None
     _add_closed(msp, result.initial_contour, "INITIAL")
     msp.add_lwpolyline(result.lower.tolist(), format="xy", dxfattribs={"layer": "TARGET"})
     if spline:
-        tol = chordal_error or 1e-4 * float(np.hypot(*np.ptp(result.contour, axis=0)))
+        tol = chordal_error or DEFAULT_CHORDAL_FRACTION * float(np.hypot(*np.ptp(result.contour, axis=0)))
         for part in (result.lower, result.upper):
             cp, knots, k = fit_spline(part, tol)
             msp.add_open_spline(cp.tolist(), degree=k, knots=knots.tolist(), dxfattribs={"layer": "DEFORMED"})

@@ -3,27 +3,21 @@
 A :class:`Piece` is a :class:`~sectiondeform.curves.Curve` (a polyline, a
 circular arc or a clamped non-rational B-spline) together with the names
 it carries (DXF layer, SVG id and classes) and where it came from, for
-error messages. The functions here reverse, transform, merge and flatten
-curves; every one returns new curves and leaves its input alone.
+error messages; a :class:`Drawing` is the pieces of one file with its
+units and the case data it stores. The curve behaviour itself (reverse,
+transform, ends) is the curves' own; the functions here only join curves.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
-from ..curves import Arc, BSpline, Chain, Curve, Polyline
+from ..curves import Chain, Curve, Polyline
 
-__all__ = [
-    "Piece",
-    "reverse_curve",
-    "transform_curve",
-    "curve_points",
-    "merge_polylines",
-    "curve_ends",
-]
+__all__ = ["Piece", "Drawing", "merge_runs", "pin_ends"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -32,8 +26,10 @@ class Piece:
 
     Attributes
     ----------
-    curve : Curve
-        Polyline, Arc or BSpline (never a Chain), in drawing units.
+    curve : Curve or None
+        Polyline, Arc or BSpline (never a Chain), in drawing units; None
+        for an entity that is not a supported curve (an error if its
+        layer is used).
     tags : frozenset of str
         Upper-cased names the piece carries: its DXF layer, or its SVG id,
         classes and those of its parent groups.
@@ -41,147 +37,63 @@ class Piece:
         Where it came from, e.g. ``"LINE #5 (handle 2F)"``, for messages.
     """
 
-    curve: Curve
+    curve: Curve | None
     tags: frozenset
     source: str
 
 
-def curve_ends(curve: Curve) -> tuple[np.ndarray, np.ndarray]:
-    """Exact first and last point of a curve, each ``(2,)`` float64, units."""
-    if isinstance(curve, Polyline):
-        return curve.vertices[0], curve.vertices[-1]
-    if isinstance(curve, BSpline):
-        return curve.control_points[0], curve.control_points[-1]
-    if isinstance(curve, Chain):
-        return curve_ends(curve.pieces[0])[0], curve_ends(curve.pieces[-1])[1]
-    return curve.start, curve.end
+@dataclass(frozen=True, eq=False)
+class Drawing:
+    """The pieces of a drawing file with its units and stored case data.
 
-
-def reverse_curve(curve: Curve) -> Curve:
-    """The same curve run the other way.
-
-    Parameters
+    Attributes
     ----------
-    curve : Curve
-
-    Returns
-    -------
-    Curve
-        Same kind; a B-spline's knots are mirrored, ``t -> t0 + t1 - t``.
-
-    Examples
-    --------
-    >>> reverse_curve(Polyline([[0, 0], [1, 0], [1, 1]])).vertices.tolist()
-    [[1.0, 1.0], [1.0, 0.0], [0.0, 0.0]]
-    >>> a = reverse_curve(Arc([0, 0], 1.0, 0.0, 90.0)); (a.start_deg, a.end_deg)
-    (90.0, 0.0)
+    pieces : tuple of Piece
+    units : str
+        Length unit of the coordinates, e.g. ``"mm"``.
+    mm_per_unit : float
+    meta : dict
+        Case data stored in the file by a writer of this package (``law``,
+        ``name``, ``options``, ``lower_start``, ``target_start``), else {}.
+    path : Path
+    ignored : tuple of str
+        Entities skipped (annotation).
+    unitless : bool
+        True when the file declares no units and ``units`` is the default.
     """
-    if isinstance(curve, Polyline):
-        return Polyline(curve.vertices[::-1])
-    if isinstance(curve, Arc):
-        return Arc(curve.center, curve.radius, curve.end_deg, curve.start_deg)
-    if isinstance(curve, BSpline):
-        t = curve.knots
-        return BSpline(curve.degree, curve.control_points[::-1], (t[0] + t[-1] - t)[::-1])
-    if isinstance(curve, Chain):
-        return Chain(tuple(reverse_curve(p) for p in curve.pieces[::-1]))
-    raise TypeError(f"cannot reverse a {type(curve).__name__}")
+
+    pieces: tuple
+    units: str
+    mm_per_unit: float
+    meta: dict
+    path: Path
+    ignored: tuple = ()
+    unitless: bool = False
+
+    def __post_init__(self):
+        object.__setattr__(self, "pieces", tuple(self.pieces))
+        object.__setattr__(self, "ignored", tuple(self.ignored))
+        object.__setattr__(self, "path", Path(self.path))
 
 
-def transform_curve(curve: Curve, matrix, offset=(0.0, 0.0), tol: float = 1e-3) -> Curve:
-    """Apply the affine map ``p -> matrix @ p + offset`` to a curve.
-
-    Polylines and B-splines are mapped exactly (B-splines are affine
-    invariant). An arc stays an arc under a similarity (uniform scale,
-    rotation, reflection); under any other map it becomes an ellipse, given
-    back as a polyline within ``tol`` of it.
-
-    Parameters
-    ----------
-    curve : Curve
-    matrix : (2, 2) array_like
-    offset : (2,) array_like
-        Units of the result.
-    tol : float
-        Chordal error of the polyline an elliptical image is flattened to,
-        in the units of the result.
-
-    Returns
-    -------
-    Curve
-
-    Examples
-    --------
-    >>> flip = [[1.0, 0.0], [0.0, -1.0]]
-    >>> a = transform_curve(Arc([0, 1], 1.0, 0.0, 90.0), flip)
-    >>> a.center.tolist(), a.start_deg, a.end_deg
-    ([0.0, -1.0], 0.0, -90.0)
-    """
-    m = np.asarray(matrix, dtype=np.float64).reshape(2, 2)
-    b = np.asarray(offset, dtype=np.float64).reshape(2)
-    if isinstance(curve, Polyline):
-        return Polyline(curve.vertices @ m.T + b)
-    if isinstance(curve, BSpline):
-        return BSpline(curve.degree, curve.control_points @ m.T + b, curve.knots)
-    if isinstance(curve, Chain):
-        return Chain(tuple(transform_curve(p, m, b, tol) for p in curve.pieces))
-    if isinstance(curve, Arc):
-        mtm = m.T @ m
-        scale2 = 0.5 * (mtm[0, 0] + mtm[1, 1])
-        similar = abs(mtm[0, 1]) <= 1e-12 * scale2 and abs(mtm[0, 0] - mtm[1, 1]) <= 1e-12 * scale2
-        if similar:
-            det = float(np.linalg.det(m))
-            start = curve.at_fractions(np.array([0.0]))[0] - curve.center
-            ms = m @ start
-            a0 = math.degrees(math.atan2(ms[1], ms[0]))
-            sweep = (curve.end_deg - curve.start_deg) * (1.0 if det > 0 else -1.0)
-            return Arc(m @ curve.center + b, curve.radius * math.sqrt(abs(det)), a0, a0 + sweep)
-        smax = math.sqrt(float(np.linalg.eigvalsh(mtm).max()))  # largest stretch of the map
-        pts, _ = curve.discretise(tol / smax)
-        return Polyline(pts @ m.T + b)
-    raise TypeError(f"cannot transform a {type(curve).__name__}")
-
-
-def curve_points(curve: Curve, tol: float) -> np.ndarray:
-    """A polyline standing for the curve, ``(N, 2)`` float64.
-
-    A polyline gives its own vertices; other kinds their discretisation
-    within chordal error ``tol`` (units).
-    """
-    if isinstance(curve, Polyline):
-        return curve.vertices.copy()
-    if isinstance(curve, Chain):
-        parts = [curve_points(p, tol) for p in curve.pieces]
-        return np.concatenate([parts[0]] + [q[1:] for q in parts[1:]])
-    return curve.discretise(tol)[0]
-
-
-def merge_polylines(curves: list[Curve]) -> list[Curve]:
-    """Join runs of consecutive polylines into one polyline each.
+def merge_runs(curves: list[Curve]) -> list[Curve]:
+    """Join runs of consecutive curves that make one curve of their kind (polylines).
 
     The curves must already run end to start; the shared vertex is kept once.
 
     Examples
     --------
-    >>> out = merge_polylines([Polyline([[0, 0], [1, 0]]), Polyline([[1, 0], [2, 0]])])
+    >>> out = merge_runs([Polyline([[0, 0], [1, 0]]), Polyline([[1, 0], [2, 0]])])
     >>> len(out), out[0].vertices.tolist()
     (1, [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]])
     """
     out: list[Curve] = []
-    run: list[np.ndarray] = []
-
-    def flush():
-        if run:
-            out.append(Polyline(np.concatenate([run[0]] + [r[1:] for r in run[1:]])))
-            run.clear()
-
     for c in curves:
-        if isinstance(c, Polyline):
-            run.append(c.vertices)
-        else:
-            flush()
+        merged = out[-1].joined(c) if out else None
+        if merged is None:
             out.append(c)
-    flush()
+        else:
+            out[-1] = merged
     return out
 
 
@@ -193,20 +105,15 @@ def pin_ends(curve: Curve, start, end, scale: float = 1.0) -> Curve:
     ``scale``. Meant for gaps within a join or snap tolerance.
     """
     start, end = np.asarray(start, dtype=np.float64), np.asarray(end, dtype=np.float64)
-    pieces = list(curve.pieces) if isinstance(curve, Chain) else [curve]
+    pieces = list(curve.parts())
 
     def move(c: Curve, at_end: bool, p: np.ndarray) -> list[Curve]:
-        q = curve_ends(c)[1 if at_end else 0]
+        q = c.ends[1 if at_end else 0]
         if np.array_equal(p, q):
             return [c]
-        if isinstance(c, Polyline):
-            v = c.vertices.copy()
-            v[-1 if at_end else 0] = p
-            return [Polyline(v)]
-        if isinstance(c, BSpline):
-            cp = c.control_points.copy()
-            cp[-1 if at_end else 0] = p
-            return [BSpline(c.degree, cp, c.knots)]
+        moved = c.with_end_moved(at_end, p)
+        if moved is not None:
+            return [moved]
         if np.hypot(*(p - q)) <= 1e-9 * scale:
             return [c]
         bridge = Polyline(np.vstack((q, p)) if at_end else np.vstack((p, q)))

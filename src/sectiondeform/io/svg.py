@@ -40,15 +40,17 @@ import math
 import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
+from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from ..curves import Arc, BSpline, Chain, Curve, Polyline
+from ..curves import DEFAULT_CHORDAL_FRACTION, Arc, BSpline, Curve, Polyline
 from ..errors import CaseError, require
 from .chaining import fmt_point
-from .drawing import MM_PER_UNIT
+from .dxf import read_meta
 from .json import atomic_write
-from .pieces import Piece, transform_curve
+from .pieces import Drawing, Piece
+from .units import CSS_UNITS, MM_PER_UNIT, mm_per_unit
 
 __all__ = ["read_drawing", "read_case", "write_case", "write_result"]
 
@@ -58,7 +60,6 @@ SHAPES = {"path", "line", "polyline", "polygon", "rect", "circle", "ellipse"}
 SKIP = {"defs", "clipPath", "mask", "symbol", "marker", "pattern", "title", "desc", "metadata", "style", "text",
         "linearGradient", "radialGradient", "filter", "script", "tspan", "namedview"}
 CONTAINERS = {"svg", "g", "a", "switch"}
-CSS_UNITS = {"mm": 1.0, "cm": 10.0, "in": 25.4, "pt": 25.4 / 72, "pc": 25.4 / 6, "px": 25.4 / 96, "q": 0.25}
 
 
 def _local(tag: str) -> str:
@@ -168,13 +169,6 @@ def _shape_curves(el, name: str, tol: float) -> list[Curve]:
     return []
 
 
-class _Drawing:
-    def __init__(self, pieces, units, meta, path):
-        self.pieces, self.units, self.meta, self.path = pieces, units, meta, path
-        self.mm_per_unit = MM_PER_UNIT.get(units, 1.0)
-        self.ignored, self.unitless = [], False
-
-
 def read_drawing(path, chordal_error: float | None = None):
     """Read the shapes of an SVG file as pieces, in mm (or the units it records), y up.
 
@@ -187,12 +181,13 @@ def read_drawing(path, chordal_error: float | None = None):
 
     Returns
     -------
-    Drawing-like object with ``pieces``, ``units``, ``meta``, ``path``.
+    Drawing
 
     Raises
     ------
     CaseError
-        Unreadable file, a zero-length piece, an unsupported element.
+        Unreadable file, a zero-length piece, an unsupported element,
+        corrupt stored case data.
     """
     svgelements = require("svgelements", "cad", "reading SVG")
     path = Path(path)
@@ -202,19 +197,14 @@ def read_drawing(path, chordal_error: float | None = None):
         raise CaseError(str(path), f"cannot read the SVG file ({exc.strerror})") from None
     except ET.ParseError as exc:
         raise CaseError(str(path), f"not a valid SVG file ({exc})") from None
-    meta = {}
-    if root.get(META_ATTR):
-        try:
-            meta = json.loads(root.get(META_ATTR))
-        except ValueError:
-            meta = {}
+    meta = read_meta(root.get(META_ATTR), f"{path} (attribute {META_ATTR})")
     sx, sy = _document_scale(root)
     units = meta.get("units", "mm")
-    k = 1.0 / MM_PER_UNIT.get(units, 1.0)
+    k = 1.0 / mm_per_unit(units, f"{path} (attribute {META_ATTR}, units)")
     doc = np.array([[sx * k, 0.0], [0.0, -sy * k]])  # user units -> case units, y up
     vb = _floats(root.get("viewBox"))
     size = math.hypot(vb[2], vb[3]) * sx * k if len(vb) == 4 else 100.0
-    tol = chordal_error or 1e-4 * size
+    tol = chordal_error or DEFAULT_CHORDAL_FRACTION * size
     pieces: list[Piece] = []
     count = 0
 
@@ -245,14 +235,14 @@ def read_drawing(path, chordal_error: float | None = None):
         if not curves:
             raise CaseError(source, "has zero length; delete it")
         for c in curves:
-            c = transform_curve(c, full, offset, tol)
+            c = c.transformed(full, offset, tol)
             if not c.length > 0:
                 raise CaseError(source, f"zero-length piece at {fmt_point(c.at_fractions(np.array([0.0]))[0])}; delete it")
             pieces.append(Piece(c, frozenset(own), source))
 
     for child in root:
         visit(child, svgelements.Matrix(), frozenset())
-    return _Drawing(pieces, units, meta, path)
+    return Drawing(pieces, units, 1.0 / k, meta, path)
 
 
 def read_case(path, **options):
@@ -274,40 +264,50 @@ def _pt(p) -> str:
     return f"{_num(p[0])},{_num(-p[1])}"
 
 
-def _curve_d(curve: Curve, tol: float, move: bool = True) -> str:
-    """SVG path data for a curve in case coordinates (y flipped)."""
-    out = []
-    if move:
-        out.append("M" + _pt(curve.start if not isinstance(curve, Polyline) else curve.vertices[0]))
-    if isinstance(curve, Chain):
-        out.extend(_curve_d(p, tol, move=False) for p in curve.pieces)
-    elif isinstance(curve, Polyline):
-        out.append("L" + " ".join(_pt(v) for v in curve.vertices[1:]))
-    elif isinstance(curve, Arc):
-        sweep = curve.end_deg - curve.start_deg
-        n = 2 if abs(sweep) >= 180.0 else 1
-        fr = np.linspace(0.0, 1.0, n + 1)[1:]
-        ends = curve.at_fractions(fr)
-        flag = 0 if sweep > 0 else 1  # y flipped: counter-clockwise becomes the negative-angle direction
-        r = _num(curve.radius)
-        out.extend(f"A{r},{r} 0 0 {flag} {_pt(e)}" for e in ends)
-    elif isinstance(curve, BSpline) and curve.degree in (2, 3):
-        from scipy.interpolate import BSpline as SciPy
+def _polyline_d(curve: Polyline, tol: float) -> list[str]:
+    return ["L" + " ".join(_pt(v) for v in curve.vertices[1:])]
 
-        k, t, c = curve.degree, curve.knots, curve.control_points
-        spl = SciPy(t, c, k)
-        for a in np.unique(t[k:-k])[1:-1]:  # raise every inner knot to multiplicity k: Bézier pieces
-            have = int(np.sum(t == a))
-            if have < k:
-                spl = spl.insert_knot(a, k - have) if hasattr(spl, "insert_knot") else _insert(spl, a, k - have)
-            t = spl.t
-        cp = spl.c[: len(spl.t) - k - 1]
-        letter = "C" if k == 3 else "Q"
-        for i in range(0, len(cp) - 1, k):
-            out.append(letter + " ".join(_pt(p) for p in cp[i + 1 : i + k + 1]))
-    else:
-        pts, _ = curve.discretise(tol)
-        out.append("L" + " ".join(_pt(v) for v in pts[1:]))
+
+def _arc_d(curve: Arc, tol: float) -> list[str]:
+    sweep = curve.end_deg - curve.start_deg
+    n = 2 if abs(sweep) >= 180.0 else 1
+    ends = curve.at_fractions(np.linspace(0.0, 1.0, n + 1)[1:])
+    flag = 0 if sweep > 0 else 1  # y flipped: counter-clockwise becomes the negative-angle direction
+    r = _num(curve.radius)
+    return [f"A{r},{r} 0 0 {flag} {_pt(e)}" for e in ends]
+
+
+def _bspline_d(curve: BSpline, tol: float) -> list[str]:
+    if curve.degree not in (2, 3):
+        return _flat_d(curve, tol)
+    from scipy.interpolate import BSpline as SciPy
+
+    k, t, c = curve.degree, curve.knots, curve.control_points
+    spl = SciPy(t, c, k)
+    for a in np.unique(t[k:-k])[1:-1]:  # raise every inner knot to multiplicity k: Bézier pieces
+        have = int(np.sum(t == a))
+        if have < k:
+            spl = spl.insert_knot(a, k - have) if hasattr(spl, "insert_knot") else _insert(spl, a, k - have)
+        t = spl.t
+    cp = spl.c[: len(spl.t) - k - 1]
+    letter = "C" if k == 3 else "Q"
+    return [letter + " ".join(_pt(p) for p in cp[i + 1 : i + k + 1]) for i in range(0, len(cp) - 1, k)]
+
+
+def _flat_d(curve: Curve, tol: float) -> list[str]:
+    pts = curve.characteristic_points(tol)
+    return ["L" + " ".join(_pt(v) for v in pts[1:])]
+
+
+# Curve kind -> its native path segments; any other kind is flattened within the chordal error.
+_NATIVE = {"polyline": _polyline_d, "arc": _arc_d, "bspline": _bspline_d}
+
+
+def _curve_d(curve: Curve, tol: float) -> str:
+    """SVG path data for a curve in case coordinates (y flipped)."""
+    out = ["M" + _pt(curve.ends[0])]
+    for part in curve.parts():
+        out.extend(_NATIVE.get(part.kind, _flat_d)(part, tol))
     return " ".join(out)
 
 
@@ -331,7 +331,7 @@ def _svg(bounds: np.ndarray, units: str, body: list[str], meta: dict | None = No
     attrs = (f'xmlns="{SVG_NS}" width="{w * scale!r}{unit}" height="{h * scale!r}{unit}" '
              f'viewBox="{x0!r} {y0!r} {w!r} {h!r}"')
     if meta is not None:
-        attrs += f" {META_ATTR}='{json.dumps(meta, separators=(',', ':'))}'"
+        attrs += f" {META_ATTR}={quoteattr(json.dumps(meta, separators=(',', ':')))}"
     stroke = 0.003 * max(w, h)
     style = f"<style>path{{fill:none;stroke-width:{stroke:.6g};stroke-linejoin:round}}</style>"
     return f'<?xml version="1.0" encoding="UTF-8"?>\n<svg {attrs}>\n{style}\n' + "\n".join(body) + "\n</svg>\n"
@@ -349,11 +349,11 @@ def write_case(path, case) -> None:
     body = []
     size = 0.0
     for c in (case.lower, case.upper, case.target):
-        q, _ = c.discretise(max(c.length, 1e-300) * 1e-4)
+        q, _ = c.discretise(max(c.length, 1e-300) * DEFAULT_CHORDAL_FRACTION)
         pts.append(q)
     allp = np.concatenate(pts)
     size = float(np.hypot(*np.ptp(allp, axis=0))) or 1.0
-    tol = case.options.chordal_error or 1e-4 * size
+    tol = case.options.chordal_error or DEFAULT_CHORDAL_FRACTION * size
     for name, color, c in (("lower", "#d62728", case.lower), ("upper", "#222222", case.upper), ("target", "#1f77b4", case.target)):
         body.append(f'<path id="{name}" stroke="{color}" d="{_curve_d(c, tol)}"/>')
     meta = {"law": case.law.to_json(), "name": case.name, "options": case.options.to_json(), "units": case.units,

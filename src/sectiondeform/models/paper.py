@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..curves import cross as _cross
 from ..errors import LawError, MeshError
 from ..laws import Law
 from ..layers import (
@@ -52,10 +53,6 @@ TARGET_SMOOTHING = (0.0,) + SMOOTHING_WEIGHTS + (5e6, 5e7, 5e8, 5e9, 5e10)
 __all__ = ["PaperModel", "PaperPrepared", "PaperOptions", "PaperInfo", "MODEL", "solve_scale"]
 
 DENSE_MAP_MAX = 2**21  # entries of each (upper points x columns) placement matrix kept dense
-
-
-def _cross(a, b):
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 def _next(a):

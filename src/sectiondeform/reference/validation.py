@@ -212,15 +212,15 @@ def draw_validation(validation: Validation, fig=None):
     -------
     matplotlib.figure.Figure
     """
-    mpl = require("matplotlib", "plot", "drawing the validation figure")
-    mpl.use("Agg")
-    plt = require("matplotlib.pyplot", "plot", "drawing the validation figure")
+    require("matplotlib", "plot", "drawing the validation figure")
     from matplotlib.collections import LineCollection, PolyCollection
 
     v = validation
     f, r, u = v.fast, v.reference, v.case.units
     if fig is None:
-        fig = plt.figure(figsize=(10, 6), layout="constrained")
+        from ..plot import new_figure
+
+        fig = new_figure(figsize=(10, 6), layout="constrained")
     ax = fig.add_subplot(1, 1, 1)
     ax.fill(*f.initial_contour.T, color="0.92", zorder=0, label="initial section")
     tri = r.mesh.points[r.mesh.cells[:, :3]]
