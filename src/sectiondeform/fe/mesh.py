@@ -92,8 +92,8 @@ def add_mid_nodes(points, cells, lower_nodes, lower_fractions):
     --------
     >>> p, c, ln, lf = add_mid_nodes(np.array([[0.0, 0], [2, 0], [0, 2]]), np.array([[0, 1, 2]]),
     ...                              np.array([0, 1]), np.array([0.0, 1.0]))
-    >>> c.tolist(), p[3:].tolist(), ln.tolist(), lf.tolist()
-    ([[0, 1, 2, 3, 4, 5]], [[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], [0, 3, 1], [0.0, 0.5, 1.0])
+    >>> p[c[0, 3:]].tolist(), ln.tolist(), lf.tolist()
+    ([[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], [0, 3, 1], [0.0, 0.5, 1.0])
     """
     e = _edges(cells).reshape(-1, 2)
     key = np.sort(e, axis=1)
