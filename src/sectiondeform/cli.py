@@ -23,7 +23,7 @@ __all__ = ["main", "build_parser"]
 def _command_modules():
     for info in sorted(pkgutil.iter_modules(commands.__path__), key=lambda m: m.name):
         if not info.name.startswith("_"):
-            yield info.name, importlib.import_module(f"{commands.__name__}.{info.name}")
+            yield info.name.replace("_", "-"), importlib.import_module(f"{commands.__name__}.{info.name}")
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -31,6 +31,8 @@ def add_args(parser) -> None:
                         help="reference element size as a fraction of the mean thickness T (default 0.1)")
     parser.add_argument("--bulk-to-shear", type=float, metavar="K",
                         help="bulk over shear modulus of the reference, >= 100 (default: the case's, else 1000)")
+    parser.add_argument("--reference", choices=("fem", "calculix"), default="fem",
+                        help="the reference: the project's own finite elements (default) or CalculiX (needs ccx)")
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress on stderr")
     add_model_args(parser)
 
@@ -53,14 +55,21 @@ def run(args) -> int:
     if args.plot is not None:
         check_figure_path(args.plot, "--plot")
     mesh_size = DEFAULT_MESH_SIZE if args.mesh_size is None else args.mesh_size
-    validation = validate_case(
-        case,
-        mesh_size=mesh_size,
-        bulk_to_shear=args.bulk_to_shear,
-        progress=None if args.quiet else eprint,
-    )
+    if args.reference == "calculix":
+        from ..external.validation import validate_with_calculix
+
+        validation = validate_with_calculix(case, mesh_size=args.mesh_size, progress=None if args.quiet else eprint)
+    else:
+        validation = validate_case(
+            case,
+            mesh_size=mesh_size,
+            bulk_to_shear=args.bulk_to_shear,
+            progress=None if args.quiet else eprint,
+        )
     if args.output is not None:
         report = validation.to_json()
+        if args.reference == "calculix":
+            report["reference"]["model"] = "CalculiX: neo-Hookean, plane strain, " + validation.reference.deck.element.name
         atomic_write(args.output, lambda tmp: tmp.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8"))
     if args.plot is not None:
         save_validation_figure(validation, args.plot)

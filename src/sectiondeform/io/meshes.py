@@ -17,6 +17,7 @@ mesh ``final`` and ``displacement``; every file has the cell data
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -63,6 +64,14 @@ def to_meshio(result, which: str = "final", data: bool = True):
                        point_data=point_data, cell_data=cell_data)
 
 
+def _teach_meshio_plane_strain() -> None:
+    """Let meshio's Abaqus reader read back the plane-strain quads written here (it knows CPS4, not CPE4)."""
+    from meshio.abaqus import _abaqus
+
+    for name in ("CPE4", "CPE4R", "CPE4H"):
+        _abaqus.abaqus_to_meshio_type.setdefault(name, "quad")
+
+
 def write_mesh(path, result, which: str = "final") -> None:
     """Write one mesh of a result, format by extension, atomically.
 
@@ -91,7 +100,13 @@ def write_mesh(path, result, which: str = "final") -> None:
         tags = np.zeros(len(mesh.cells[0].data), dtype=np.int32)
         mesh.cell_data["gmsh:physical"] = [tags + 1]
         mesh.cell_data["gmsh:geometrical"] = [tags + 1]
-    atomic_write(path, lambda tmp: meshio.write(str(tmp), mesh, file_format=fmt, **kwargs))
+    def write(tmp):
+        meshio.write(str(tmp), mesh, file_format=fmt, **kwargs)
+        if fmt == "abaqus":  # meshio names quads CAX4P (axisymmetric pore pressure): plane strain instead
+            _teach_meshio_plane_strain()
+            tmp.write_text(re.sub(r"(?i)type\s*=\s*CAX4P\b", "type=CPE4", tmp.read_text()))
+
+    atomic_write(path, write)
 
 
 def write_result(path, result, **_options) -> None:

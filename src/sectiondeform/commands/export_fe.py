@@ -1,0 +1,71 @@
+"""Write an Abaqus / CalculiX input deck (.inp) of a case: mesh, rubber, support motion, step.
+
+The deck runs as it is in Abaqus/Standard and in CalculiX: plane-strain
+elements (default CPE6, which does not lock for nearly incompressible rubber
+in CalculiX), a neo-Hookean material (C10 = mu/2, D1 = 2/kappa, shear
+modulus 1, bulk_to_shear from the case, default 1000), the lower curve's
+nodes moved onto the target by the arc-length rule, one NLGEOM static step,
+displacements written out. What the deck cannot express (an area ratio
+other than 1 on a plane section) is written at its top and warned about.
+
+Example: sectiondeform export-fe case.json -o deck.inp --element CPE8R
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from ..errors import CaseError
+from ..io import read_case
+from ..io.json import atomic_write
+from ._common import apply_overrides, eprint
+
+
+def add_fe_args(parser) -> None:
+    """``--element``, ``--mesh-size`` and ``--area-ratio`` (shared with solve-fe)."""
+    from ..external.deck import DEFAULT_ELEMENT, DEFAULT_MESH_SIZE
+
+    parser.add_argument("--element", default=DEFAULT_ELEMENT, metavar="TYPE",
+                        help=f"element type: CPE3, CPE6, CPE4, CPE4R, CPE8, CPE8R, or a hybrid one (H, Abaqus only); "
+                             f"default {DEFAULT_ELEMENT}")
+    parser.add_argument("--mesh-size", type=float, default=DEFAULT_MESH_SIZE, metavar="H",
+                        help=f"triangle size as a fraction of the mean thickness (default {DEFAULT_MESH_SIZE})")
+    parser.add_argument("--area-ratio", type=float, metavar="R", help="override the law: final area = R x initial area")
+
+
+def read_fe_case(path: Path, args):
+    """The case of a command line, refusing in one line what the decks cannot build yet."""
+    from ..external.deck import check_case_format
+
+    if Path(path).suffix.lower() == ".json" and Path(path).is_file():
+        try:
+            check_case_format(json.loads(Path(path).read_text(encoding="utf-8")))
+        except json.JSONDecodeError:
+            pass  # read_case says what is wrong
+    return apply_overrides(read_case(path), args)
+
+
+def add_args(parser) -> None:
+    parser.add_argument("case", type=Path, help="case file")
+    parser.add_argument("-o", "--output", type=Path, required=True, metavar="DECK", help="the deck to write (.inp)")
+    add_fe_args(parser)
+
+
+def run(args) -> int:
+    from ..external.deck import build_deck, deck_text
+
+    if args.output.suffix.lower() != ".inp":
+        raise CaseError("--output", f"a deck is an .inp file, got {args.output.name!r}")
+    if not args.output.parent.is_dir():
+        raise CaseError("--output", f"the folder {str(args.output.parent)!r} does not exist")
+    case = read_fe_case(args.case, args)
+    deck = build_deck(case, args.element, args.mesh_size)
+    text = deck_text(deck)
+    atomic_write(args.output, lambda tmp: tmp.write_text(text, encoding="ascii"))
+    for line in deck.unexpressed:
+        eprint(f"sectiondeform export-fe: warning: {line}")
+    m = deck.mesh
+    print(f"wrote {args.output}: {len(m.points)} nodes, {len(m.cells)} {deck.element.name} elements, "
+          f"{len(m.lower_nodes)} support nodes")
+    return 0

@@ -1,0 +1,66 @@
+"""Solve a case with an external finite-element solver (CalculiX) and write the section result.
+
+Writes the case's deck (as export-fe), runs CalculiX's ccx in a temporary
+folder with its increments on stderr, reads the displacements back and maps
+the upper curve's characteristic points through the deformed elements. The
+result is a section-result/1 (model "calculix"). Needs ccx (Debian/Ubuntu:
+apt-get install calculix-ccx).
+
+Example: sectiondeform solve-fe case.json --solver calculix -o result.json --plot fe.png
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from ..errors import CaseError
+from ..io.json import atomic_write
+from ._common import eprint
+from .export_fe import add_fe_args, read_fe_case
+
+
+def add_args(parser) -> None:
+    parser.add_argument("case", type=Path, help="case file")
+    parser.add_argument("--solver", choices=("calculix",), default="calculix", help="the solver (default calculix)")
+    parser.add_argument("-o", "--output", type=Path, metavar="RESULT", help="write the result (.json)")
+    parser.add_argument("--plot", type=Path, metavar="FIG", help="figure of the result (.png, .svg or .pdf)")
+    parser.add_argument("--keep", type=Path, metavar="DIR", help="copy the solver's files (.inp, .frd, .sta, .dat) here")
+    parser.add_argument("-q", "--quiet", action="store_true", help="no progress on stderr")
+    add_fe_args(parser)
+
+
+def run(args) -> int:
+    from ..external.solve import solve_calculix
+    from ..io import check_figure_path
+
+    for path, flag in ((args.output, "--output"), (args.keep, "--keep")):
+        if path is not None and not (path if flag == "--keep" else path.parent).is_dir():
+            raise CaseError(flag, f"the folder {str(path if flag == '--keep' else path.parent)!r} does not exist")
+    if args.output is not None and args.output.suffix.lower() != ".json":
+        raise CaseError("--output", f"a result is a .json file, got {args.output.name!r}")
+    if args.plot is not None:
+        check_figure_path(args.plot)
+    case = read_fe_case(args.case, args)
+    solution = solve_calculix(case, element=args.element, mesh_size=args.mesh_size,
+                              progress=None if args.quiet else eprint, keep=args.keep)
+    for line in solution.warnings:
+        eprint(f"sectiondeform solve-fe: warning: {line}")
+    result = solution.to_result()
+    if args.output is not None:
+        text = json.dumps(result.to_json(), indent=1) + "\n"
+        atomic_write(args.output, lambda tmp: tmp.write_text(text, encoding="utf-8"))
+    if args.plot is not None:
+        from ..plot import save_figure
+
+        save_figure(result, args.plot)
+    info = solution.info
+    print(f"{case.name} (CalculiX, {solution.elements} {solution.deck.element.name} elements)")
+    print(f"  area initial {result.area_initial:.4f}, final {result.area_final:.4f} {case.units}²  "
+          f"(relative error to the law {result.relative_error:+.2e})")
+    print(f"  {info['increments']} increments, {info['iterations']} iterations, {info['cutbacks']} cut-backs, "
+          f"{solution.seconds:.1f} s")
+    written = [str(p) for p in (args.output, args.plot) if p is not None]
+    if written:
+        print(f"  wrote {' and '.join(written)}")
+    return 0

@@ -1,0 +1,223 @@
+"""The finite-element mesh of a case for an external solver: corners, mid-edge nodes, quads.
+
+The corners come from the project's reference mesher
+(:func:`~sectiondeform.reference.mesh.triangulate_section`, quality triangles
+whose vertices include every characteristic point of the upper curve and the
+lower nodes with their arc-length fractions). From them:
+
+* triangles (``CPE3``) are used as they are; six-node triangles (``CPE6``)
+  get a node at the middle of every edge;
+* quadrilaterals (``CPE4``) split each triangle into three, through the
+  middles of its edges and its centroid; eight-node quadrilaterals
+  (``CPE8``) then get a node at the middle of every quad edge.
+
+A node added on a lower edge gets the mean of its two ends' fractions (the
+same linear rule as the reference's mid-edge nodes), so every node of the
+lower curve carries the fraction at which it goes onto the target.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["FeMesh", "add_mid_nodes", "element_areas", "fe_mesh", "split_into_quads", "thin_polyline"]
+
+#: meshio's name of each (family, nodes) mesh kind.
+KINDS = {("triangle", 3): "triangle", ("triangle", 6): "triangle6", ("quad", 4): "quad", ("quad", 8): "quad8"}
+
+
+@dataclass(frozen=True, eq=False)
+class FeMesh:
+    """A mesh ready for a deck.
+
+    Attributes
+    ----------
+    points : (N, 2) float64 ndarray
+        Node coordinates, units.
+    cells : (M, k) int64 ndarray
+        Node indices of each element, corners counter-clockwise then the
+        middles of edges corner 1-2, 2-3, ... (Abaqus order).
+    kind : str
+        ``"triangle"``, ``"triangle6"``, ``"quad"`` or ``"quad8"``.
+    lower_nodes : (n_l,) int64 ndarray
+        Nodes on the lower curve, by increasing fraction (A to B).
+    lower_fractions : (n_l,) float64 ndarray
+        Arc-length fraction of each of ``lower_nodes``.
+    upper_nodes : (m',) int64 ndarray
+        Nodes of the upper curve's characteristic points kept as mesh
+        nodes (see :func:`thin_polyline`), B to A.
+    """
+
+    points: np.ndarray
+    cells: np.ndarray
+    kind: str
+    lower_nodes: np.ndarray
+    lower_fractions: np.ndarray
+    upper_nodes: np.ndarray
+
+    @property
+    def corners(self) -> int:
+        """Corner nodes per element (3 or 4)."""
+        return 3 if self.kind.startswith("triangle") else 4
+
+
+def _edges(cells: np.ndarray) -> np.ndarray:
+    """Edges corner k to corner k + 1 of each cell, ``(M, c, 2)``."""
+    return np.stack((cells, np.roll(cells, -1, axis=1)), axis=2)
+
+
+def add_mid_nodes(points, cells, lower_nodes, lower_fractions):
+    """Add a node at the middle of every edge of a corner-only mesh.
+
+    Parameters
+    ----------
+    points : (N, 2) float64 ndarray
+    cells : (M, c) int64 ndarray
+        Corners, counter-clockwise.
+    lower_nodes : (n_l,) int64 ndarray
+    lower_fractions : (n_l,) float64 ndarray
+
+    Returns
+    -------
+    points : (N + E, 2) float64 ndarray
+        The input points, then one per edge.
+    cells : (M, 2c) int64 ndarray
+        Corners, then the middle of edge k -> k + 1 for each k.
+    lower_nodes, lower_fractions : ndarray
+        With the middles of the lower boundary edges, sorted by fraction.
+
+    Examples
+    --------
+    >>> p, c, ln, lf = add_mid_nodes(np.array([[0.0, 0], [2, 0], [0, 2]]), np.array([[0, 1, 2]]),
+    ...                              np.array([0, 1]), np.array([0.0, 1.0]))
+    >>> p[c[0, 3:]].tolist(), ln.tolist(), lf.tolist()
+    ([[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], [0, 3, 1], [0.0, 0.5, 1.0])
+    """
+    e = _edges(cells).reshape(-1, 2)
+    key = np.sort(e, axis=1)
+    uniq, inverse, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    inverse = inverse.ravel()
+    mids = 0.5 * (points[uniq[:, 0]] + points[uniq[:, 1]])
+    n = len(points)
+    new_cells = np.concatenate((cells, n + inverse.reshape(cells.shape)), axis=1)
+    frac = np.full(n, np.nan)
+    frac[lower_nodes] = lower_fractions
+    f0, f1 = frac[uniq[:, 0]], frac[uniq[:, 1]]
+    on_lower = (counts == 1) & np.isfinite(f0) & np.isfinite(f1)
+    nodes = np.concatenate((lower_nodes, n + np.flatnonzero(on_lower)))
+    fractions = np.concatenate((lower_fractions, 0.5 * (f0 + f1)[on_lower]))
+    order = np.argsort(fractions, kind="stable")
+    return np.concatenate((points, mids)), new_cells, nodes[order], fractions[order]
+
+
+def split_into_quads(points, triangles, lower_nodes, lower_fractions):
+    """Split each triangle into three quadrilaterals through its edge middles and centroid.
+
+    Returns
+    -------
+    points : (N', 2) float64 ndarray
+    quads : (3M, 4) int64 ndarray
+        Counter-clockwise.
+    lower_nodes, lower_fractions : ndarray
+    """
+    p6, c6, nodes, fractions = add_mid_nodes(points, triangles, lower_nodes, lower_fractions)
+    g = len(p6) + np.arange(len(triangles))
+    centroids = points[triangles].mean(axis=1)
+    a, b, c, mab, mbc, mca = c6.T
+    quads = np.concatenate((
+        np.column_stack((a, mab, g, mca)),
+        np.column_stack((b, mbc, g, mab)),
+        np.column_stack((c, mca, g, mbc)),
+    ))
+    return np.concatenate((p6, centroids)), quads, nodes, fractions
+
+
+def element_areas(points: np.ndarray, cells: np.ndarray, corners: int) -> np.ndarray:
+    """Exact signed area of each (isoparametric) element, ``(M,)``, units².
+
+    Green's theorem on the element's boundary: the polygon through its
+    nodes, plus, for a quadratic edge a-m-b, one third of the triangle
+    (a, m, b) (Archimedes: a parabolic segment is 4/3 of that triangle).
+    """
+    if cells.shape[1] == corners:
+        ring = points[cells]
+        bulge = 0.0
+    else:
+        c, m = cells[:, :corners], cells[:, corners:]
+        ring = points[np.stack((c, m), axis=2).reshape(len(cells), -1)]
+        a, mid, b = points[c], points[m], points[np.roll(c, -1, axis=1)]
+        d1, d2 = mid - a, b - a
+        bulge = 0.5 * (d1[..., 0] * d2[..., 1] - d1[..., 1] * d2[..., 0])
+        bulge = np.sum(bulge, axis=1) / 3.0
+    x, y = ring[..., 0], ring[..., 1]
+    poly = 0.5 * np.sum(x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y, axis=1)
+    return poly + bulge
+
+
+def thin_polyline(points: np.ndarray, spacing: float, corner_deg: float = 10.0) -> np.ndarray:
+    """Indices of the vertices of an open polyline kept so that kept ones are about ``spacing`` apart.
+
+    The ends and every vertex where the polyline turns by more than
+    ``corner_deg`` are kept; between them a vertex is kept once the arc
+    length since the last kept one reaches ``spacing``.
+
+    Examples
+    --------
+    >>> thin_polyline(np.column_stack((np.arange(7.0), np.zeros(7))), 2.5).tolist()
+    [0, 3, 6]
+    """
+    seg = np.diff(points, axis=0)
+    length = np.hypot(seg[:, 0], seg[:, 1])
+    heading = np.arctan2(seg[:, 1], seg[:, 0])
+    turn = np.abs((np.diff(heading) + np.pi) % (2 * np.pi) - np.pi)
+    corner = np.concatenate(([True], np.degrees(turn) > corner_deg, [True]))
+    keep, since = [0], 0.0
+    for i in range(1, len(points)):
+        since += length[i - 1]
+        if corner[i] or since >= spacing:
+            keep.append(i)
+            since = 0.0
+    return np.asarray(keep, dtype=np.int64)
+
+
+def fe_mesh(section, lower_curve, size: float, family: str, nodes: int) -> FeMesh:
+    """Mesh a section for a solver deck.
+
+    Parameters
+    ----------
+    section : Section
+    lower_curve : Curve or None
+        Exact lower curve for the lower nodes (see
+        :func:`~sectiondeform.reference.mesh.triangulate_section`).
+    size : float
+        Triangle size h, units (quads are about h / 2).
+    family : str
+        ``"triangle"`` or ``"quad"``.
+    nodes : int
+        Nodes per element: 3 or 6 for triangles, 4 or 8 for quads.
+
+    Returns
+    -------
+    FeMesh
+    """
+    import dataclasses
+
+    from ..reference.mesh import triangulate_section
+
+    # The upper curve as its characteristic points about size / 3 apart (the rest are mapped by
+    # the shape functions), so a finely discretised curve does not flood the mesh with elements.
+    kept = thin_polyline(np.asarray(section.upper), size / 3.0)
+    tri = triangulate_section(dataclasses.replace(section, upper=section.upper[kept]), size, lower_curve)
+    p, c = np.asarray(tri.points), np.asarray(tri.triangles)
+    ln, lf = np.asarray(tri.lower_nodes), np.asarray(tri.lower_fractions)
+    if family == "quad":
+        p, c, ln, lf = split_into_quads(p, c, ln, lf)
+    if nodes in (6, 8):
+        p, c, ln, lf = add_mid_nodes(p, c, ln, lf)
+    out = FeMesh(points=p, cells=c.astype(np.int64), kind=KINDS[(family, nodes)], lower_nodes=ln.astype(np.int64),
+                 lower_fractions=lf, upper_nodes=np.asarray(tri.upper_nodes, dtype=np.int64))
+    for arr in (out.points, out.cells, out.lower_nodes, out.lower_fractions, out.upper_nodes):
+        arr.setflags(write=False)
+    return out
