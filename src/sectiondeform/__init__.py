@@ -39,8 +39,17 @@ __all__ = [
     "Arc", "AreaRatio", "BSpline", "Case", "CaseError", "Chain", "ConvergenceError", "Curve",
     "Deformer", "GeometryError", "Law", "LawError", "LocateError", "MeshError", "MissingExtraError",
     "Polyline", "Result", "Section", "SectionDeformError", "build_section", "case_from_dict",
-    "case_to_dict", "curve_from_json", "deform", "example_case_path", "load_case",
+    "case_to_dict", "curve_from_json", "deform", "example_case_path", "load_case", "sweep",
 ]
+
+
+def __getattr__(name):
+    """``sd.sweep`` imported on first use, so importing sectiondeform does not import pyarrow."""
+    if name == "sweep":
+        from .studies import sweep
+
+        return sweep
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def example_case_path() -> Path:

@@ -1,0 +1,204 @@
+"""Parametric studies: same table on every engine, resume, failed rows, bad study files."""
+
+from __future__ import annotations
+
+import json
+import math
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pa = pytest.importorskip("pyarrow")
+import pyarrow.parquet as pq
+
+import sectiondeform as sd
+from sectiondeform.cli import main
+from sectiondeform.compare import hausdorff_distance
+from sectiondeform.curves import Polyline
+from sectiondeform.studies import StudyError, load_study
+from sectiondeform.studies.targets import transformed_target
+
+DATA = Path(__file__).parent / "data" / "sweep"
+VOLATILE = {"prepare_s", "place_s", "row_s", "worker"}
+PAPER_RADIUS = 115.03571428571429
+
+
+def _study(tmp_path, vary, name="study.json", extra=None):
+    """A study file next to copies of the shared cases, so relative names resolve."""
+    for f in DATA.glob("*.json"):
+        if f.name != "study.json" and not (tmp_path / f.name).exists():
+            shutil.copy(f, tmp_path / f.name)
+    data = {"format": "section-study/1", "name": "t", "cases": [{"case": "paper-example.json", "vary": vary}], **(extra or {})}
+    path = tmp_path / name
+    path.write_text(json.dumps(data))
+    return path
+
+
+BIG = {  # 4 x 5 x 3 x 2 x 3 = 360 rows, two sections
+    "area_ratio": {"start": 0.7, "stop": 1.0, "num": 4},
+    "bend_radius": [30, 80, PAPER_RADIUS, 300, -150],
+    "crown": {"start": 0, "stop": 4, "num": 3},
+    "element_size": [None, 4.0],
+    "stretch": [0.95, 1.0, 1.05],
+}
+
+
+def _rows(table):
+    """Table as a list of dicts in row order, without the timing and worker columns."""
+    return [{k: v for k, v in r.items() if k not in VOLATILE} for r in table.sort_by("row").to_pylist()]
+
+
+def _same(a, b):
+    assert len(a) == len(b)
+    for ra, rb in zip(a, b):
+        assert ra.keys() == rb.keys()
+        for k in ra:
+            if isinstance(ra[k], float) and isinstance(rb[k], float):
+                assert math.isclose(ra[k], rb[k], rel_tol=1e-9, abs_tol=1e-12), (k, ra, rb)
+            else:
+                assert ra[k] == rb[k], (k, ra, rb)
+
+
+def test_same_table_on_every_engine(tmp_path):
+    study = _study(tmp_path, BIG)
+    one = sd.sweep(study, tmp_path / "one", workers=1)
+    assert one.num_rows == 360
+    ok = one.column("ok").to_pylist()
+    assert 0 < sum(ok) < 360  # the tightest bends cannot carry the section: recorded, not raised
+    two = sd.sweep(study, tmp_path / "two", workers=2)
+    _same(_rows(one), _rows(two))
+    pytest.importorskip("distributed")
+    dask = sd.sweep(study, tmp_path / "dask", workers=2, scheduler="local")
+    _same(_rows(one), _rows(dask))
+    assert len(set(dask.column("worker").to_pylist())) >= 1
+
+
+def test_rows_meet_the_law_and_keep_inputs(tmp_path):
+    table = sd.sweep(_study(tmp_path, {"area_ratio": [0.75, 0.9], "crown": [0.0, 3.0]}), workers=0)
+    for r in table.to_pylist():
+        assert r["ok"], r["error"]
+        assert r["area_final"] == pytest.approx(r["area_ratio"] * r["area_initial"], rel=1e-9)
+        assert abs(r["relative_error"]) < 1e-9 and r["jacobian_min"] > 0
+    assert table.column("row").to_pylist() == [0, 1, 2, 3]
+    assert [(r["area_ratio"], r["crown"]) for r in table.to_pylist()] == [(0.75, 0.0), (0.75, 3.0), (0.9, 0.0), (0.9, 3.0)]
+
+
+def test_interrupted_study_resumes(tmp_path):
+    out = tmp_path / "out"
+    part = _study(tmp_path, {"area_ratio": [0.8, 0.9], "crown": [0.0, 2.0]}, "part.json")
+    whole = _study(tmp_path, {"area_ratio": [0.7, 0.8, 0.9], "crown": [0.0, 2.0]}, "whole.json")
+    first = pq.read_table(sd.sweep(part, out, workers=0) and out / "rows.parquet").to_pylist()
+    # a run killed while writing leaves an unreadable part: it is dropped and its rows redone
+    (out / "parts").mkdir()
+    (out / "parts" / "part-0-0.parquet").write_bytes(b"PAR1 cut short")
+    from sectiondeform.studies.api import _as_study, run_study
+
+    info = run_study(_as_study(whole, None), out, workers=0)
+    assert (info["skipped"], info["run"]) == (4, 2)
+    table = pq.read_table(out / "rows.parquet").to_pylist()
+    assert len(table) == 6 and len({r["row_id"] for r in table}) == 6
+    again = {r["row_id"]: r["place_s"] for r in table}
+    assert all(again[r["row_id"]] == r["place_s"] for r in first)  # done rows kept, not redone
+    assert not (out / "parts").exists()
+    assert run_study(_as_study(whole, None), out, workers=0)["run"] == 0
+
+
+def test_failed_rows_are_recorded_and_the_others_done(tmp_path):
+    (tmp_path / "targets").mkdir()
+    (tmp_path / "targets" / "a-line.json").write_text(json.dumps({"polyline": [[0, 0], [110, 0]]}))
+    tight = transformed_target(sd.load_case(DATA / "paper-example.json").lower, bend_radius=20.0)
+    (tmp_path / "targets" / "b-tight.json").write_text(json.dumps(tight.to_json()))
+    study = _study(tmp_path, {"targets": "targets", "area_ratio": [0.8, 0.85]})
+    rows = sd.sweep(study, tmp_path / "out", workers=2, save="results", csv=True).to_pylist()
+    assert [r["target_file"] for r in rows] == ["targets/a-line.json"] * 2 + ["targets/b-tight.json"] * 2
+    assert [r["ok"] for r in rows] == [True, True, False, False]
+    for r in rows[2:]:
+        assert r["error"] and "\n" not in r["error"] and r["error_type"].endswith("Error")
+        assert r["area_final"] is None
+    saved = sorted(p.stem for p in (tmp_path / "out" / "results").glob("*.json"))
+    assert saved == sorted(r["row_id"] for r in rows[:2])
+    assert (tmp_path / "out" / "rows.csv").read_text().count("\n") == 5
+
+
+def test_reference_gives_hausdorff_distance(tmp_path):
+    ref = tmp_path / "ref.json"
+    main(["deform", str(DATA / "paper-example.json"), "-o", str(ref), "--no-meshes"])
+    table = sd.sweep(_study(tmp_path, {"area_ratio": [0.8, 0.7]}), workers=0, reference=ref).to_pylist()
+    assert table[0]["hausdorff"] < 1e-9  # the case itself
+    assert table[1]["hausdorff"] > 0.5
+
+
+def test_csv_rows(tmp_path):
+    _study(tmp_path, {})
+    path = tmp_path / "rows.csv"
+    path.write_text("case,area_ratio,model,bend,stretch\npaper-example.json,0.8,,,\npaper-example.json,0.9,paper,200,1.1\n")
+    rows = load_study(path).rows
+    assert [(r.area_ratio, r.model, r.bend_radius, r.stretch) for r in rows] == [(0.8, "paper", None, None), (0.9, "paper", 200.0, 1.1)]
+    assert all(sd.sweep(path, workers=0).column("ok").to_pylist())
+
+
+@pytest.mark.parametrize(
+    "vary, extra, field",
+    [
+        ({"area_ratios": [0.8]}, None, "cases[0].vary.area_ratios"),
+        ({"area_ratio": {"start": 0.5, "stop": 1, "n": 3}}, None, "cases[0].vary.area_ratio.n"),
+        ({"area_ratio": [0.8, -1]}, None, "cases[0].vary.area_ratio[1]"),
+        ({"model": ["fast"]}, None, "cases[0].vary.model[0]"),
+        ({"area_ratio": [0.8, 0.8]}, None, "cases[0]"),
+        ({}, {"format": "section-study/9"}, "format"),
+        ({}, {"cases": [{"case": "missing.json"}]}, "cases[0].case"),
+    ],
+)
+def test_bad_study_one_line_exit_2(tmp_path, capsys, vary, extra, field):
+    study = _study(tmp_path, vary, extra=extra)
+    assert main(["sweep", str(study), "-o", str(tmp_path / "out"), "--quiet"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and f"error: {field}:" in err
+    assert not (tmp_path / "out").exists()
+    with pytest.raises(StudyError):
+        load_study(study)
+
+
+def test_bad_csv_column(tmp_path, capsys):
+    path = tmp_path / "rows.csv"
+    path.write_text("case,ratio\nx.json,0.8\n")
+    assert main(["sweep", str(path), "-o", str(tmp_path / "out")]) == 2
+    assert "column 'ratio'" in capsys.readouterr().err
+
+
+def test_bend_of_the_straight_support_is_the_paper_target():
+    case = sd.load_case(DATA / "paper-example.json")
+    bent = transformed_target(case.lower, bend_radius=PAPER_RADIUS)
+    d = hausdorff_distance(bent.at_fractions(np.linspace(0, 1, 2001)), case.target.at_fractions(np.linspace(0, 1, 2001)))
+    assert d < 1e-3
+    assert bent.length == pytest.approx(case.lower.length, rel=1e-5)
+    # bending to a radius does not depend on the target's own curvature
+    again = transformed_target(case.target, bend_radius=PAPER_RADIUS)
+    assert hausdorff_distance(again.at_fractions(np.linspace(0, 1, 501)), bent.at_fractions(np.linspace(0, 1, 501))) < 1e-3
+
+
+def test_crown_stretch_rotate_translate():
+    line = Polyline(np.array([[0.0, 0.0], [100.0, 0.0]]))
+    h = 8.0
+    crowned = transformed_target(line, crown=h).at_fractions(np.linspace(0, 1, 101))
+    radius = (50.0**2 + h * h) / (2 * h)
+    centre = np.array([50.0, h - radius])
+    assert np.allclose(np.hypot(*(crowned - centre).T), radius, atol=1e-9)
+    moved = transformed_target(line, stretch=2.0, rotate_deg=90.0, translate_x=1.0, translate_y=-2.0)
+    assert np.allclose(moved.at_fractions(np.array([0.0, 1.0])), [[51.0, -102.0], [51.0, 98.0]])
+
+
+def test_study_of_every_axis_expands_to_the_product(tmp_path):
+    study = load_study(_study(tmp_path, {"area_ratio": {"start": 0.6, "stop": 0.9, "num": 4}, "scale": [1, 1.1],
+                                         "rotate_deg": [0, 5, 10], "model": ["paper"]}))
+    assert len(study.rows) == 24 and len({r.row_id for r in study.rows}) == 24
+    assert sorted({r.area_ratio for r in study.rows}) == pytest.approx([0.6, 0.7, 0.8, 0.9])
+
+
+def test_importing_sectiondeform_does_not_import_pyarrow():
+    code = "import sys, sectiondeform; assert 'pyarrow' not in sys.modules; sectiondeform.sweep; assert 'pyarrow' in sys.modules"
+    subprocess.run([sys.executable, "-c", code], check=True)
