@@ -9,6 +9,7 @@ depend on the engine. Local processes use
 
 from __future__ import annotations
 
+import itertools
 import math
 import os
 from collections.abc import Iterator
@@ -20,6 +21,7 @@ from .study import Row
 __all__ = ["chunks", "run_dask", "run_inline", "run_local"]
 
 MAX_CHUNK = 256
+WINDOW = 4  # chunks in flight per worker
 
 
 def chunks(rows: list[Row], workers: int, save: str = "none", outdir: str | None = None) -> list[Chunk]:
@@ -44,16 +46,25 @@ def run_inline(tasks: list[Chunk]) -> Iterator[list[dict]]:
 
 
 def run_local(tasks: list[Chunk], workers: int | None = None) -> Iterator[list[dict]]:
-    """Run the chunks on ``workers`` local processes (default: every core), as they finish."""
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+    """Run the chunks on ``workers`` local processes (default: every core), as they finish.
 
-    with ProcessPoolExecutor(max_workers=workers or os.cpu_count()) as pool:
-        futures = [pool.submit(run_chunk, t) for t in tasks]
+    At most ``WINDOW`` chunks per worker are in flight, so memory stays flat
+    however long the study.
+    """
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
+    n = workers or os.cpu_count() or 1
+    pending = iter(tasks)
+    with ProcessPoolExecutor(max_workers=n) as pool:
+        running = {pool.submit(run_chunk, t) for t in itertools.islice(pending, WINDOW * n)}
         try:
-            for future in as_completed(futures):
-                yield future.result()
+            while running:
+                done, running = wait(running, return_when=FIRST_COMPLETED)
+                running |= {pool.submit(run_chunk, t) for t in itertools.islice(pending, len(done))}
+                for future in done:
+                    yield future.result()
         finally:
-            for future in futures:
+            for future in running:
                 future.cancel()
 
 
@@ -68,13 +79,18 @@ def run_dask(tasks: list[Chunk], scheduler: str, workers: int | None = None) -> 
     else:
         client = distributed.Client(scheduler)
     try:
-        futures = client.map(run_chunk, tasks, pure=False)
+        n = workers or len(client.scheduler_info().get("workers", {})) or os.cpu_count() or 1
+        pending = iter(tasks)
+        first = [client.submit(run_chunk, t, pure=False) for t in itertools.islice(pending, WINDOW * n)]
+        flow = distributed.as_completed(first)
         try:
-            for future in distributed.as_completed(futures):
+            for future in flow:
+                for t in itertools.islice(pending, 1):
+                    flow.add(client.submit(run_chunk, t, pure=False))
                 yield future.result()
                 future.release()
         finally:
-            client.cancel(futures)
+            client.cancel(list(flow.futures))
     finally:
         client.close()
         if cluster is not None:
