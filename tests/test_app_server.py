@@ -204,3 +204,18 @@ def test_an_invalid_case_is_not_saved(client, case_json):
 def test_hosts_are_loopback_names_and_the_given_one():
     assert hosts_for("127.0.0.1", 8765) == ["127.0.0.1:8765", "[::1]:8765", "localhost:8765"]
     assert "192.168.1.5:80" in hosts_for("192.168.1.5", 80)
+
+
+def test_points_arrive_exactly(client, case_json):
+    """The packed contour decodes to the library's own result, bit for bit."""
+    import base64
+
+    import numpy as np
+
+    with client.websocket_connect("/ws", headers=ORIGIN) as ws:
+        ws.send_text(request(case_json, 1, ratio=0.75))
+        r = ws.receive_json()
+    contour = np.frombuffer(base64.b64decode(r["contour"]["f64"]), dtype="<f8").reshape(-1, 2)
+    expected = sd.Deformer(sd.case_from_dict(case_json)).deform(law=sd.AreaRatio(0.75)).contour
+    np.testing.assert_array_equal(contour, expected)
+    assert len(r["mesh_final"]["cells"]) == len(r["mesh_initial"]["cells"])

@@ -93,7 +93,8 @@ def answer(cache: DeformerCache, case_json: dict, model: str, ratio, final: bool
     Returns
     -------
     dict
-        Plain JSON: contours, meshes, areas, quality, compute time in ms.
+        Contours and mesh points as ``(n, 2)`` float64 arrays, mesh cells,
+        areas, quality figures, compute time in ms.
 
     Raises
     ------
@@ -117,9 +118,9 @@ def describe(result: Result, final: bool, prepared: bool, meshes: bool, compute_
         "final": bool(final),
         "model": result.model,
         "prepared": prepared,
-        "contour": result.contour.tolist(),
-        "lower": result.lower.tolist(),
-        "initial_contour": result.initial_contour.tolist(),
+        "contour": result.contour,
+        "lower": result.lower,
+        "initial_contour": result.initial_contour,
         "area_initial": result.area_initial,
         "area_target": result.area_target,
         "area_final": result.area_final,
@@ -131,8 +132,10 @@ def describe(result: Result, final: bool, prepared: bool, meshes: bool, compute_
     }
     if meshes:
         if final or prepared:  # the initial mesh changes only with the section
-            out["mesh_initial"] = result.initial_mesh.to_json()
-        out["mesh_final"] = {"points": result.final_mesh.points.tolist(), "cells": result.final_mesh.cells.tolist()}
+            out["mesh_initial"] = {"points": result.initial_mesh.points, "cells": result.initial_mesh.cells.tolist()}
+        out["mesh_final"] = {"points": result.final_mesh.points}
+        if final or prepared:
+            out["mesh_final"]["cells"] = result.final_mesh.cells.tolist()
     return out
 
 

@@ -9,7 +9,8 @@ Routes
 ``WS /ws``
     Live deformation. The page sends ``{"seq", "final", "case", "model",
     "ratio"}``; only the latest pending request is computed (coalescing); the
-    server answers ``{"type": "result", "seq", ...}`` or ``{"type": "refused",
+    server answers ``{"type": "result", "seq", ...}`` (point arrays as base64
+    float64, see :func:`packed`) or ``{"type": "refused",
     "seq", "message"}`` and keeps running.
 ``POST /api/open``
     An uploaded case file (.json, .dxf, .svg, multipart field ``file``),
@@ -27,11 +28,13 @@ page is ever read or written.
 from __future__ import annotations
 
 import asyncio
+import base64
 import json
 import tempfile
 from importlib import resources
 from pathlib import Path
 
+import numpy as np
 from starlette.applications import Starlette
 from starlette.requests import Request
 from starlette.responses import FileResponse, JSONResponse, Response
@@ -64,6 +67,15 @@ def origin_ok(headers, hosts: frozenset) -> bool:
     host = headers.get("host", "").lower()
     origin = headers.get("origin")
     return host in hosts and origin is not None and origin.lower() == f"http://{host}"
+
+
+def packed(value):
+    """``value`` with each float64 array as ``{"f64": base64 of its bytes, little-endian}``: exact and fast to send."""
+    if isinstance(value, np.ndarray):
+        return {"f64": base64.b64encode(np.ascontiguousarray(value, dtype="<f8").tobytes()).decode("ascii")}
+    if isinstance(value, dict):
+        return {k: packed(v) for k, v in value.items()}
+    return value
 
 
 def _refusal(status: int, message: str) -> JSONResponse:
@@ -250,7 +262,7 @@ def create_app(case_json: dict, hosts, message_limit: int = MAX_MESSAGE, upload_
                 try:
                     out = await asyncio.to_thread(engine.answer, cache, msg.get("case"), msg.get("model", "paper"),
                                                   msg.get("ratio"), bool(msg.get("final")))
-                    reply = {"type": "result", "seq": msg["seq"], **out}
+                    reply = {"type": "result", "seq": msg["seq"], **packed(out)}
                 except SectionDeformError as exc:
                     reply = {"type": "refused", "seq": msg["seq"], "message": str(exc)}
                 except Exception as exc:  # noqa: BLE001 - the server keeps running whatever one request does

@@ -14,6 +14,7 @@ const state = {
   seq: 0,              // last request sent
   shown: -1,           // last answer drawn
   sent: new Map(),     // seq -> performance.now() of the pointer event
+  sentAt: new Map(),   // seq -> performance.now() once sent
   result: null,        // last good answer
   view: { s: 1, tx: 0, ty: 0 },
   undo: [],
@@ -56,14 +57,17 @@ function fit() {
   applyView();
 }
 
-function drawResult() {
+function drawResult(all) {
   const res = state.result;
   if (!res) return;
-  $("initial").setAttribute("d", pathOf(res.initial_contour, true));
+  const show = $("show-mesh").checked;
+  // the initial section and mesh change only with the section: redrawn only then
+  if (all || res.initialSent) {
+    $("initial").setAttribute("d", pathOf(res.initial_contour, true));
+    $("mesh-initial").setAttribute("d", show ? meshPath(res.mesh_initial) : "");
+  }
   $("deformed").setAttribute("d", pathOf(res.contour, true));
   $("target").setAttribute("d", pathOf(res.lower, false));
-  const show = $("show-mesh").checked;
-  $("mesh-initial").setAttribute("d", show ? meshPath(res.mesh_initial) : "");
   $("mesh-final").setAttribute("d", show ? meshPath(res.mesh_final) : "");
 }
 
@@ -156,7 +160,7 @@ let queued = null;
 
 function connect() {
   socket = new WebSocket(`ws://${location.host}/ws`);
-  socket.onmessage = (e) => onAnswer(JSON.parse(e.data));
+  socket.onmessage = (e) => { const t = performance.now(); onAnswer(JSON.parse(e.data), t); };
   socket.onopen = () => { if (queued) { socket.send(queued); queued = null; } };
   socket.onclose = () => { message("connection to the server lost; reload the page when it runs again", "error"); };
 }
@@ -167,15 +171,35 @@ function request(final, t0) {
   state.case.law = { area_ratio: state.ratio };
   const text = JSON.stringify({ seq: state.seq, final, case: state.case, model: state.model, ratio: state.ratio });
   if (socket.readyState === WebSocket.OPEN) socket.send(text); else queued = text;
+  state.sentAt.set(state.seq, performance.now());
   svg.dataset.pending = state.seq;
 }
 
-function onAnswer(msg) {
+// Point arrays come as {f64: base64 of little-endian float64 x, y pairs}: back to [[x, y], ...].
+function unpack(v) {
+  if (v && typeof v === "object" && !Array.isArray(v)) {
+    if (typeof v.f64 === "string") {
+      const bytes = Uint8Array.from(atob(v.f64), (c) => c.charCodeAt(0));
+      const f = new Float64Array(bytes.buffer);
+      const out = new Array(f.length / 2);
+      for (let i = 0; i < out.length; i++) out[i] = [f[2 * i], f[2 * i + 1]];
+      return out;
+    }
+    const o = {};
+    for (const k in v) o[k] = unpack(v[k]);
+    return o;
+  }
+  return v;
+}
+
+function onAnswer(packedMsg, received) {
+  const msg = unpack(packedMsg);
   if (msg.type === "dropped") { state.sent.delete(msg.seq); return; }
   if (msg.seq !== null && msg.seq <= state.shown) return;          // stale: a newer answer is drawn
-  const t0 = state.sent.get(msg.seq);
+  const t0 = state.sent.get(msg.seq), t1 = state.sentAt.get(msg.seq);
   if (msg.seq !== null) state.shown = msg.seq;
   for (const k of state.sent.keys()) if (k <= msg.seq) state.sent.delete(k);
+  for (const k of state.sentAt.keys()) if (k <= msg.seq) state.sentAt.delete(k);
   if (msg.type === "refused") {
     svg.classList.add("refused");
     svg.dataset.refusedSeq = msg.seq;
@@ -183,12 +207,17 @@ function onAnswer(msg) {
     return;
   }
   svg.classList.remove("refused");
+  msg.initialSent = Boolean(msg.mesh_initial);   // sent with each full deformation and each new section
   if (!msg.mesh_initial && state.result) msg.mesh_initial = state.result.mesh_initial;
+  if (!msg.mesh_final.cells && state.result) msg.mesh_final.cells = state.result.mesh_final.cells;
   state.result = msg;
   drawResult();
   if (!state.drag) drawHandles();
   const now = performance.now();
-  if (t0 !== undefined) state.latencies.push({ seq: msg.seq, ms: now - t0, compute: msg.compute_ms, final: msg.final });
+  if (t0 !== undefined) {
+    state.latencies.push({ seq: msg.seq, ms: now - t0, compute: msg.compute_ms, final: msg.final,
+                           send: t1 - t0, wait: received - t1, draw: now - received });
+  }
   showReadout(msg, t0 === undefined ? NaN : now - t0);
   if ($("message").dataset.kind === "error") message("", "none");
   if (msg.warnings.length) message("warning: " + msg.warnings.join("; "), "info");
@@ -303,7 +332,7 @@ $("ratio-value").addEventListener("change", (e) => {
   request(true);
 });
 $("model").addEventListener("change", (e) => { state.model = e.target.value; request(true); });
-$("show-mesh").addEventListener("change", drawResult);
+$("show-mesh").addEventListener("change", () => drawResult(true));
 $("undo").addEventListener("click", undo);
 $("fit").addEventListener("click", fit);
 $("reset").addEventListener("click", () => load({ case: state.opened, model: state.openedModel }, false));
