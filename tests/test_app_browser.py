@@ -231,3 +231,29 @@ def test_saving_downloads_a_valid_file(page, tmp_path, name):
         assert sd.case_from_dict(data).law.ratio == pytest.approx(0.8)
     else:
         assert abs(data["area"]["final"] - data["area"]["target"]) <= 1e-9 * data["area"]["target"]
+
+
+def test_nudge_zoom_pan_and_reset(page):
+    before = shown(page)
+    page.click('circle[data-curve=target][data-index="2"]')   # select the target's end
+    assert page.locator("circle.selected").count() == 1
+    seq = before["seq"]
+    for _ in range(3):
+        page.keyboard.press("Shift+ArrowUp")
+    d = wait_for(page, f"d.seq > {seq} && d.final === '1' && d.pending === d.seq")
+    assert on_law(d) and d["contourHash"] != before["contourHash"]
+    view = page.evaluate("() => ({...sdState.view})")
+    page.mouse.move(400, 300)
+    page.mouse.wheel(0, -300)                                   # zoom in about the pointer
+    page.wait_for_function(f"sdState.view.s > {view['s']} * 1.2")
+    page.mouse.move(200, 600)                                   # pan from the background
+    page.mouse.down()
+    page.mouse.move(260, 640, steps=3)
+    page.mouse.up()
+    zoomed = page.evaluate("() => ({...sdState.view})")
+    assert zoomed["s"] > view["s"] and zoomed["ty"] != view["ty"]
+    page.click("#reset")                                        # the case as opened; the view stays
+    d = wait_for(page, f"d.seq > {d['seq']} && d.final === '1' && d.pending === d.seq")
+    assert d["contourHash"] == before["contourHash"]
+    page.click("#fit")
+    assert page.evaluate("() => sdState.view.s") == pytest.approx(view["s"])
