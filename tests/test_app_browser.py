@@ -38,7 +38,8 @@ def _missing() -> str | None:
 
 def chromium_path() -> str | None:
     """The Chromium executable: SECTIONDEFORM_CHROMIUM, else 'chromium' on the PATH."""
-    return os.environ.get("SECTIONDEFORM_CHROMIUM") or shutil.which("chromium") or shutil.which("chromium-browser")
+    path = os.environ.get("SECTIONDEFORM_CHROMIUM") or shutil.which("chromium") or shutil.which("chromium-browser")
+    return path if path and os.path.isfile(path) else None
 
 
 @pytest.fixture(scope="module")

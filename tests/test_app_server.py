@@ -219,3 +219,19 @@ def test_points_arrive_exactly(client, case_json):
     expected = sd.Deformer(sd.case_from_dict(case_json)).deform(law=sd.AreaRatio(0.75)).contour
     np.testing.assert_array_equal(contour, expected)
     assert len(r["mesh_final"]["cells"]) == len(r["mesh_initial"]["cells"])
+
+
+def test_serve_warns_for_another_host():
+    """Listening on any address but loopback names prints a warning first (127.0.0.2: still this machine)."""
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen([sys.executable, "-m", "sectiondeform", "serve", "--host", "127.0.0.2", "--port", "0",
+                             "--no-browser"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        first, second = proc.stdout.readline(), proc.stdout.readline()
+    finally:
+        proc.terminate()
+        proc.wait(timeout=10)
+    assert first.startswith("warning: listening on 127.0.0.2")
+    assert "http://127.0.0.2:" in second
