@@ -1,0 +1,432 @@
+// The interactive page: draw, drag, send to the server, show its answers.
+"use strict";
+
+const $ = (id) => document.getElementById(id);
+const svg = $("view");
+const NS = "http://www.w3.org/2000/svg";
+const clone = (x) => JSON.parse(JSON.stringify(x));
+
+const state = {
+  opened: null,        // the case as opened (for reset)
+  case: null,          // the case being edited (section-case/1)
+  model: "paper",
+  ratio: 0.8,
+  seq: 0,              // last request sent
+  shown: -1,           // last answer drawn
+  sent: new Map(),     // seq -> performance.now() of the pointer event
+  sentAt: new Map(),   // seq -> performance.now() once sent
+  result: null,        // last good answer
+  view: { s: 1, tx: 0, ty: 0 },
+  undo: [],
+  selected: null,      // {curve: "target"|"upper", index}
+  drag: null,
+  latencies: [],       // ms from pointer event to redrawn section (for the benchmark)
+};
+window.sdState = state;
+
+// ---- drawing -----------------------------------------------------------
+
+const pathOf = (pts, close) => pts.length ? "M" + pts.map((p) => p[0] + " " + p[1]).join("L") + (close ? "Z" : "") : "";
+
+function meshPath(mesh) {
+  if (!mesh) return "";
+  const P = mesh.points;
+  return mesh.cells.map((c) => "M" + c.map((i) => P[i][0] + " " + P[i][1]).join("L") + "Z").join("");
+}
+
+function applyView() {
+  const v = state.view;
+  $("world").setAttribute("transform", `matrix(${v.s} 0 0 ${-v.s} ${v.tx} ${v.ty})`);
+  drawHandles();
+}
+
+const toScreen = (p) => [state.view.s * p[0] + state.view.tx, -state.view.s * p[1] + state.view.ty];
+function toWorld(evt) {
+  const r = svg.getBoundingClientRect();
+  return [(evt.clientX - r.left - state.view.tx) / state.view.s, (state.view.ty - (evt.clientY - r.top)) / state.view.s];
+}
+
+function fit() {
+  const pts = [...Geo.points(state.case.target), ...(state.result ? state.result.initial_contour : Geo.points(state.case.upper))];
+  if (state.result) pts.push(...state.result.contour);
+  const xs = pts.map((p) => p[0]), ys = pts.map((p) => p[1]);
+  const x0 = Math.min(...xs), x1 = Math.max(...xs), y0 = Math.min(...ys), y1 = Math.max(...ys);
+  const r = svg.getBoundingClientRect();
+  const s = 0.8 * Math.min(r.width / Math.max(x1 - x0, 1e-9), r.height / Math.max(y1 - y0, 1e-9));
+  state.view = { s, tx: r.width / 2 - s * (x0 + x1) / 2, ty: r.height / 2 + s * (y0 + y1) / 2 };
+  applyView();
+}
+
+function drawResult(all) {
+  const res = state.result;
+  if (!res) return;
+  const show = $("show-mesh").checked;
+  // the initial section and mesh change only with the section: redrawn only then
+  if (all || res.initialSent) {
+    $("initial").setAttribute("d", pathOf(res.initial_contour, true));
+    $("mesh-initial").setAttribute("d", show ? meshPath(res.mesh_initial) : "");
+  }
+  $("deformed").setAttribute("d", pathOf(res.contour, true));
+  $("target").setAttribute("d", pathOf(res.lower, false));
+  $("mesh-final").setAttribute("d", show ? meshPath(res.mesh_final) : "");
+}
+
+function drawEdits() {
+  $("target-polygon").setAttribute("d", pathOf(Geo.points(state.case.target), false));
+  $("upper-polygon").setAttribute("d", state.case.upper.bspline ? pathOf(Geo.points(state.case.upper), false) : "");
+  drawHandles();
+}
+
+// Handles: the target's points (red), the upper curve's inner points (green), whole-target handles.
+function handleList() {
+  const list = [];
+  const tp = Geo.points(state.case.target);
+  tp.forEach((p, i) => list.push({ curve: "target", index: i, p }));
+  const up = Geo.points(state.case.upper);
+  if (!state.case.upper.arc) up.forEach((p, i) => { if (i > 0 && i < up.length - 1) list.push({ curve: "upper", index: i, p }); });
+  const f = Geo.frame(tp);
+  const low = state.result ? state.result.lower : tp;    // the whole-curve handles hang below the target's middle
+  const mid = low[Math.floor(low.length / 2)];
+  const base = [f.M[0] + f.u[0] * Geo.dot(Geo.sub(mid, f.M), f.u) + f.n[0] * Math.min(0, Geo.dot(Geo.sub(mid, f.M), f.n)),
+                f.M[1] + f.u[1] * Geo.dot(Geo.sub(mid, f.M), f.u) + f.n[1] * Math.min(0, Geo.dot(Geo.sub(mid, f.M), f.n))];
+  const off = (k, along) => {
+    const m = toScreen(base);
+    return { screen: [m[0] - f.n[0] * k + f.u[0] * along, m[1] + f.n[1] * k - f.u[1] * along] };
+  };
+  list.push({ whole: "bend", label: "B", ...off(30, 0) });
+  list.push({ whole: "move", label: "M", ...off(60, 0) });
+  list.push({ whole: "rotate", label: "R", ...off(60, -40) });
+  const b = toScreen(f.B);
+  list.push({ whole: "stretch", label: "S", screen: [b[0] + f.u[0] * 28, b[1] - f.u[1] * 28] });
+  return list;
+}
+
+function drawHandles() {
+  const g = $("handles");
+  g.replaceChildren();
+  if (!state.case) return;
+  for (const h of handleList()) {
+    const [x, y] = h.screen || toScreen(h.p);
+    const c = document.createElementNS(NS, "circle");
+    c.setAttribute("cx", x); c.setAttribute("cy", y); c.setAttribute("r", h.whole ? 8 : 6);
+    const sel = state.selected && !h.whole && state.selected.curve === h.curve && state.selected.index === h.index;
+    c.setAttribute("class", "handle" + (h.curve === "upper" ? " upper" : "") + (h.whole ? " whole" : "") + (sel ? " selected" : ""));
+    c.dataset.curve = h.curve || "target";
+    if (h.whole) c.dataset.whole = h.whole; else c.dataset.index = h.index;
+    c.handle = h;
+    g.appendChild(c);
+    if (h.label) {
+      const t = document.createElementNS(NS, "text");
+      t.setAttribute("x", x + 10); t.setAttribute("y", y + 4); t.setAttribute("class", "handle-label");
+      t.textContent = h.label;
+      g.appendChild(t);
+    }
+  }
+}
+
+// ---- readouts ----------------------------------------------------------
+
+const fmt = (v, d = 4) => (v === null || v === undefined ? "—" : Number(v).toPrecision(d + 2));
+
+function showReadout(res, roundtrip) {
+  const u = state.case.units || "";
+  $("r-initial").textContent = fmt(res.area_initial) + " " + u + "²";
+  $("r-target").textContent = fmt(res.area_target) + " " + u + "²";
+  $("r-final").textContent = fmt(res.area_final) + " " + u + "²";
+  $("r-error").textContent = Number(res.relative_error).toExponential(2);
+  $("r-jacobian").textContent = fmt(res.jacobian_min, 3);
+  $("r-info").textContent = Object.entries(res.info).map(([k, v]) => `${k} ${typeof v === "number" ? fmt(v, 3) : v}`).join(", ") || "—";
+  $("r-compute").textContent = res.compute_ms.toFixed(2) + " ms";
+  $("r-roundtrip").textContent = roundtrip.toFixed(1) + " ms";
+  $("r-state").textContent = (res.final ? "full deformation" : "preview") + ` (${res.model})`;
+  const d = svg.dataset;
+  d.seq = res.seq; d.final = res.final ? "1" : "0"; d.model = res.model;
+  d.areaInitial = res.area_initial; d.areaTarget = res.area_target; d.areaFinal = res.area_final;
+  d.relativeError = res.relative_error; d.jacobianMin = res.jacobian_min;
+  d.contourHash = res.contour.length + ":" + res.contour.reduce((s, p) => s + p[0] * 1.3 + p[1] * 0.7, 0);
+  d.roundtripMs = roundtrip; d.computeMs = res.compute_ms;
+}
+
+function message(text, kind) {
+  const m = $("message");
+  m.textContent = text || "";
+  m.dataset.kind = text ? kind : "none";
+}
+
+// ---- the live link -----------------------------------------------------
+
+let socket = null;
+let queued = null;
+
+function connect() {
+  socket = new WebSocket(`ws://${location.host}/ws`);
+  socket.onmessage = (e) => { const t = performance.now(); onAnswer(JSON.parse(e.data), t); };
+  socket.onopen = () => { if (queued) { socket.send(queued); queued = null; } };
+  socket.onclose = () => { message("connection to the server lost; reload the page when it runs again", "error"); };
+}
+
+function request(final, t0) {
+  state.seq += 1;
+  state.sent.set(state.seq, t0 === undefined ? performance.now() : t0);
+  state.case.law = { area_ratio: state.ratio };
+  const text = JSON.stringify({ seq: state.seq, final, case: state.case, model: state.model, ratio: state.ratio });
+  if (socket.readyState === WebSocket.OPEN) socket.send(text); else queued = text;
+  state.sentAt.set(state.seq, performance.now());
+  svg.dataset.pending = state.seq;
+}
+
+// Point arrays come as {f64: base64 of little-endian float64 x, y pairs}: back to [[x, y], ...].
+function unpack(v) {
+  if (v && typeof v === "object" && !Array.isArray(v)) {
+    if (typeof v.f64 === "string") {
+      const bytes = Uint8Array.from(atob(v.f64), (c) => c.charCodeAt(0));
+      const f = new Float64Array(bytes.buffer);
+      const out = new Array(f.length / 2);
+      for (let i = 0; i < out.length; i++) out[i] = [f[2 * i], f[2 * i + 1]];
+      return out;
+    }
+    const o = {};
+    for (const k in v) o[k] = unpack(v[k]);
+    return o;
+  }
+  return v;
+}
+
+function onAnswer(packedMsg, received) {
+  const msg = unpack(packedMsg);
+  if (msg.type === "dropped") { state.sent.delete(msg.seq); return; }
+  if (msg.seq !== null && msg.seq <= state.shown) return;          // stale: a newer answer is drawn
+  const t0 = state.sent.get(msg.seq), t1 = state.sentAt.get(msg.seq);
+  if (msg.seq !== null) state.shown = msg.seq;
+  for (const k of state.sent.keys()) if (k <= msg.seq) state.sent.delete(k);
+  for (const k of state.sentAt.keys()) if (k <= msg.seq) state.sentAt.delete(k);
+  if (msg.type === "refused") {
+    svg.classList.add("refused");
+    svg.dataset.refusedSeq = msg.seq;
+    message("refused: " + msg.message + " (the last good shape is kept)", "error");
+    return;
+  }
+  svg.classList.remove("refused");
+  msg.initialSent = Boolean(msg.mesh_initial);   // sent with each full deformation and each new section
+  if (!msg.mesh_initial && state.result) msg.mesh_initial = state.result.mesh_initial;
+  if (!msg.mesh_final.cells && state.result) msg.mesh_final.cells = state.result.mesh_final.cells;
+  state.result = msg;
+  drawResult();
+  if (!state.drag) drawHandles();
+  const now = performance.now();
+  if (t0 !== undefined) {
+    state.latencies.push({ seq: msg.seq, ms: now - t0, compute: msg.compute_ms, final: msg.final,
+                           send: t1 - t0, wait: received - t1, draw: now - received });
+  }
+  showReadout(msg, t0 === undefined ? NaN : now - t0);
+  if ($("message").dataset.kind === "error") message("", "none");
+  if (msg.warnings.length) message("warning: " + msg.warnings.join("; "), "info");
+  if (state.fitPending) { state.fitPending = false; fit(); }
+}
+
+// ---- editing -----------------------------------------------------------
+
+function snapshot() { return { target: clone(state.case.target), upper: clone(state.case.upper), ratio: state.ratio }; }
+
+function setPoints(curve, P) {
+  const made = Geo.withPoints(state.case[curve], P);
+  if (!made) return false;
+  state.case[curve] = made;
+  return true;
+}
+
+svg.addEventListener("pointerdown", (e) => {
+  const t0 = performance.now();
+  svg.focus();
+  const h = e.target.handle;
+  if (h) {
+    e.preventDefault();
+    svg.setPointerCapture(e.pointerId);
+    state.undo.push(snapshot());
+    const curve = h.whole ? "target" : h.curve;
+    state.drag = { h, curve, from: toWorld(e), P0: Geo.points(state.case[curve]), moved: false };
+    if (!h.whole) { state.selected = { curve: h.curve, index: h.index }; drawHandles(); }
+  } else {
+    svg.setPointerCapture(e.pointerId);
+    state.drag = { pan: true, x: e.clientX, y: e.clientY, tx: state.view.tx, ty: state.view.ty };
+  }
+});
+
+svg.addEventListener("pointermove", (e) => {
+  const t0 = performance.now();
+  const d = state.drag;
+  if (!d) return;
+  if (d.pan) {
+    state.view.tx = d.tx + e.clientX - d.x; state.view.ty = d.ty + e.clientY - d.y;
+    applyView();
+    return;
+  }
+  const to = toWorld(e);
+  let P;
+  if (d.h.whole) P = Geo.wholeEdit(d.h.whole, d.P0, d.from, to);
+  else {
+    P = d.P0.map((p) => p.slice());
+    P[d.h.index] = [d.P0[d.h.index][0] + to[0] - d.from[0], d.P0[d.h.index][1] + to[1] - d.from[1]];
+  }
+  if (!setPoints(d.curve, P)) return;
+  d.moved = true;
+  drawEdits();
+  request(false, t0);
+});
+
+function endDrag(e) {
+  const d = state.drag;
+  state.drag = null;
+  if (!d || d.pan) return;
+  if (d.moved) request(true); else state.undo.pop();
+}
+svg.addEventListener("pointerup", endDrag);
+svg.addEventListener("pointercancel", endDrag);
+
+svg.addEventListener("wheel", (e) => {
+  e.preventDefault();
+  const r = svg.getBoundingClientRect();
+  const x = e.clientX - r.left, y = e.clientY - r.top;
+  const k = Math.exp(-e.deltaY * 0.0015);
+  const v = state.view;
+  v.tx = x - (x - v.tx) * k; v.ty = y - (y - v.ty) * k; v.s *= k;
+  applyView();
+}, { passive: false });
+
+function undo() {
+  const s = state.undo.pop();
+  if (!s) return;
+  state.case.target = s.target; state.case.upper = s.upper; setRatio(s.ratio);
+  drawEdits(); request(true);
+}
+
+function setRatio(r) {
+  state.ratio = r;
+  $("ratio").value = r;
+  $("ratio-value").value = Number(r).toFixed(3);
+}
+
+document.addEventListener("keydown", (e) => {
+  if (e.target.tagName === "INPUT" || e.target.tagName === "SELECT") return;
+  if ((e.ctrlKey || e.metaKey) && e.key === "z") { e.preventDefault(); undo(); return; }
+  if (e.key === "f" || e.key === "F") { fit(); return; }
+  const dirs = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
+  const sel = state.selected;
+  if (!sel || !dirs[e.key]) return;
+  e.preventDefault();
+  const step = (e.shiftKey ? 10 : 1) / state.view.s;     // one screen pixel (ten with Shift)
+  state.undo.push(snapshot());
+  const P = Geo.points(state.case[sel.curve]);
+  P[sel.index] = [P[sel.index][0] + dirs[e.key][0] * step, P[sel.index][1] + dirs[e.key][1] * step];
+  if (setPoints(sel.curve, P)) { drawEdits(); request(true); } else state.undo.pop();
+});
+
+$("ratio").addEventListener("pointerdown", () => state.undo.push(snapshot()));
+$("ratio").addEventListener("input", (e) => { setRatio(Number(e.target.value)); request(false); });
+$("ratio").addEventListener("change", () => request(true));
+$("ratio-value").addEventListener("change", (e) => {
+  const r = Number(e.target.value);
+  if (!(r > 0)) { message("area ratio: must be a number > 0", "error"); return; }
+  state.undo.push(snapshot());
+  setRatio(r);
+  request(true);
+});
+$("model").addEventListener("change", (e) => { state.model = e.target.value; request(true); });
+$("show-mesh").addEventListener("change", () => drawResult(true));
+$("undo").addEventListener("click", undo);
+$("fit").addEventListener("click", fit);
+$("reset").addEventListener("click", () => load({ case: state.opened, model: state.openedModel }, false));
+
+// ---- files -------------------------------------------------------------
+
+function load(data, refit = true) {
+  state.opened = clone(data.case);
+  state.openedModel = data.model || "paper";
+  state.case = clone(data.case);
+  state.model = state.openedModel;
+  $("model").value = state.model;
+  setRatio(data.case.law && data.case.law.area_ratio !== undefined ? data.case.law.area_ratio : 0.8);
+  state.undo = []; state.selected = null;
+  $("case-name").textContent = data.case.name || "";
+  state.result = null;
+  state.fitPending = refit;
+  drawEdits();
+  request(true);
+}
+
+async function openFile(file) {
+  const form = new FormData();
+  form.append("file", file);
+  for (const [id, key] of [["o-area-ratio", "area_ratio"], ["o-snap", "snap"], ["o-close-gap", "close_gap"],
+                           ["o-join-tol", "join_tol"], ["o-target-arc", "target_arc"]]) {
+    if ($(id).value !== "") form.append(key, $(id).value);
+  }
+  try {
+    const r = await fetch("/api/open", { method: "POST", body: form });
+    const data = await r.json();
+    if (!r.ok) { message(`cannot open ${file.name}: ${data.error}`, "error"); return; }
+    load(data);
+    message(`opened ${file.name}` + (data.report.length ? ": " + data.report.join("; ") : ""), "info");
+  } catch (err) {
+    message(`cannot open ${file.name}: ${err}`, "error");
+  }
+}
+
+$("file").addEventListener("change", (e) => { if (e.target.files[0]) openFile(e.target.files[0]); e.target.value = ""; });
+document.addEventListener("dragover", (e) => { e.preventDefault(); $("drop").hidden = false; });
+document.addEventListener("dragleave", (e) => { if (!e.relatedTarget) $("drop").hidden = true; });
+document.addEventListener("drop", (e) => {
+  e.preventDefault();
+  $("drop").hidden = true;
+  if (e.dataTransfer.files[0]) openFile(e.dataTransfer.files[0]);
+});
+
+function download(blob, name) {
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(blob);
+  a.download = name;
+  document.body.appendChild(a);
+  a.click();
+  setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
+}
+
+document.querySelectorAll("[data-save]").forEach((b) => b.addEventListener("click", async () => {
+  const name = b.dataset.save;
+  state.case.law = { area_ratio: state.ratio };
+  const r = await fetch("/api/save/" + name, {
+    method: "POST", headers: { "Content-Type": "application/json" },
+    body: JSON.stringify({ case: state.case, model: state.model }),
+  });
+  if (!r.ok) { message(`cannot save ${name}: ${(await r.json()).error}`, "error"); return; }
+  download(await r.blob(), (state.case.name || "section") + "-" + name);
+}));
+
+// The view as PNG: the SVG (with its own style) drawn on a canvas.
+function viewPng() {
+  return new Promise((resolve, reject) => {
+    const r = svg.getBoundingClientRect();
+    const copy = svg.cloneNode(true);
+    copy.setAttribute("width", r.width); copy.setAttribute("height", r.height);
+    const url = URL.createObjectURL(new Blob([new XMLSerializer().serializeToString(copy)], { type: "image/svg+xml" }));
+    const img = new Image();
+    img.onload = () => {
+      const canvas = document.createElement("canvas");
+      canvas.width = r.width * 2; canvas.height = r.height * 2;
+      const ctx = canvas.getContext("2d");
+      ctx.scale(2, 2);
+      ctx.drawImage(img, 0, 0);
+      URL.revokeObjectURL(url);
+      canvas.toBlob(resolve, "image/png");
+    };
+    img.onerror = reject;
+    img.src = url;
+  });
+}
+$("save-png").addEventListener("click", async () => download(await viewPng(), (state.case.name || "section") + "-view.png"));
+
+window.addEventListener("resize", () => applyView());
+
+// ---- start -------------------------------------------------------------
+
+connect();
+fetch("/api/start").then((r) => r.json()).then((data) => load(data));
