@@ -114,3 +114,14 @@ def test_a_lower_curve_drawn_the_other_way_is_refused_with_the_fix():
 def test_the_paper_example_figures_are_unchanged():
     r = sd.deform(sd.load_case(sd.example_case_path()))
     assert round(r.area_initial) == 4379 and round(r.area_final, 1) == 3503.2
+
+
+def test_a_half_turned_target_near_the_reversed_lower_curve_is_flagged_not_refused():
+    """A half turn of the support on purpose cannot be told from a drawing error: a warning, not a refusal."""
+    d = box_case()
+    a = np.radians(166.0)  # lower (0, 0)-(10, 0) turned by 166 degrees about the origin, then moved by 10 in x
+    d["target"] = {"polyline": [[10.0, 0.0], [10.0 + 10.0 * np.cos(a), 10.0 * np.sin(a)]]}
+    r = sd.deform(sd.case_from_dict(d))
+    assert any("turned over" in w for w in r.warnings)
+    # a rigid motion: the section turns with its support, area kept
+    assert abs(r.relative_error) <= 1e-9

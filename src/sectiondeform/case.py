@@ -296,7 +296,7 @@ def case_to_dict(case: Case) -> dict:
     return out
 
 
-def load_case(path) -> Case:
+def load_case(path):
     """Read a case JSON file.
 
     Parameters
@@ -305,14 +305,22 @@ def load_case(path) -> Case:
 
     Returns
     -------
-    Case
+    Case or Assembly
 
     Raises
     ------
     CaseError
         If the file cannot be read, is not JSON, or is not a valid case.
+
+    A ``section-case/2`` file gives an :class:`~sectiondeform.assembly.Assembly`
+    (a version-1 file stays a version-1 :class:`Case`).
     """
-    return case_from_dict(read_json(path))
+    data = read_json(path)
+    if isinstance(data, dict) and data.get("format") == "section-case/2":
+        from .assembly import assembly_from_dict  # the assembly module imports this one
+
+        return assembly_from_dict(data)
+    return case_from_dict(data)
 
 
 def read_json(path):

@@ -25,6 +25,7 @@ the support -- is refused with :class:`~sectiondeform.errors.GeometryError`.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 
 import numpy as np
@@ -41,6 +42,7 @@ from .section import build_section, polygon_area
 __all__ = ["Deformer", "deform", "AREA_TOLERANCE", "TARGET_DEVIATION_SLACK"]
 
 AREA_TOLERANCE = 1e-9
+TURNED_OVER_NEAR = 0.05  # a target this close to the reversed lower curve (fraction of its length) is a drawing error
 TARGET_DEVIATION_SLACK = 1.5
 """A target is reported as under-sampled when it strays from the deformed lower
 polyline by more than this times the section's chordal error."""
@@ -216,31 +218,41 @@ class Deformer:
                 raise
             raise better from exc
         if target is None and target_nodes is None:
-            self._check_not_turned_over(result)
+            result = self._check_not_turned_over(result)
         return result
 
-    def _check_not_turned_over(self, result: Result) -> None:
-        """Refuse a section that comes out on the other side of the case's target than of its lower curve.
+    def _check_not_turned_over(self, result: Result) -> Result:
+        """Refuse, or flag, a section that comes out on the other side of the case's target than of its lower curve.
 
         That happens when the lower curve is drawn the other way than the
         target (B to A) on the same support: the target starts near the lower
-        curve's end B and ends near its start A (within a quarter of the
-        lower curve's length), and the deformed section lies on the other
-        side of the target than the initial one of the lower curve. The map
-        then turns the section over to hang under the support. A target
-        moved elsewhere, or rotated on purpose, is not refused.
+        curve's end B and ends near its start A, and the deformed section
+        lies on the other side of the target than the initial one of the
+        lower curve. The map then turns the section over to hang under the
+        support. When the target is the lower curve reversed (ends and
+        points within ``TURNED_OVER_NEAR`` of its length), that is refused;
+        when it is only near it (a quarter of the length: a half turn on
+        purpose cannot be told from a drawing error), the result carries a
+        warning.
         """
         low0, low1 = result.initial_lower, result.lower
-        near = 0.25 * self.section.lower_length
-        swapped = np.hypot(*(low1[0] - low0[-1])) < near and np.hypot(*(low1[-1] - low0[0])) < near
+        length = self.section.lower_length
+        ends = max(np.hypot(*(low1[0] - low0[-1])), np.hypot(*(low1[-1] - low0[0])))
         side0 = _centroid(result.initial_contour) - low0.mean(axis=0)
         side1 = _centroid(result.contour) - low1.mean(axis=0)
-        if swapped and float(side0 @ side1) < 0:
+        if ends >= 0.25 * length or float(side0 @ side1) >= 0:
+            return result
+        fix = "reverse the lower curve or the target"
+        apart = shapely.hausdorff_distance(shapely.linestrings(low0), shapely.linestrings(low1))
+        if ends < TURNED_OVER_NEAR * length and apart < TURNED_OVER_NEAR * length:
             raise GeometryError(
                 "target: the section would come out turned over, on the other side of the target than of "
-                "its lower curve (the lower curve runs the other way than the target); "
-                "reverse the lower curve or the target"
+                f"its lower curve (the lower curve runs the other way than the target); {fix}"
             )
+        note = (f"target: its ends are within {ends / length:.2g} of the lower curve's length of the lower curve's "
+                "ends swapped and the section comes out on the other side of it (turned over); "
+                f"if the lower curve was drawn the other way than the target, {fix}")
+        return dataclasses.replace(result, warnings=(*result.warnings, note))
 
     def _explained(self, exc: Exception) -> Exception:
         """The refusal ``exc`` with the likeliest cause the user can fix: a long straight upper segment.

@@ -121,4 +121,8 @@ def save_figure(result, path) -> Path:
         If matplotlib is not installed (``pip install 'sectiondeform[plot]'``).
     """
     check_figure_path(path)
+    if hasattr(result, "bodies"):  # an assembly's result
+        from .assembly_plot import draw_assembly
+
+        return write_figure(draw_assembly(result), path)
     return write_figure(draw_result(result), path)

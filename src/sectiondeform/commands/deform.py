@@ -1,6 +1,6 @@
 """Deform a case and write the result (JSON, or any format its extension names).
 
-Reads CASE (a section-case/1 JSON file, or another supported format), deforms
+Reads CASE (a section-case/1 or /2 JSON file, or another supported format), deforms
 the section onto its target under its law, and writes RESULT. The output
 file is written whole or not at all.
 
@@ -12,8 +12,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..assembly import Assembly
 from ..deform import Deformer
 from ..io import write_result
+from ._assembly import run_assembly
 from ._common import add_model_args, apply_overrides, summary
 from ._io_args import add_input_args, add_output_args, check_outputs, output_options, read_input_case, write_meshes
 
@@ -32,7 +34,10 @@ def add_args(parser) -> None:
 def run(args) -> int:
     check_outputs(args)
     report: list[str] = []
-    case = apply_overrides(read_input_case(args.case, args, report), args)
+    case = read_input_case(args.case, args, report)
+    if isinstance(case, Assembly):
+        return run_assembly(args, case, report)
+    case = apply_overrides(case, args)
     result = Deformer(case, element_size=args.element_size).deform()
     options = {"meshes": False} if args.no_meshes and args.output.suffix.lower() == ".json" else output_options(args, args.output)
     write_result(args.output, result, **options)

@@ -587,6 +587,10 @@ def _plain_case(path: Path, options: DrawingOptions, given, report) -> Case:
     if drawing_only:
         raise CaseError(drawing_only[0], f"applies to drawings (DXF, SVG) only, and {path.name} is a case JSON without one")
     case = read_plain(path)
+    if not isinstance(case, Case):  # an assembly (section-case/2): one law per body, its own units
+        for key, what in (("law", "set each body's law in the case"), ("units", "convert it as a whole later")):
+            if key in given:
+                raise CaseError(key, f"an assembly case does not take this option; {what}")
     if options.law is not None:
         case = replace(case, law=options.law)
     if options.name is not None:

@@ -1,0 +1,348 @@
+"""Deforming an assembly with the paper's model, body by body from the support up.
+
+Prepare (once): every body becomes a version-1 section
+(:meth:`~sectiondeform.assembly.Assembly.body_case`), from the top of the
+assembly down. Each lower node of a body is given its source: the support
+(at its arc-length fraction on the support) or the upper curve of one of the
+body's foundations. The nodes resting on a foundation are inserted into the
+foundation's upper polyline as characteristic points, and the foundation's
+own upper points lying strictly inside such a run of nodes are taken out of
+it, before the foundation is prepared: on a shared piece both bodies then
+have exactly the same points.
+
+Place (once per target): from the support up, each body's lower nodes go
+where their sources send them (the target at the support fractions; the
+foundation's image of the inserted point), then the body's own placement
+meets its own law. A point of a shared piece therefore has one image, the
+same for both bodies, bit for bit. The foundation's upper points taken out
+of its polyline are given back on the resting body's deformed lower
+polyline, at their place along it (so the result's ``upper`` keeps one
+image per characteristic point of the case).
+
+Every result is checked: each body's law to :data:`AREA_TOLERANCE`, shared
+points coinciding to 1e-9 of the assembly's size, every body's contour
+simple, and no overlap between deformed bodies.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import shapely
+
+from .assembly import Assembly
+from .assembly_result import AssemblyResult, BodyResult
+from .curves import Curve, Polyline, as_points, polygon_area
+from .errors import CaseError, GeometryError, LawError, MeshError, SectionDeformError
+from .models import get_model
+from .result import ResultQuality
+from .section import build_section
+
+__all__ = ["AssemblyDeformer", "deform_assembly", "AREA_TOLERANCE", "BOND_TOLERANCE", "OVERLAP_TOLERANCE"]
+
+AREA_TOLERANCE = 1e-9
+BOND_TOLERANCE = 1e-9
+"""Largest distance between the two images of a shared point, as a fraction of the assembly's size."""
+OVERLAP_TOLERANCE = 1e-9
+"""Largest overlap area of two deformed bodies, as a fraction of the smaller body's area."""
+SUPPORT = -1
+
+
+def _renamed(exc: SectionDeformError, label: str) -> SectionDeformError:
+    """``exc`` with its message prefixed by the body it is about."""
+    if isinstance(exc, CaseError):
+        return CaseError(f"{label}: {exc.field}" if exc.field else label, exc.problem)
+    return type(exc)(f"{label}: {exc}")
+
+
+def _cumulative(points: np.ndarray) -> np.ndarray:
+    return np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(points, axis=0).T))))
+
+
+class _Body:
+    """What the deformer keeps of one body: section, prepared model, node sources, upper bookkeeping."""
+
+    def __init__(self, section, original_upper):
+        self.section = section
+        self.prepared = None
+        self.original_upper = original_upper  # (m0, 2) the case's characteristic points
+        self.kept = np.arange(len(original_upper))  # index in section.upper of each original point, -1 if taken out
+        self.taken = []  # (original index, resting body, node index, t) of the points taken out
+        self.source = np.full(len(section.lower), SUPPORT)  # SUPPORT or a foundation body per lower node
+        self.where = np.zeros(len(section.lower))  # support fraction, or index in the foundation's upper
+        self.contour_order = None
+
+
+class AssemblyDeformer:
+    """An assembly prepared once for deformation onto any number of targets.
+
+    Parameters
+    ----------
+    assembly : Assembly
+    model : str, optional
+        Only ``"paper"`` so far; by default ``assembly.options.model``.
+    element_size : float, optional
+        Element size of every body's layered mesh, units; overrides the case's.
+
+    Raises
+    ------
+    CaseError
+        For a model that does not deform assemblies yet (the hyperelastic one).
+    GeometryError, MeshError
+        Naming the body whose section or mesh cannot be built.
+    """
+
+    def __init__(self, assembly: Assembly, model: str | None = None, element_size: float | None = None):
+        t0 = time.perf_counter()
+        self.assembly = assembly
+        self.model_name = model or assembly.model
+        if self.model_name != "paper":
+            raise CaseError("options.model", f"the {self.model_name} model does not deform assemblies yet; use the paper model (--model paper)")
+        self.model = get_model(self.model_name)
+        lay = assembly.layout
+        self.layout = lay
+        n = len(assembly.bodies)
+        self.bodies: list[_Body | None] = [None] * n
+        for b in reversed(lay.order):
+            self.bodies[b] = self._build(b, element_size)
+        options = assembly.options.for_model(self.model_name)
+        for b in lay.order:
+            try:
+                self.bodies[b].prepared = self.model.prepare(self.bodies[b].section, options)
+            except SectionDeformError as exc:
+                raise _renamed(exc, assembly.label(b)) from None
+        self.prepare_seconds = time.perf_counter() - t0
+
+    # -- preparing -------------------------------------------------------
+
+    def _section(self, b: int, upper: Curve | None, element_size):
+        try:
+            return build_section(self.assembly.body_case(b, upper), element_size)
+        except SectionDeformError as exc:
+            raise _renamed(exc, self.assembly.label(b)) from None
+
+    def _build(self, b: int, element_size) -> _Body:
+        """Body ``b``'s section, with the lower nodes of the bodies resting on it in its upper polyline."""
+        lay = self.layout
+        base = self._section(b, None, element_size)
+        original = np.array(base.upper)
+        resting = lay.resting_on(b)
+        if not resting:
+            body = _Body(base, original)
+        else:
+            body = self._with_resting(b, original, resting, element_size)
+        self._sources(b, body)
+        return body
+
+    def _with_resting(self, b: int, original: np.ndarray, resting, element_size) -> _Body:
+        tol = self.layout.tolerance
+        line = shapely.LineString(original)
+        params = _cumulative(original)
+        m = len(original)
+        taken = np.zeros(m, dtype=bool)
+        taken_by = {}
+        inserts = []  # (param, point, resting body, node index)
+        for r in resting:
+            rb = self.bodies[r]
+            idx = np.flatnonzero(rb.source == b)
+            if not len(idx):
+                continue
+            pts = rb.section.lower[idx]
+            par = shapely.line_locate_point(line, shapely.points(pts))
+            inserts += [(float(p), pts[k], r, int(i)) for k, (p, i) in enumerate(zip(par, idx))]
+            for run in np.split(np.arange(len(idx)), np.flatnonzero(np.diff(idx) != 1) + 1):
+                lo, hi = par[run].min(), par[run].max()
+                inside = (params > lo) & (params < hi)
+                inside[0] = inside[-1] = False
+                for k in np.flatnonzero(inside & ~taken):
+                    taken_by[int(k)] = (r, idx[run])
+                taken |= inside
+        # Merge the kept points and the inserted nodes along the original upper curve.
+        entries = [(params[k], 0 if k < m - 1 else 2, original[k], ("kept", int(k))) for k in range(m) if not taken[k]]
+        entries += [(p, 1, pt, ("node", r, i)) for p, pt, r, i in inserts]
+        entries.sort(key=lambda e: (e[0], e[1]))
+        points, point_params, kept_index, node_index = [], [], {}, {}
+        for p, _, pt, what in entries:
+            if points and np.hypot(*(pt - points[-1])) <= tol:
+                j = len(points) - 1
+                if what[0] == "kept":  # a point of the case's own upper curve keeps its place
+                    points[-1] = pt
+            else:
+                points.append(np.asarray(pt, dtype=float))
+                point_params.append(p)
+                j = len(points) - 1
+            if what[0] == "kept":
+                kept_index[what[1]] = j
+            else:
+                node_index[(what[1], what[2])] = j
+        upper = np.array(points)
+        section = self._section(b, Polyline(upper), element_size)
+        if len(section.upper) != len(upper):  # pragma: no cover - a polyline's points are its characteristic points
+            raise MeshError(f"{self.assembly.label(b)}: its upper polyline with the resting nodes lost points")
+        body = _Body(section, original)
+        body.kept = np.array([kept_index.get(k, -1) for k in range(m)])
+        for (r, i), j in node_index.items():
+            self.bodies[r].where[i] = j
+        # The points taken out: their place on the resting body's lower polyline (segment, fraction).
+        for k, (r, run) in sorted(taken_by.items()):
+            nodes = self.bodies[r].section.lower[run]
+            along = float(shapely.line_locate_point(shapely.LineString(nodes), shapely.Point(original[k])))
+            cum = _cumulative(nodes)
+            s = int(np.clip(np.searchsorted(cum, along, side="right") - 1, 0, len(nodes) - 2))
+            t = float(np.clip((along - cum[s]) / (cum[s + 1] - cum[s]), 0.0, 1.0))
+            body.taken.append((k, r, int(run[s]), t))
+        # Contour order: the prepared upper points and the taken-out ones, along the original upper.
+        all_params = np.concatenate((point_params, params[[k for k, *_ in body.taken]]))
+        body.contour_order = np.argsort(all_params, kind="stable")
+        return body
+
+    def _sources(self, b: int, body: _Body) -> None:
+        """Classify body ``b``'s lower nodes: on the support (with their fraction) or on a foundation."""
+        lay = self.layout
+        a = self.assembly
+        low = body.section.lower
+        support = lay.fine["support"]
+        on_support = shapely.distance(shapely.points(low), shapely.LineString(support)) <= lay.tolerance
+        found = lay.foundations[b]
+        if found:
+            d = np.stack([shapely.distance(shapely.points(low), shapely.LineString(lay.fine["uppers"][j])) for j in found])
+            nearest = np.asarray(found)[np.argmin(d, axis=0)]
+            body.source = np.where(on_support, SUPPORT, nearest)
+        else:
+            body.source = np.full(len(low), SUPPORT)
+        sup = body.source == SUPPORT
+        if a.bodies[b].lower.to_json() == a.support.to_json():
+            body.where[sup] = body.section.fractions[sup]
+        else:
+            line = shapely.LineString(support)
+            body.where[sup] = shapely.line_locate_point(line, shapely.points(low[sup])) / line.length
+
+    # -- placing ---------------------------------------------------------
+
+    def deform(self, target: Curve | np.ndarray | None = None) -> AssemblyResult:
+        """Deform the assembly: the support onto ``target`` (the case's by default), each body under its law.
+
+        Parameters
+        ----------
+        target : Curve or (k, 2) array_like, optional
+            Where the support goes, A' to B', units.
+
+        Returns
+        -------
+        AssemblyResult
+
+        Raises
+        ------
+        MeshError, LawError, GeometryError
+            Naming the body: an inverted element, an unmet law, a crossing
+            contour; or two deformed bodies that overlap or come apart.
+        """
+        t0 = time.perf_counter()
+        a = self.assembly
+        if target is None:
+            curve = a.target
+        elif isinstance(target, Curve):
+            curve = target
+        else:
+            curve = Polyline(as_points(target, "target", min_count=2))
+        n = len(self.bodies)
+        lowers, images, placements = [None] * n, [None] * n, [None] * n
+        for b in self.layout.order:
+            body = self.bodies[b]
+            nodes = np.empty((len(body.source), 2))
+            sup = body.source == SUPPORT
+            nodes[sup] = curve.at_fractions(body.where[sup])
+            for j in self.layout.foundations[b]:
+                on = body.source == j
+                nodes[on] = images[j][body.where[on].astype(np.int64)]
+            try:
+                with np.errstate(all="ignore"):
+                    placement = body.prepared.place(nodes, a.bodies[b].law)
+            except (MeshError, LawError, GeometryError) as exc:
+                raise _renamed(exc, a.label(b)) from exc
+            lowers[b], images[b], placements[b] = nodes, placement.upper, placement
+        results = tuple(self._body_result(b, lowers, images, placements[b]) for b in range(n))
+        self._check(results, lowers, images)
+        seconds = time.perf_counter() - t0
+        warnings = tuple(f"{a.label(b)}: {w}" for b in range(n) for w in placements[b].warnings)
+        return AssemblyResult(name=a.name, units=a.units, model=self.model_name, bodies=results,
+                              timings={"prepare_s": self.prepare_seconds, "place_s": seconds}, warnings=warnings)
+
+    def _upper_images(self, b: int, lowers, images) -> tuple[np.ndarray, np.ndarray]:
+        """Images of the case's upper points of body ``b``, and of the points taken out of it."""
+        body = self.bodies[b]
+        up = np.empty_like(body.original_upper)
+        kept = body.kept >= 0
+        up[kept] = images[b][body.kept[kept]]
+        taken = np.empty((len(body.taken), 2))
+        for row, (k, r, i, t) in enumerate(body.taken):
+            taken[row] = (1.0 - t) * lowers[r][i] + t * lowers[r][i + 1]
+            up[k] = taken[row]
+        return up, taken
+
+    def _body_result(self, b: int, lowers, images, placement) -> BodyResult:
+        a = self.assembly
+        body = self.bodies[b]
+        sec = body.section
+        up, taken = self._upper_images(b, lowers, images)
+        contour_upper = images[b]
+        initial_upper = np.array(sec.upper)
+        if body.contour_order is not None:
+            contour_upper = np.concatenate((images[b], taken))[body.contour_order]
+            initial_taken = body.original_upper[[k for k, *_ in body.taken]].reshape(-1, 2)
+            initial_upper = np.concatenate((initial_upper, initial_taken))[body.contour_order]
+        final = abs(polygon_area(np.concatenate((lowers[b], images[b][1:-1]))))
+        wanted = a.bodies[b].law.target_area(sec.area)
+        prepared = body.prepared
+        return BodyResult(
+            name=a.bodies[b].name,
+            lower=lowers[b],
+            upper=up,
+            contour=np.concatenate((lowers[b], contour_upper[1:-1])),
+            initial_lower=np.array(sec.lower),
+            initial_upper=body.original_upper,
+            initial_contour=np.concatenate((sec.lower, initial_upper[1:-1])),
+            area_initial=sec.area,
+            area_target=wanted,
+            area_final=final,
+            initial_mesh=prepared.initial_mesh,
+            final_mesh=placement.final_mesh,
+            quality=ResultQuality(prepared.quality, placement.quality),
+            info=placement.info,
+        )
+
+    def _check(self, results, lowers, images) -> None:
+        """Each law, the bonds, simple contours, no overlap; refuse naming the bodies."""
+        a = self.assembly
+        label = a.label
+        for b, r in enumerate(results):
+            if not abs(r.area_final - r.area_target) <= AREA_TOLERANCE * r.area_target:
+                raise LawError(f"{label(b)}: the final area {r.area_final:.9g} misses the target {r.area_target:.9g} by more than 1e-9")
+            if not shapely.is_simple(shapely.linearrings(r.contour)):
+                raise GeometryError(f"{label(b)}: the deformed contour crosses itself; the target or the law is too severe for this body")
+        size = a.size
+        for b, body in enumerate(self.bodies):
+            for j in self.layout.foundations[b]:
+                on = body.source == j
+                if not on.any():
+                    continue
+                gap = np.hypot(*(lowers[b][on] - images[j][body.where[on].astype(np.int64)]).T).max()
+                if not gap <= BOND_TOLERANCE * size:
+                    raise GeometryError(f"{label(b)} and {label(j)}: the shared piece comes apart by {gap:.3g} after deformation")
+        polygons = [shapely.Polygon(r.contour) for r in results]
+        for i in range(len(results)):
+            for j in range(i + 1, len(results)):
+                if not polygons[i].intersects(polygons[j]):
+                    continue
+                area = shapely.intersection(polygons[i], polygons[j]).area
+                if area > OVERLAP_TOLERANCE * min(polygons[i].area, polygons[j].area):
+                    raise GeometryError(
+                        f"{label(i)} and {label(j)}: the deformed bodies overlap (area {area:.3g}); "
+                        "the target or the laws are too severe for this assembly"
+                    )
+
+
+def deform_assembly(assembly: Assembly, model: str | None = None, element_size: float | None = None) -> AssemblyResult:
+    """Deform an assembly once onto its own target: :class:`AssemblyDeformer` then :meth:`AssemblyDeformer.deform`."""
+    return AssemblyDeformer(assembly, model, element_size).deform()

@@ -1,0 +1,120 @@
+"""The result of deforming an assembly (``section-result/2``) and its JSON form."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .models.base import Info, MeshData
+from .result import ResultQuality
+
+__all__ = ["AssemblyResult", "BodyResult", "ASSEMBLY_RESULT_FORMAT"]
+
+ASSEMBLY_RESULT_FORMAT = "section-result/2"
+
+
+@dataclass(frozen=True, eq=False)
+class BodyResult:
+    """One deformed body of an assembly.
+
+    Attributes
+    ----------
+    name : str
+    lower : (n, 2) float64 ndarray
+        Deformed lower nodes, on the deformed foundations, A' to B'.
+    upper : (m, 2) float64 ndarray
+        Image of each characteristic point of the case's upper curve, in order.
+    contour : (k, 2) float64 ndarray
+        The closed deformed body, lower then upper, also through every point
+        where another body's lower curve rests on it (shared ends once).
+    initial_lower, initial_upper, initial_contour : ndarray
+        The same points before deformation.
+    area_initial, area_target, area_final : float
+        Units².
+    initial_mesh, final_mesh : MeshData
+    quality : ResultQuality
+    info : Info
+    """
+
+    name: str
+    lower: np.ndarray
+    upper: np.ndarray
+    contour: np.ndarray
+    initial_lower: np.ndarray
+    initial_upper: np.ndarray
+    initial_contour: np.ndarray
+    area_initial: float
+    area_target: float
+    area_final: float
+    initial_mesh: MeshData
+    final_mesh: MeshData
+    quality: ResultQuality | None = None
+    info: Info = Info()
+
+    @property
+    def relative_error(self) -> float:
+        """(final - target) / target of the area."""
+        return (self.area_final - self.area_target) / self.area_target
+
+    def to_json(self, meshes: bool = True) -> dict:
+        """The body's object of ``section-result/2``, with the project's extra keys."""
+        out = {
+            "name": self.name,
+            "lower": self.lower.tolist(),
+            "upper": self.upper.tolist(),
+            "contour": self.contour.tolist(),
+            "area": {"initial": self.area_initial, "target": self.area_target, "final": self.area_final,
+                     "relative_error": self.relative_error},
+            "quality": self.quality.to_json() if self.quality is not None else {},
+            "info": self.info.to_json(),
+        }
+        if meshes:
+            out["meshes"] = {"initial": self.initial_mesh.to_json(), "final": self.final_mesh.to_json()}
+        return out
+
+
+@dataclass(frozen=True, eq=False)
+class AssemblyResult:
+    """A deformed assembly: one :class:`BodyResult` per body, in the case's order.
+
+    Attributes
+    ----------
+    name, units, model : str
+    bodies : tuple of BodyResult
+    timings : dict
+        Seconds spent in ``prepare`` and ``place``.
+    warnings : tuple of str
+    """
+
+    name: str
+    units: str
+    model: str
+    bodies: tuple
+    timings: dict = field(default_factory=dict)
+    warnings: tuple = ()
+
+    def body(self, name: str) -> BodyResult:
+        """The result of the body called ``name``."""
+        for b in self.bodies:
+            if b.name == name:
+                return b
+        raise KeyError(name)
+
+    def to_json(self, meshes: bool = True) -> dict:
+        """The ``section-result/2`` object, with the project's extra keys (model, timings, warnings, meshes).
+
+        Parameters
+        ----------
+        meshes : bool
+            Include each body's meshes under ``"meshes"``.
+        """
+        return {
+            "format": ASSEMBLY_RESULT_FORMAT,
+            "name": self.name,
+            "units": self.units,
+            "bodies": [b.to_json(meshes) for b in self.bodies],
+            "model": self.model,
+            "timings": self.timings,
+            "warnings": list(self.warnings),
+        }
