@@ -19,6 +19,7 @@ import numpy as np
 import shapely
 
 from .case import Case
+from .checks import check_result
 from .curves import Curve, as_points
 from .errors import CaseError, GeometryError, LawError, MeshError
 from .laws import Law
@@ -147,6 +148,8 @@ class Deformer:
         """Check a placement (area law, simple contour) and wrap it in a :class:`Result`."""
         sec = self.section
         contour = np.concatenate((nodes, placement.upper[1:-1]))
+        if not (np.isfinite(contour).all() and np.isfinite(placement.final_mesh.points).all()):
+            raise GeometryError("result: the deformation produced non-finite points; the target or the law is too severe for this section")
         final = abs(polygon_area(contour))
         wanted = law.target_area(sec.area)
         if abs(final - wanted) > AREA_TOLERANCE * wanted:
@@ -156,7 +159,7 @@ class Deformer:
         seconds = time.perf_counter() - t0
         quality = dict(self.prepared.quality)
         quality.update({f"final_{k}": v for k, v in placement.quality.items()})
-        return Result(
+        result = Result(
             name=self.case.name,
             units=self.case.units,
             model=self.model_name,
@@ -174,6 +177,11 @@ class Deformer:
             timings={"prepare_s": self.prepare_seconds, "place_s": seconds},
             warnings=tuple(placement.warnings),
         )
+        failed = check_result(result)  # independent checks: inverted elements, reported areas, ends
+        if failed:
+            kind = MeshError if "mesh" in failed[0].split(":")[0] else GeometryError
+            raise kind(f"result: refused, an independent check failed: {failed[0]}")
+        return result
 
 
 def deform(case: Case, model: str | None = None, element_size: float | None = None) -> Result:
