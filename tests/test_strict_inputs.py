@@ -13,7 +13,10 @@ from sectiondeform.io import read_case
 from conftest import box_case
 
 FUZZ = Path(__file__).parent / "data" / "fuzz-found"
-FUZZ_FILES = sorted(FUZZ.glob("*.json"))
+# The fuzz-found inputs broken at the JSON level (numbers too large for a float, deep nesting, not UTF-8).
+FUZZ_FILES = sorted(p for p in FUZZ.glob("*.json")
+                    if any(k in p.name for k in ("overflowerror-case", "overflowerror-curves", "overflowerror-laws",
+                                                 "recursionerror", "unicodedecodeerror")))
 
 
 def _one_line_case_error(call):

@@ -25,6 +25,7 @@ import numpy as np
 
 from .checks import COORDINATE_LIMIT, number
 from .errors import CaseError
+from .limits import MAX_CURVE_POINTS, MAX_SPLINE_PIECES, bounded
 
 __all__ = [
     "Curve",
@@ -145,6 +146,9 @@ def polygon_area(points: np.ndarray) -> float:
     >>> polygon_area(np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]))
     2.0
     """
+    if len(points) == 0:
+        return 0.0
+    points = points - points[0]  # about a vertex: no cancellation far from the origin
     x, y = points[:, 0], points[:, 1]
     x1, y1 = np.concatenate((x[1:], x[:1])), np.concatenate((y[1:], y[:1]))  # np.roll(., -1), cheaper
     return 0.5 * float(np.dot(x, y1) - np.dot(x1, y))
@@ -497,9 +501,12 @@ class Arc(Curve):
         return self.center + self.radius * np.column_stack((np.cos(th), np.sin(th)))
 
     def discretise(self, tol):
-        ratio = 1.0 - tol / self.radius
-        step = 2.0 * math.acos(ratio) if ratio > 0 else math.pi / 2
-        n = max(1, math.ceil(abs(self._sweep) / min(step, math.pi / 2) - 1e-9))
+        x = tol / self.radius
+        # The angle whose sagitta is tol; 2 sqrt(2 x) where 1 - x rounds to 1.
+        step = (2.0 * math.acos(1.0 - x) if x > 1e-8 else 2.0 * math.sqrt(2.0 * x)) if x < 1 else math.pi / 2
+        n = abs(self._sweep) / min(step, math.pi / 2) if step > 0 else math.inf
+        n = max(1, math.ceil(bounded(n, MAX_CURVE_POINTS, "points on an arc", "raise options.chordal_error") - 1e-9)) \
+            if abs(self._sweep) > 0 else 1
         s = np.linspace(0.0, 1.0, n + 1)
         return self.at_fractions(s), s
 
@@ -579,6 +586,7 @@ class BSpline(Curve):
             t = np.array(self.knots, dtype=np.float64)
         t.setflags(write=False)
         object.__setattr__(self, "knots", t)
+        bounded(len(c), MAX_SPLINE_PIECES, "B-spline control points", "fit the curve with fewer control points")
         object.__setattr__(self, "_spline", _Spline(t, c, p))
 
     @cached_property
@@ -649,12 +657,16 @@ class BSpline(Curve):
                     break
                 a, b, pa, pb, depth = a[split], b[split], pa[split], pb[split], depth[split] + 1
                 mid = 0.5 * (a + b)
+                bounded(sum(map(len, kept_u)) + len(mid), MAX_CURVE_POINTS, "points on a B-spline",
+                        "raise options.chordal_error or smooth the B-spline")
                 pmid = self._spline(mid)
                 kept_u.append(mid)
                 kept_p.append(pmid)
                 a, b = np.concatenate((a, mid)), np.concatenate((mid, b))
                 pa, pb, depth = np.concatenate((pa, pmid)), np.concatenate((pmid, pb)), np.concatenate((depth, depth))
                 dist = np.where(depth < self.MAX_DEPTH, self._deviation(a, b, pa, pb), -np.inf)
+            bounded(sum(map(len, kept_u)), MAX_CURVE_POINTS, "points on a B-spline",
+                    "raise options.chordal_error or smooth the B-spline")
             u = np.concatenate(kept_u)
             order = np.argsort(u, kind="stable")
             u = u[order]

@@ -38,6 +38,7 @@ from .laws import Law
 from .models import get_model
 from .result import Result, ResultQuality
 from .section import build_section, polygon_area
+from .verify import check_result
 
 __all__ = ["Deformer", "deform", "AREA_TOLERANCE", "TARGET_DEVIATION_SLACK"]
 
@@ -275,6 +276,8 @@ class Deformer:
         """Check a placement (area law, simple contour) and wrap it in a :class:`Result`."""
         sec = self.section
         contour = np.concatenate((nodes, placement.upper[1:-1]))
+        if not (np.isfinite(contour).all() and np.isfinite(placement.final_mesh.points).all()):
+            raise GeometryError("result: the deformation produced non-finite points; the target or the law is too severe for this section")
         final = abs(polygon_area(contour))
         wanted = law.target_area(sec.area)
         if abs(final - wanted) > AREA_TOLERANCE * wanted:
@@ -282,7 +285,7 @@ class Deformer:
         if self.check and not shapely.is_simple(shapely.linearrings(contour)):
             raise GeometryError("result: the deformed contour crosses itself; the target or the law is too severe for this section")
         seconds = time.perf_counter() - t0
-        return Result(
+        result = Result(
             name=self.case.name,
             units=self.case.units,
             model=self.model_name,
@@ -301,6 +304,11 @@ class Deformer:
             warnings=tuple(warnings) + tuple(placement.warnings),
             state=placement.state,
         )
+        failed = check_result(result)  # independent checks: inverted elements, reported areas, ends
+        if failed:
+            kind = MeshError if "mesh" in failed[0].split(":")[0] else GeometryError
+            raise kind(f"result: refused, an independent check failed: {failed[0]}")
+        return result
 
 
 def deform(case: Case, model: str | None = None, element_size: float | None = None) -> Result:

@@ -10,7 +10,14 @@ from __future__ import annotations
 
 
 class SectionDeformError(Exception):
-    """Base class of every error raised on purpose by sectiondeform."""
+    """Base class of every error raised on purpose by sectiondeform.
+
+    Its message is always one line: any line breaks (a wrapped library
+    message) are collapsed to single spaces.
+    """
+
+    def __str__(self) -> str:
+        return " ".join(super().__str__().split())
 
 
 class CaseError(SectionDeformError, ValueError):

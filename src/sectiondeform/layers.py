@@ -218,7 +218,7 @@ def node_frames(line: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndar
     # A cusp (segments going back on themselves) has no bisector: keep the incoming direction.
     cusp = norm < 1e-12
     if cusp.any():
-        t[cusp] = np.concatenate((seg[:1], seg[:-1]))[cusp]
+        t[cusp] = np.concatenate((seg[:1], seg))[cusp]  # node i: segment i - 1 (node 0: segment 0)
         norm[cusp] = 1.0
     t /= norm[:, None]
     n = t[:, ::-1] * np.array([-orientation, orientation])  # (-t_y, t_x), turned to the section's side

@@ -39,6 +39,7 @@ import shapely
 from .case import Case
 from .curves import DEFAULT_CHORDAL_FRACTION, Curve, polygon_area
 from .errors import GeometryError
+from .limits import MAX_LOWER_NODES, MAX_UPPER_POINTS, bounded
 
 __all__ = ["Section", "build_section", "polygon_area", "mesh_scale", "DEFAULT_CHORDAL_FRACTION"]
 
@@ -47,6 +48,7 @@ AREA_FRACTION = 1e-5
 AREA_REFINEMENTS = 8
 STEP_CAP_FRACTION = 0.25
 ELEMENT_FLOOR_FRACTION = 1.0 / 32.0
+MIN_CHORDAL_FRACTION = 1e-9
 
 
 def mesh_scale(area: float, lower_length: float) -> float:
@@ -142,10 +144,17 @@ def _merge_fractions(primary: np.ndarray, extra: np.ndarray, gap: float) -> np.n
     return np.sort(np.concatenate((primary, kept)))
 
 
-def _split_steps(fractions: np.ndarray, max_step: float) -> np.ndarray:
-    """Split every step of ``fractions`` longer than ``max_step`` into equal parts."""
+def _split_steps(fractions: np.ndarray, max_step: float, fix: str = "raise options.element_size") -> np.ndarray:
+    """Split every step of ``fractions`` longer than ``max_step`` into equal parts.
+
+    Raises :class:`GeometryError` before building more than
+    :data:`~sectiondeform.limits.MAX_LOWER_NODES` fractions.
+    """
     steps = np.diff(fractions)
-    parts = np.maximum(1, np.ceil(steps / max_step - 1e-9)).astype(int)
+    with np.errstate(all="ignore"):
+        parts = np.maximum(1.0, np.ceil(steps / max_step - 1e-9))
+    bounded(float(parts.sum()) + 1, MAX_LOWER_NODES, "lower nodes", fix)
+    parts = parts.astype(int)
     # Step i gives fractions[i] + k * (steps[i] / parts[i]), k < parts[i]: np.linspace's values.
     step = np.repeat(np.arange(len(steps)), parts)
     k = np.arange(len(step)) - np.repeat(np.cumsum(parts) - parts, parts)
@@ -179,12 +188,23 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
     size = float(np.hypot(*np.ptp(sketch, axis=0)))
     tol = float(opts.chordal_error if opts.chordal_error is not None else DEFAULT_CHORDAL_FRACTION * size)
 
+    if not (np.isfinite(sketch).all() and size > 0 and math.isfinite(size)):
+        raise GeometryError(f"section: the curves' size {size:.6g} is zero or not finite; check the coordinates")
+    if not tol >= MIN_CHORDAL_FRACTION * size:
+        raise GeometryError(
+            f"options.chordal_error: {tol:.6g} is below {MIN_CHORDAL_FRACTION:g} of the section's size {size:.6g}; use a larger one"
+        )
     exact = abs(case.lower.green() + case.upper.green())
+    if not math.isfinite(exact):
+        raise GeometryError("section: the curves' exact area is not finite; check the coordinates")
     uppers, lowers = case.upper.characteristic_refinements(tol, 4.0), case.lower.refinements(tol, 4.0)
     for _ in range(AREA_REFINEMENTS):  # chordal errors tol, tol / 4, tol / 16, ...
         upper = next(uppers)
         low_pts, low_s = next(lowers)
-        if len(upper) < 2 or abs(abs(polygon_area(np.concatenate((low_pts, upper[1:-1])))) - exact) <= AREA_FRACTION * exact:
+        bounded(len(upper), MAX_UPPER_POINTS, "upper points", "raise options.chordal_error or simplify the upper curve")
+        bounded(len(low_pts), MAX_LOWER_NODES, "lower nodes", "raise options.chordal_error or simplify the lower curve")
+        missed = abs(abs(polygon_area(np.concatenate((low_pts, upper[1:-1])))) - exact)
+        if len(upper) < 2 or missed <= AREA_FRACTION * exact:
             break
     join = JOIN_FRACTION * size
     a, b = case.lower.start, case.lower.end
@@ -208,6 +228,12 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
     signed = polygon_area(ring)
     if not abs(signed) > 1e-12 * size * size:
         raise GeometryError("section: lower and upper enclose no area; check that upper is not the lower curve retraced")
+    if missed > AREA_FRACTION * exact:
+        raise GeometryError(
+            f"section: the discretised contour misses the curves' exact area {exact:.9g} by {missed:.3g} "
+            f"(more than {AREA_FRACTION:g} of it) after {AREA_REFINEMENTS} refinements; "
+            "smooth the curves or set a smaller options.chordal_error"
+        )
 
     length = case.lower.length
     # Mesh scale: the mean thickness, or the square root of the area for a
@@ -216,14 +242,14 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
     floor = ELEMENT_FLOOR_FRACTION * thickness
     _, tgt_s = case.target.discretise(tol)
     s = _merge_fractions(low_s, tgt_s, 0.5 * floor / length)
-    s = _split_steps(s, STEP_CAP_FRACTION * thickness / length)
+    s = _split_steps(s, STEP_CAP_FRACTION * thickness / length, "the section is too thin against its lower curve's length")
     if element_size is None:
         element_size = opts.element_size
     if element_size is None:
         s_min = float(np.min(np.diff(s))) * length
         element_size = min(max(s_min, floor), STEP_CAP_FRACTION * thickness)
     element_size = float(element_size) / float(opts.refine)
-    s = _split_steps(s, element_size / length)
+    s = _split_steps(s, element_size / length, "raise options.element_size or lower options.refine")
     s[0], s[-1] = 0.0, 1.0
     lower = case.lower.at_fractions(s)
     lower[0], lower[-1] = a, b
@@ -250,6 +276,8 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
 
 def _check_simple(ring: np.ndarray, n_lower: int) -> None:
     """Raise :class:`GeometryError` if the closed ring crosses itself, naming where."""
+    if not np.isfinite(ring).all():
+        raise GeometryError("section: the discretised contour has non-finite points; check the coordinates")
     line = shapely.LinearRing(ring)
     if line.is_simple:
         return
@@ -262,7 +290,8 @@ def _check_simple(ring: np.ndarray, n_lower: int) -> None:
     where = ""
     if far.any():
         i, j = int(left[far][0]), int(right[far][0])
-        pt = shapely.intersection(edges[i], edges[j])
+        pt = shapely.get_coordinates(shapely.intersection(edges[i], edges[j]))
+        pt = pt[0] if len(pt) else ring[i]
         name = lambda k: f"lower edge {k}" if k < n_lower - 1 else f"upper edge {k - n_lower + 1}"  # noqa: E731
-        where = f" ({name(i)} meets {name(j)} near {np.round(shapely.get_coordinates(pt)[0], 6).tolist()})"
+        where = f" ({name(i)} meets {name(j)} near {np.round(pt, 6).tolist()})"
     raise GeometryError(f"section: the contour lower + upper crosses itself{where}; the section must be a simple polygon")

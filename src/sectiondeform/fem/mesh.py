@@ -27,6 +27,7 @@ import shapely
 from scipy.spatial import Delaunay, cKDTree
 
 from ..errors import MeshError
+from ..limits import MAX_FE_VERTICES, bounded
 from .elements import geometry
 
 __all__ = ["CoarseMesh", "RingGeometry", "coarse_mesh", "CORNER_DEG", "PIECE_TURN_DEG"]
@@ -233,11 +234,20 @@ def coarse_mesh(ring_points: np.ndarray, fixed: np.ndarray, h: float) -> CoarseM
     >>> m.n_boundary, round(float(abs(_signed_areas(m.nodes, m.cells[:, :3]).sum())), 9)
     (12, 8.0)
     """
+    if not (h > 0 and math.isfinite(h)):
+        raise MeshError(f"section: the element size {h!r} is not a positive finite length; check the section's scale")
     ring = RingGeometry.of(np.asarray(ring_points, dtype=np.float64))
+    poly = shapely.Polygon(ring.points)
+    # Bound the mesh before building it: boundary steps plus lattice points.
+    with np.errstate(all="ignore"):
+        estimate = ring.perimeter / h + abs(float(shapely.area(poly))) / (h * h * math.sqrt(3.0) / 2.0)
+    bounded(estimate, MAX_FE_VERTICES, "mesh vertices",
+            "lower options.through_thickness, or simplify the section's small features", MeshError)
     turn = np.abs(ring.turning())
     corners = np.concatenate((np.asarray(fixed, dtype=np.int64), np.flatnonzero(turn > math.radians(CORNER_DEG))))
     s_b = _boundary_positions(ring, corners, h)
-    poly = shapely.Polygon(ring.points)
+    bounded(len(s_b), MAX_FE_VERTICES, "mesh boundary vertices",
+            "simplify the section's sharp corners or lower options.through_thickness", MeshError)
     interior = _lattice(poly, h)
     for _ in range(CONFORM_ITERATIONS):
         bpts = ring.at(s_b)
@@ -287,7 +297,7 @@ def _add_midnodes(pts, tri, nb, s_b, ring):
     j = np.arange(nb)
     jn = (j + 1) % nb
     bkey = np.minimum(j, jn) * nv + np.maximum(j, jn)
-    bid = np.searchsorted(uniq, bkey)
+    bid = np.minimum(np.searchsorted(uniq, bkey), len(uniq) - 1)
     if not (np.all(uniq[bid] == bkey) and np.all(count[bid] == 1)):
         raise MeshError("section: the coarse mesh's boundary edges do not follow the contour")
     mid[bid] = ring.at(0.5 * (s_b + s_end))

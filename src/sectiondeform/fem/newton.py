@@ -172,6 +172,11 @@ class NewtonSolver:
             lu = splu(kff, permc_spec=self.permc_spec, diag_pivot_thresh=0.01, options={"SymmetricMode": True})
         except RuntimeError as exc:  # exactly singular
             raise ConvergenceError(f"hyperelastic: singular tangent ({exc}); is a part of the mesh unconstrained?") from None
+        except (MemoryError, SystemError) as exc:  # SuperLU out of memory, or given non-finite entries
+            raise ConvergenceError(
+                f"hyperelastic: the tangent of {kff.shape[0]} unknowns could not be factorised ({type(exc).__name__}: {exc}); "
+                "the section's scale or its smallest features are too extreme for the mesh"
+            ) from None
         return Tangent(lu, kfd, int(self.free_x.sum()))
 
     def _merit(self, r: np.ndarray) -> float:
