@@ -38,7 +38,7 @@ from .laws import Law
 from .models import get_model
 from .result import Result, ResultQuality
 from .section import build_section, polygon_area
-from .verify import check_result
+from .verify import check_placement, inverted
 
 __all__ = ["Deformer", "deform", "AREA_TOLERANCE", "TARGET_DEVIATION_SLACK"]
 
@@ -87,6 +87,9 @@ class Deformer:
         self.model = get_model(self.model_name)
         self.section = build_section(case, element_size)
         self.prepared = self.model.prepare(self.section, case.options.for_model(self.model_name))
+        bad = inverted(self.prepared.initial_mesh)  # checked once per section, independently of the model
+        if bad:
+            raise MeshError(f"initial mesh: {bad}; lower options.element_size or smooth the section's corners")
         self.check = check
         self.prepare_seconds = time.perf_counter() - t0
 
@@ -304,7 +307,7 @@ class Deformer:
             warnings=tuple(warnings) + tuple(placement.warnings),
             state=placement.state,
         )
-        failed = check_result(result)  # independent checks: inverted elements, reported areas, ends
+        failed = check_placement(result)  # independent checks: no NaN, no final element inverted anywhere
         if failed:
             kind = MeshError if "mesh" in failed[0].split(":")[0] else GeometryError
             raise kind(f"result: refused, an independent check failed: {failed[0]}")

@@ -104,12 +104,39 @@ def det_j_p2(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
     return jx[..., 0] * je[..., 1] - jx[..., 1] * je[..., 0]
 
 
+_NEXT, _PREV = [1, 2, 3, 0], [3, 0, 1, 2]
+
+
 def det_j_quads(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
     """Twice the corner triangle areas of counter-clockwise quads, ``(M, 4)`` (det J at the corners, x4)."""
     x = points[cells]
-    prev, nxt = np.roll(x, 1, axis=1), np.roll(x, -1, axis=1)
-    a, b = nxt - x, prev - x
+    a, b = x[:, _NEXT] - x, x[:, _PREV] - x
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def inverted(mesh) -> str | None:
+    """What is inverted in ``mesh`` (a :class:`~sectiondeform.models.base.MeshData`), as one line, or None."""
+    return _inverted(mesh)
+
+
+def check_placement(result) -> list[str]:
+    """The checks of :func:`check_result` that a new placement of a prepared section can fail.
+
+    Used on every deformation, where the rest is known already: the area
+    law and the simple contour are checked by the deformer itself, and the
+    initial mesh once per section. Finite values, and no final element
+    inverted anywhere.
+    """
+    if not (np.isfinite(result.upper).all() and np.isfinite(result.final_mesh.points).all()):
+        return ["finite: the result holds NaN or infinite values"]
+    final = result.quality.final if result.quality is not None else None
+    if result.final_mesh.kind == "quad" and final is not None and final.jacobian_min is not None:
+        # A bilinear quad is sound iff its four corner Jacobians are > 0, which the layered
+        # model has just computed for its own refusal: the same figure, not recomputed.
+        ok = final.jacobian_min > 0
+        return [] if ok else [f"final_mesh: quad elements inverted (smallest corner Jacobian {final.jacobian_min:.3g})"]
+    bad = _inverted(result.final_mesh)
+    return [f"final_mesh: {bad}"] if bad else []
 
 
 def _inverted(mesh) -> str | None:
