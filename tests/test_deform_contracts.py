@@ -88,7 +88,8 @@ def test_a_target_the_section_was_not_sampled_for_is_reported_with_its_deviation
     # on its own case, the same arc is resolved: no warning
     own = sd.Deformer(sd.case_from_dict(box_case(40.0, 4.0, arc.to_json(), chordal_error=1e-3)))
     assert own.target_deviation() <= 1.5 * own.section.chordal_error
-    assert not own.deform().warnings
+    # no sampling warning (the 4-point box's upper chord on this arc does get a height-scale warning)
+    assert not [w for w in own.deform().warnings if w.startswith("target:")]
 
 
 def test_the_case_own_target_gives_no_sampling_warning():

@@ -94,7 +94,8 @@ def test_quality_and_info_are_types_whose_json_keys_are_the_result_format():
     assert {"layers", "columns", "elements", "element_size", "jacobian_min", "jacobian_max", "virtual_columns",
             "final_jacobian_min", "final_jacobian_max"} <= set(j)
     assert j["final_jacobian_min"] == q.final.jacobian_min
-    assert set(r.to_json()["info"]) == {"height_scale", "normal_smoothing"}
+    assert set(r.to_json()["info"]) == {"height_scale", "normal_smoothing", "bend_change", "overhang", "stretch_min",
+                                        "stretch_max", "aspect_change"}
     h = sd.Deformer(sd.case_from_dict(box_case()), model="hyperelastic").deform()
     assert h.quality.initial.layers is None and h.quality.initial.nodes > 0
     assert {"newton_full", "warm_start", "area_correction"} <= set(h.to_json()["info"])

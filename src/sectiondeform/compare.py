@@ -7,9 +7,12 @@ case. Pure numpy (core install).
 * :func:`hausdorff_distance`: Hausdorff distance between two polylines as
   curves (every point of each segment counts, not only the vertices);
 * :func:`point_to_curve_distance`: distance of each point to a polyline;
+* :func:`section_height`: the section's height above its lower curve, the
+  size the distances are reported against (it means the same for a block
+  on a long base and a lip seal on a short foot);
 * :func:`compare_curves`: both of these and the pointwise distance between
   corresponding points, absolute and relative to a length (the section's
-  mean thickness T).
+  height).
 """
 
 from __future__ import annotations
@@ -21,7 +24,7 @@ import numpy as np
 from .curves import as_points
 from .errors import CaseError
 
-__all__ = ["CurveComparison", "compare_curves", "hausdorff_distance", "point_to_curve_distance"]
+__all__ = ["CurveComparison", "compare_curves", "hausdorff_distance", "point_to_curve_distance", "section_height"]
 
 DENSIFY_FRACTION = 1e-3
 
@@ -75,6 +78,33 @@ def point_to_curve_distance(points: np.ndarray, curve: np.ndarray) -> np.ndarray
     """
     pts = as_points(points, "points", min_count=1)
     return _segment_distance(pts, as_points(curve, "curve", min_count=2))
+
+
+def section_height(lower: np.ndarray, upper: np.ndarray) -> float:
+    """Height of a section above its lower curve: the largest distance of an upper point from the lower polyline.
+
+    A size that means the same for any section: the thickness of a block on
+    a long base, the reach of a lip standing on a short foot (where the mean
+    thickness, area over lower length, is several times the real size).
+
+    Parameters
+    ----------
+    lower : (n, 2) float64 ndarray
+        The lower curve's nodes, A to B, units.
+    upper : (m, 2) float64 ndarray
+        The upper curve's characteristic points, units.
+
+    Returns
+    -------
+    float
+        Units.
+
+    Examples
+    --------
+    >>> section_height(np.array([[0.0, 0.0], [4.0, 0.0]]), np.array([[4.0, 0.0], [3.0, 2.0], [-3.0, 4.0], [0.0, 0.0]]))
+    5.0
+    """
+    return float(point_to_curve_distance(upper, lower).max())
 
 
 def hausdorff_distance(a: np.ndarray, b: np.ndarray, resolution: float | None = None) -> float:
@@ -144,7 +174,7 @@ class CurveComparison:
     mean_pointwise : float
         Mean distance between corresponding points, units.
     scale : float
-        Length the relative figures divide by (the mean thickness T), units.
+        Length the relative figures divide by (the section's height, :func:`section_height`), units.
     """
 
     hausdorff: float
@@ -169,7 +199,7 @@ def compare_curves(curve: np.ndarray, reference: np.ndarray, scale: float = 1.0)
         The same m points deformed by two models (e.g. the upper
         characteristic points, B' to A'), units.
     scale : float
-        Length for the relative figures (the section's mean thickness T), units.
+        Length for the relative figures (the section's height, :func:`section_height`), units.
 
     Returns
     -------

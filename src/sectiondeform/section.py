@@ -37,6 +37,7 @@ import numpy as np
 import shapely
 
 from .case import Case
+from .compare import section_height
 from .curves import DEFAULT_CHORDAL_FRACTION, Curve, polygon_area
 from .errors import GeometryError
 from .limits import MAX_LOWER_NODES, MAX_UPPER_POINTS, bounded
@@ -108,6 +109,11 @@ class Section:
     def thickness(self) -> float:
         """Mean thickness T = area / lower length, units."""
         return self.area / self.lower_length
+
+    @property
+    def height(self) -> float:
+        """Height above the lower curve, units: :func:`~sectiondeform.compare.section_height`."""
+        return section_height(self.lower, self.upper)
 
     @property
     def mesh_scale(self) -> float:

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..applicability import applicability_warnings, aspect_change, bend_change, extent_warnings, overhang, stretch_range
 from ..curves import cross as _cross
 from ..errors import LawError, MeshError
 from ..laws import Law
@@ -165,6 +166,8 @@ class PaperPrepared(Prepared):
             columns=int(mesh.n_columns),
             virtual_columns=(len(self.extension[0]), len(self.extension[1])),
         )
+        self.height = section.height
+        self.overhang = overhang(section.lower, section.upper)
 
     def extended_target(self, target_nodes: np.ndarray) -> np.ndarray:
         """The target nodes with the virtual base nodes beyond A' and B', ``(n + p + q, 2)``.
@@ -241,12 +244,27 @@ class PaperPrepared(Prepared):
         upper[0], upper[-1] = real[-1], real[0]
         final = MeshData(nodes.reshape(-1, 2), self.quads, "quad", self.initial_mesh.shape)
         jac_max = float(np.maximum(np.maximum(jac[0], jac[1]), np.maximum(jac[2], jac[3])).max())
+        info = PaperInfo(
+            height_scale=float(k),
+            normal_smoothing=float(smoothing),
+            bend_change=bend_change(sec.lower, real, self.height),
+            overhang=self.overhang / self.height,
+            stretch_min=(stretch := stretch_range(self.mesh.nodes, nodes))[0],
+            stretch_max=stretch[1],
+            aspect_change=aspect_change(self.mesh.nodes, nodes),
+        )
         return Placement(
             upper=upper,
             final_mesh=final,
             quality=FinalQuality(jacobian_min=jac_min, jacobian_max=jac_max),
-            info=PaperInfo(height_scale=float(k), normal_smoothing=float(smoothing)),
+            info=info,
+            warnings=tuple(self.warnings(info)),
         )
+
+    def warnings(self, info: PaperInfo) -> list[str]:
+        """The applicability and extent warnings of one placement (:mod:`sectiondeform.applicability`)."""
+        return applicability_warnings(self.height, self.overhang, info.bend_change, self.quality.virtual_columns) + \
+            extent_warnings(info.height_scale, (info.stretch_min, info.stretch_max), info.aspect_change)
 
 
 @dataclass(frozen=True)
@@ -264,10 +282,25 @@ class PaperInfo(Info):
         The scale ``k`` of the nodes' offsets that meets the law.
     normal_smoothing : float
         Weight of the smoothing applied to the target's normals (0: none).
+    bend_change : float, optional
+        Largest change of the support's turning over a stretch as long as
+        the section's height, radians (:func:`~sectiondeform.applicability.bend_change`).
+    overhang : float, optional
+        Reach of the upper curve beyond the lower curve's ends, over the
+        section's height (:func:`~sectiondeform.applicability.overhang`).
+    stretch_min, stretch_max : float, optional
+        Range of final over initial element edge length along the layers.
+    aspect_change : float, optional
+        Largest change of an element's aspect ratio, either way.
     """
 
     height_scale: float
     normal_smoothing: float = 0.0
+    bend_change: float | None = None
+    overhang: float | None = None
+    stretch_min: float | None = None
+    stretch_max: float | None = None
+    aspect_change: float | None = None
 
 
 class PaperModel(Model):

@@ -44,7 +44,7 @@ __all__ = [
     "MIN_BULK_TO_SHEAR",
 ]
 
-#: Default element size, as a fraction of the section's mean thickness T.
+#: Default element size, as a fraction of the section's mesh scale (:func:`~sectiondeform.section.mesh_scale`).
 DEFAULT_MESH_SIZE = 0.1
 #: Default κ / μ (the case's ``options.bulk_to_shear`` overrides it).
 DEFAULT_BULK_TO_SHEAR = 1000.0
@@ -252,8 +252,8 @@ def solve_reference(
     if not hasattr(target, "at_fractions"):
         raise CaseError("target", f"expected a curve with at_fractions(s), got {type(target).__name__}")
 
-    T = section.mesh_scale
-    h = mesh_size * T
+    scale = section.mesh_scale
+    h = mesh_size * scale
     mesh = triangulate_section(section, h, lower_curve)
     t1 = time.perf_counter()
     problem = MixedProblem(mesh, shear_modulus, bulk_to_shear)
@@ -266,7 +266,7 @@ def solve_reference(
     ratio = law.area_ratio(section.area)
     stretch_z = 1.0 / ratio
     t2 = time.perf_counter()
-    x, report = solve_mixed(problem, support, stretch_z, length_scale=T, tol=tol,
+    x, report = solve_mixed(problem, support, stretch_z, length_scale=scale, tol=tol,
                             initial_step=initial_step, progress=progress)
     t3 = time.perf_counter()
     return _solution(problem, mesh, x, report, section, law, stretch_z, bulk_to_shear, shear_modulus,

@@ -1,0 +1,270 @@
+"""Where the paper's model may be far from the material, and results beyond what it can mean.
+
+The paper's layered map is exact for a rigid motion and close to the
+material for a section that sits on its lower curve and a target that bends
+gently against the section's height. It drifts from the material (measured
+against the finite-element reference, ``docs/validation.md``) when
+
+* the section **overhangs** its base: the upper curve reaches beyond the
+  lower curve's ends, so part of it hangs on virtual columns that follow no
+  material (:func:`overhang`);
+* the section is **thick against the bend** of the target: the support's
+  change of shape is carried undamped through the whole height
+  (:func:`bend_change`, for a straight lower curve the height over the
+  target's radius of curvature).
+
+And its answer means little whatever the material when the height scale
+``k``, the stretch of the elements along the layers or their final aspect
+ratio leave the ranges of ``docs/method.md`` (:func:`stretch_range`,
+:func:`aspect_change`).
+
+Each check gives a figure; :func:`applicability_warnings` and
+:func:`extent_warnings` turn the figures beyond their documented limits into
+one-line warnings with the number. Pure numpy.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = [
+    "overhang",
+    "bend_change",
+    "stretch_range",
+    "aspect_change",
+    "applicability_warnings",
+    "extent_warnings",
+    "OVERHANG_LIMIT",
+    "BEND_LIMIT",
+    "HEIGHT_SCALE_LIMITS",
+    "STRETCH_LIMITS",
+    "ASPECT_LIMIT",
+]
+
+#: Overhang beyond the lower curve's ends, over the section's height, above which the paper model is flagged.
+OVERHANG_LIMIT = 0.25
+#: Change of the support's turning over a stretch as long as the height, radians, above which it is flagged.
+BEND_LIMIT = 0.45
+#: Height scale ``k`` outside this range: the section is squeezed or stretched beyond the model's meaning.
+HEIGHT_SCALE_LIMITS = (0.5, 2.0)
+#: Final over initial element edge length along the layers, outside this range.
+STRETCH_LIMITS = (0.5, 2.0)
+#: Largest change of an element's aspect ratio (along over across the layers), either way.
+ASPECT_LIMIT = 4.0
+
+HINT = "the paper model may be far from the material; the hyperelastic model (--model hyperelastic) follows it"
+
+
+def overhang(lower: np.ndarray, upper: np.ndarray) -> float:
+    """How far the upper curve reaches beyond the lower curve's ends, along its end tangents, units.
+
+    At each end, the distance of the upper points past the end along the
+    lower curve's tangent there, pointing out of the curve; the larger of
+    the two ends (0 for a section standing within its base).
+
+    Parameters
+    ----------
+    lower : (n, 2) float64 ndarray
+        Lower curve nodes, A to B, units.
+    upper : (m, 2) float64 ndarray
+        Upper characteristic points, B to A, units.
+
+    Returns
+    -------
+    float
+        Units.
+
+    Examples
+    --------
+    >>> low = np.array([[0.0, 0.0], [2.0, 0.0]])
+    >>> overhang(low, np.array([[2.0, 0.0], [3.0, 1.0], [-0.5, 1.0], [0.0, 0.0]]))
+    1.0
+    """
+    out = 0.0
+    for end, inner in ((lower[0], lower[1]), (lower[-1], lower[-2])):
+        t = end - inner
+        t = t / math.hypot(*t)
+        out = max(out, float(((upper - end) @ t).max()))
+    return out
+
+
+def _turning(line: np.ndarray) -> np.ndarray:
+    """Direction angle of each segment of a polyline, unwrapped, ``(n - 1,)``, radians."""
+    d = np.diff(line, axis=0)
+    return np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+
+
+def bend_change(lower: np.ndarray, target: np.ndarray, height: float) -> float:
+    """Largest change of the support's turning over a stretch of it as long as the section's height, radians.
+
+    The target's segment directions minus the lower curve's (both sampled at
+    the same arc-length fractions) give how much the support turns the
+    section's base at each place; its largest variation between two points
+    of the lower curve at most ``height`` apart (along the curve) is the
+    figure. A rigid motion gives 0; a straight lower curve bent into a
+    circle of radius R gives ``height / R`` (or the whole arc's angle if the
+    base is shorter than the height).
+
+    Parameters
+    ----------
+    lower, target : (n, 2) float64 ndarray
+        The lower curve's nodes and the target at the same fractions, units.
+    height : float
+        The section's height, units.
+
+    Returns
+    -------
+    float
+        Radians.
+
+    Examples
+    --------
+    >>> s = np.linspace(0.0, 1.0, 101)
+    >>> low = np.column_stack((10.0 * s, 0 * s))
+    >>> arc = 20.0 * np.column_stack((np.sin(s / 2), 1 - np.cos(s / 2)))  # radius 20, length 10
+    >>> round(bend_change(low, arc, 2.0), 2)                               # 2 / 20
+    0.1
+    """
+    delta = np.unwrap(_turning(target) - _turning(lower))
+    d = np.diff(lower, axis=0)
+    seg = np.hypot(d[:, 0], d[:, 1])
+    mid = np.cumsum(seg) - 0.5 * seg
+    length = float(seg.sum())
+    if height >= length or len(delta) < 2:
+        return float(np.ptp(delta))
+    # Resample on a grid of height / 8 and take the spread over every 9 consecutive samples.
+    grid = np.arange(0.0, length + height / 8.0, height / 8.0)
+    values = np.interp(grid, mid, delta)
+    windows = np.lib.stride_tricks.sliding_window_view(values, min(9, len(values)))
+    return float(np.ptp(windows, axis=1).max())
+
+
+def _edges(nodes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Mean edge length of each element of a layered grid along the layers and across them, ``(L, n - 1)`` each."""
+    along = np.hypot(*np.moveaxis(np.diff(nodes, axis=1), -1, 0))  # (L + 1, n - 1)
+    across = np.hypot(*np.moveaxis(np.diff(nodes, axis=0), -1, 0))  # (L, n)
+    return 0.5 * (along[:-1] + along[1:]), 0.5 * (across[:, :-1] + across[:, 1:])
+
+
+def stretch_range(initial: np.ndarray, final: np.ndarray) -> tuple[float, float]:
+    """Smallest and largest final over initial element edge length along the layers.
+
+    Parameters
+    ----------
+    initial, final : (L + 1, n, 2) float64 ndarray
+        The layered mesh's nodes before and after placement, units.
+
+    Returns
+    -------
+    tuple of float
+        Dimensionless.
+
+    Examples
+    --------
+    >>> g = np.stack(np.meshgrid([0.0, 1.0, 2.0], [0.0, 1.0]), axis=-1)   # (2, 3, 2)
+    >>> stretch_range(g, g * [3.0, 1.0])
+    (3.0, 3.0)
+    """
+    a0, _ = _edges(initial)
+    a1, _ = _edges(final)
+    ratio = a1 / np.where(a0 > 0, a0, np.inf)
+    return float(ratio.min()), float(ratio.max())
+
+
+def aspect_change(initial: np.ndarray, final: np.ndarray) -> float:
+    """Largest change of an element's aspect ratio (along over across the layers), either way.
+
+    For each element, its final aspect ratio over its initial one, or the
+    inverse if smaller than 1: 1 for a mesh moved rigidly or scaled
+    uniformly, 4 where an element was stretched twice along the layers and
+    squeezed twice across them.
+
+    Parameters
+    ----------
+    initial, final : (L + 1, n, 2) float64 ndarray
+        The layered mesh's nodes before and after placement, units.
+
+    Returns
+    -------
+    float
+        Dimensionless, >= 1.
+
+    Examples
+    --------
+    >>> g = np.stack(np.meshgrid([0.0, 1.0, 2.0], [0.0, 1.0]), axis=-1)
+    >>> aspect_change(g, g * [2.0, 0.5])
+    4.0
+    """
+    a0, c0 = _edges(initial)
+    a1, c1 = _edges(final)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q = (a1 * c0) / (a0 * c1)
+    q = q[np.isfinite(q) & (q > 0)]
+    return float(np.maximum(q, 1.0 / q).max()) if len(q) else 1.0
+
+
+def applicability_warnings(height: float, overhang_length: float, bend: float, virtual_columns: tuple[int, int]) -> list[str]:
+    """Warnings that the paper model may be far from the material, one per figure beyond its limit.
+
+    Parameters
+    ----------
+    height : float
+        The section's height above its lower curve, units.
+    overhang_length : float
+        :func:`overhang`, units.
+    bend : float
+        :func:`bend_change`, radians.
+    virtual_columns : tuple of int
+        Columns the layered mesh adds beyond A and beyond B.
+    """
+    out = []
+    ratio = overhang_length / height
+    columns = sum(virtual_columns)
+    if ratio > OVERHANG_LIMIT or columns:
+        extra = f", {columns} virtual columns beyond its ends" if columns else ""
+        out.append(
+            f"applicability: the section overhangs its lower curve by {ratio:.2f} x its height "
+            f"(limit {OVERHANG_LIMIT:g}{extra}); {HINT}"
+        )
+    if bend > BEND_LIMIT:
+        out.append(
+            f"applicability: the target bends the base by {bend:.2f} rad over a stretch as long as the "
+            f"section's height (limit {BEND_LIMIT:g}: the section is thick for this bend); {HINT}"
+        )
+    return out
+
+
+def extent_warnings(height_scale: float, stretch: tuple[float, float], aspect: float) -> list[str]:
+    """Warnings for a placement beyond the documented limits of the layered map (``docs/method.md``).
+
+    Parameters
+    ----------
+    height_scale : float
+        The paper model's ``k``.
+    stretch : tuple of float
+        :func:`stretch_range`.
+    aspect : float
+        :func:`aspect_change`.
+    """
+    out = []
+    lo, hi = HEIGHT_SCALE_LIMITS
+    if not lo <= height_scale <= hi:
+        out.append(
+            f"result: height scale k = {height_scale:.3g}, outside [{lo:g}, {hi:g}]: the layers are "
+            f"{'stretched' if height_scale > hi else 'squeezed'} beyond what the model can mean; "
+            "check the target's length against the lower curve's"
+        )
+    lo, hi = STRETCH_LIMITS
+    if stretch[0] < lo or stretch[1] > hi:
+        out.append(
+            f"result: elements stretched by {stretch[0]:.3g} to {stretch[1]:.3g} along the layers, "
+            f"outside [{lo:g}, {hi:g}]; check the target's length against the lower curve's"
+        )
+    if aspect > ASPECT_LIMIT:
+        out.append(
+            f"result: an element's aspect ratio changes {aspect:.3g}-fold (limit {ASPECT_LIMIT:g}); "
+            "the layers are distorted beyond what the model can mean"
+        )
+    return out
