@@ -141,11 +141,22 @@ def bend_change(lower: np.ndarray, target: np.ndarray, height: float) -> float:
     return float(np.ptp(windows, axis=1).max())
 
 
-def _edges(nodes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Mean edge length of each element of a layered grid along the layers and across them, ``(L, n - 1)`` each."""
-    along = np.hypot(*np.moveaxis(np.diff(nodes, axis=1), -1, 0))  # (L + 1, n - 1)
-    across = np.hypot(*np.moveaxis(np.diff(nodes, axis=0), -1, 0))  # (L, n)
+def edges(nodes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Mean edge length of each element of a layered grid along the layers and across them, ``(L, n - 1)`` each.
+
+    Parameters
+    ----------
+    nodes : (L + 1, n, 2) float64 ndarray
+        The layered mesh's nodes, units.
+    """
+    d = nodes[:, 1:] - nodes[:, :-1]
+    along = np.sqrt(d[..., 0] ** 2 + d[..., 1] ** 2)  # (L + 1, n - 1)
+    d = nodes[1:] - nodes[:-1]
+    across = np.sqrt(d[..., 0] ** 2 + d[..., 1] ** 2)  # (L, n)
     return 0.5 * (along[:-1] + along[1:]), 0.5 * (across[:, :-1] + across[:, 1:])
+
+
+_edges = edges
 
 
 def stretch_range(initial: np.ndarray, final: np.ndarray) -> tuple[float, float]:
@@ -153,8 +164,8 @@ def stretch_range(initial: np.ndarray, final: np.ndarray) -> tuple[float, float]
 
     Parameters
     ----------
-    initial, final : (L + 1, n, 2) float64 ndarray
-        The layered mesh's nodes before and after placement, units.
+    initial, final : (L + 1, n, 2) float64 ndarray, or tuple of ndarray
+        The layered mesh's nodes before and after placement, units, or their :func:`edges`.
 
     Returns
     -------
@@ -167,8 +178,8 @@ def stretch_range(initial: np.ndarray, final: np.ndarray) -> tuple[float, float]
     >>> stretch_range(g, g * [3.0, 1.0])
     (3.0, 3.0)
     """
-    a0, _ = _edges(initial)
-    a1, _ = _edges(final)
+    a0, _ = initial if isinstance(initial, tuple) else edges(initial)
+    a1, _ = final if isinstance(final, tuple) else edges(final)
     ratio = a1 / np.where(a0 > 0, a0, np.inf)
     return float(ratio.min()), float(ratio.max())
 
@@ -183,8 +194,8 @@ def aspect_change(initial: np.ndarray, final: np.ndarray) -> float:
 
     Parameters
     ----------
-    initial, final : (L + 1, n, 2) float64 ndarray
-        The layered mesh's nodes before and after placement, units.
+    initial, final : (L + 1, n, 2) float64 ndarray, or tuple of ndarray
+        The layered mesh's nodes before and after placement, units, or their :func:`edges`.
 
     Returns
     -------
@@ -197,8 +208,8 @@ def aspect_change(initial: np.ndarray, final: np.ndarray) -> float:
     >>> aspect_change(g, g * [2.0, 0.5])
     4.0
     """
-    a0, c0 = _edges(initial)
-    a1, c1 = _edges(final)
+    a0, c0 = initial if isinstance(initial, tuple) else edges(initial)
+    a1, c1 = final if isinstance(final, tuple) else edges(final)
     with np.errstate(divide="ignore", invalid="ignore"):
         q = (a1 * c0) / (a0 * c1)
     q = q[np.isfinite(q) & (q > 0)]

@@ -29,7 +29,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..applicability import applicability_warnings, aspect_change, bend_change, extent_warnings, overhang, stretch_range
+from ..applicability import (
+    applicability_warnings,
+    aspect_change,
+    bend_change,
+    edges,
+    extent_warnings,
+    overhang,
+    stretch_range,
+)
 from ..curves import cross as _cross
 from ..errors import LawError, MeshError
 from ..laws import Law
@@ -168,6 +176,7 @@ class PaperPrepared(Prepared):
         )
         self.height = section.height
         self.overhang = overhang(section.lower, section.upper)
+        self.edges = edges(self.mesh.nodes)  # the initial elements' edge lengths, for the extent figures
 
     def extended_target(self, target_nodes: np.ndarray) -> np.ndarray:
         """The target nodes with the virtual base nodes beyond A' and B', ``(n + p + q, 2)``.
@@ -249,9 +258,9 @@ class PaperPrepared(Prepared):
             normal_smoothing=float(smoothing),
             bend_change=bend_change(sec.lower, real, self.height),
             overhang=self.overhang / self.height,
-            stretch_min=(stretch := stretch_range(self.mesh.nodes, nodes))[0],
+            stretch_min=(stretch := stretch_range(self.edges, final_edges := edges(nodes)))[0],
             stretch_max=stretch[1],
-            aspect_change=aspect_change(self.mesh.nodes, nodes),
+            aspect_change=aspect_change(self.edges, final_edges),
         )
         return Placement(
             upper=upper,
