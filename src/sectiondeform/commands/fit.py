@@ -70,13 +70,13 @@ def run(args) -> int:
     fits = [fit_material(m, curves, bulk_to_shear=args.bulk_to_shear) for m in models]
     modes = [c.mode for c in curves]
     print("  " + " ".join(f"{c.mode}: {c.stretch.size} points, stretch {c.stretch.min():.3g}..{c.stretch.max():.3g};" for c in curves))
-    print(f"  {'model':14s} {'constants (MPa)':44s} " + " ".join(f"{m:>12s}" for m in modes))
+    print(f"  {'model':14s} {'constants (MPa)':58s} " + " ".join(f"{m:>12s}" for m in modes))
     for f in fits:
         m = f.material
         constants = ", ".join(f"{name} {getattr(m, name):.5g}" for name in m.constants)
         if m.model != "neo-hookean":
             constants += f" (mu0 {m.shear_modulus:.4g})"
-        print(f"  {m.model:14s} {constants:44s} " + " ".join(f"{100 * f.errors[mode]:11.2f}%" for mode in modes))
+        print(f"  {m.model:14s} {constants:58s} " + " ".join(f"{100 * f.errors[mode]:11.2f}%" for mode in modes))
         for w in f.warnings:
             print(f"  warning: {m.model} {w}; do not use it beyond")
     print("  errors: relative RMS, RMS(fit - data) / RMS(data), per mode")
