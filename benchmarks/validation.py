@@ -3,7 +3,7 @@
 Writes the tables of ``docs/validation.md`` (between its ``<!-- validation:... -->``
 markers) from scratch:
 
-    .venv/bin/python benchmarks/validation.py ../shared/cases/*.json --write docs/validation.md
+    .venv/bin/python benchmarks/validation.py tests/data/cases/*.json --write docs/validation.md
 
 1. Validation: for every case, ``sectiondeform.reference.validation.validate_case``
    with each fast model (``paper``, and ``hyperelastic`` if given with
