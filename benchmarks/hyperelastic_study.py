@@ -36,7 +36,6 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
-import statistics
 import time
 from pathlib import Path
 
@@ -44,6 +43,8 @@ import numpy as np
 import shapely
 
 import sectiondeform as sd
+
+from speed import median_time  # benchmarks/, beside this file
 
 ROOT = Path(__file__).resolve().parents[1]
 CASES = sorted((ROOT / "tests" / "data" / "cases").glob("*.json"))
@@ -87,13 +88,7 @@ def truth(case, fine: float, reference_div: float):
 
 
 def _median_ms(fn, repeat: int) -> float:
-    fn()
-    times = []
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return 1e3 * statistics.median(times)
+    return 1e3 * median_time(fn, repeat, warmup=1)
 
 
 def study(path: Path, levels, repeat: int, fine: float, reference_div: float) -> list[dict]:
