@@ -1,15 +1,20 @@
 """Accuracy-time curve of the hyperelastic model over its coarseness.
 
-For each shared case and each coarseness (elements through the mean
+For each case of ``tests/data/cases`` and each coarseness (elements through the mean
 thickness T), prints and writes:
 
 * ``unknowns``: free unknowns of the coarse problem;
 * ``prepare_ms``: mesh, pattern, factorised undeformed tangent, locations;
-* ``full_ms``: a cold ``place`` (Newton from the rigidly moved section);
-* ``redeform_ms``: ``place`` again after a small change of the target
-  (a bump of 0.5 % T), warm-started;
-* ``preview_ms`` and ``preview_err``: the drag preview for that change and
-  its largest distance to the full solve, relative to T;
+* ``full_ms``: ``deformer.deform(target_nodes=...)``, a cold solve (Newton
+  from the undeformed section moved rigidly onto the target);
+* ``redeform_cold_ms``: ``deform`` after a small change of the target (a
+  bump of 0.5 % T), cold again: without ``start=`` the answer depends on
+  the arguments alone;
+* ``redeform_ms``: the same change warm-started,
+  ``deform(..., start=previous_result)``;
+* ``preview_ms`` and ``preview_err``: the drag preview for that change from
+  the previous result and its largest distance to the full solve, relative
+  to T;
 * ``mean``/``max``: distance of the upper curve to the truth, relative to T
   (mean over the curve, and Hausdorff); ``raw_mean``/``raw_max`` the same
   before the area correction (the reference's points are not corrected).
@@ -31,7 +36,6 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
-import statistics
 import time
 from pathlib import Path
 
@@ -40,8 +44,10 @@ import shapely
 
 import sectiondeform as sd
 
+from speed import median_time  # benchmarks/, beside this file
+
 ROOT = Path(__file__).resolve().parents[1]
-CASES = sorted((ROOT.parent / "shared" / "cases").glob("*.json")) or [sd.example_case_path()]
+CASES = sorted((ROOT / "tests" / "data" / "cases").glob("*.json"))
 
 
 def distances(a: np.ndarray, b: np.ndarray, T: float) -> tuple[float, float]:
@@ -82,13 +88,7 @@ def truth(case, fine: float, reference_div: float):
 
 
 def _median_ms(fn, repeat: int) -> float:
-    fn()
-    times = []
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return 1e3 * statistics.median(times)
+    return 1e3 * median_time(fn, repeat, warmup=1)
 
 
 def study(path: Path, levels, repeat: int, fine: float, reference_div: float) -> list[dict]:
@@ -101,46 +101,32 @@ def study(path: Path, levels, repeat: int, fine: float, reference_div: float) ->
         deformer = sd.Deformer(c, model="hyperelastic", check=False)
         prepare_ms = 1e3 * (time.perf_counter() - t0)
         prep = deformer.prepared
-        sec = deformer.section
-        T = sec.thickness
+        T = deformer.section.thickness
         nodes = deformer.target_nodes()
-        law = case.law
+        n_nodes = len(prep.mesh.nodes)
 
-        def cold():
-            prep.last = None
-            return prep.place(nodes, law)
-
-        full_ms = _median_ms(cold, repeat)
-        result = deformer.deform(nodes)
+        full_ms = _median_ms(lambda: deformer.deform(target_nodes=nodes), repeat)
+        result = deformer.deform(target_nodes=nodes)
         mean, worst = distances(result.upper, upper_true, T)
-        x = prep.last.z[: 2 * len(prep.mesh.nodes)].reshape(-1, 2)
+        x = result.state.z[: 2 * n_nodes].reshape(-1, 2)
         raw_mean, raw_max = distances(prep.upper_weights @ x, upper_true, T)
-        bump = 0.005 * T * np.sin(np.linspace(0.0, np.pi, len(nodes)))[:, None] * np.array([0.0, 1.0])
-        moved = [nodes + bump, nodes]
-
-        def warm():
-            target = moved[0]
-            moved.reverse()
-            return prep.place(target, law)
-
-        prep.place(nodes, law)
-        redeform_ms = _median_ms(warm, repeat)
-        prep.place(nodes, law)
-        preview_ms = _median_ms(lambda: prep.preview(nodes + bump, law), repeat)
-        exact = prep.place(nodes + bump, law).upper
-        prep.place(nodes, law)
-        preview_err = float(np.abs(prep.preview(nodes + bump, law).upper - exact).max()) / T
+        moved = nodes + 0.005 * T * np.sin(np.linspace(0.0, np.pi, len(nodes)))[:, None] * np.array([0.0, 1.0])
+        redeform_cold_ms = _median_ms(lambda: deformer.deform(target_nodes=moved), repeat)
+        redeform_ms = _median_ms(lambda: deformer.deform(target_nodes=moved, start=result), repeat)
+        preview_ms = _median_ms(lambda: deformer.preview(target_nodes=moved, start=result), repeat)
+        exact = deformer.deform(target_nodes=moved, start=result).upper
+        preview_err = float(np.abs(deformer.preview(target_nodes=moved, start=result).upper - exact).max()) / T
         rows.append({
             "case": case.name, "through_thickness": n, "truth": label,
             "unknowns": prep.quality.unknowns, "elements": prep.quality.elements,
-            "prepare_ms": prepare_ms, "full_ms": full_ms, "redeform_ms": redeform_ms,
+            "prepare_ms": prepare_ms, "full_ms": full_ms, "redeform_cold_ms": redeform_cold_ms, "redeform_ms": redeform_ms,
             "preview_ms": preview_ms, "preview_err": preview_err, "mean": mean, "max": worst,
             "raw_mean": raw_mean, "raw_max": raw_max,
-            "area_correction": result.info["area_correction"],
+            "area_correction": result.info.area_correction,
         })
         r = rows[-1]
         print(f"{case.name:22s} n={n:<4g} unknowns={r['unknowns']:5d} prepare={prepare_ms:7.2f}ms "
-              f"full={full_ms:6.2f}ms redeform={redeform_ms:5.2f}ms preview={preview_ms:5.3f}ms "
+              f"full={full_ms:6.2f}ms redeform cold={redeform_cold_ms:6.2f}ms warm={redeform_ms:5.2f}ms preview={preview_ms:5.3f}ms "
               f"(err {preview_err:.1e} T)  mean={mean:.4f} T  max={worst:.4f} T  "
               f"(before area correction {raw_mean:.4f} / {raw_max:.4f})  [{label}]", flush=True)
     return rows
@@ -152,7 +138,7 @@ def main(argv=None) -> int:
     ap.add_argument("--repeat", type=int, default=21)
     ap.add_argument("--fine", type=float, default=16.0, help="elements through T of the self-convergence truth")
     ap.add_argument("--reference-div", type=float, default=16.0, help="reference element size T / this")
-    ap.add_argument("--cases", nargs="*", help="case files (default: the shared cases)")
+    ap.add_argument("--cases", nargs="*", help="case files (default: tests/data/cases/*.json)")
     ap.add_argument("--out", type=Path, help="write the rows as JSON here")
     args = ap.parse_args(argv)
     rows = []

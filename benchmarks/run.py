@@ -30,7 +30,7 @@ def build_parser() -> argparse.ArgumentParser:
     """The benchmark's arguments."""
     parser = argparse.ArgumentParser(prog="benchmarks/run.py", description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="few repetitions and small N (smoke run); writes to a temporary folder unless -o")
-    parser.add_argument("--cases", type=Path, help="folder of case files (default: benchmarks/cases)")
+    parser.add_argument("--cases", type=Path, help="folder of case files (default: tests/data/cases)")
     parser.add_argument("-o", "--output", type=Path, metavar="DIR",
                         help="folder for benchmarks.json and benchmarks.md (default: docs/ for a full run, a temporary folder for --quick)")
     parser.add_argument("--changes", type=Path, help="Markdown file appended to the table (what changed, what it gained)")

@@ -461,8 +461,8 @@ def bench_io(cfg: dict) -> dict:
 
 
 def default_cases_dir() -> Path:
-    """``benchmarks/cases``, beside this file."""
-    return Path(__file__).resolve().parent / "cases"
+    """``tests/data/cases``: the cases the tests use."""
+    return ROOT / "tests" / "data" / "cases"
 
 
 def profile_text(case, seconds: float = 2.0) -> str | None:

@@ -3,12 +3,13 @@
 Writes the tables of ``docs/validation.md`` (between its ``<!-- validation:... -->``
 markers) from scratch:
 
-    .venv/bin/python benchmarks/validation.py ../shared/cases/*.json --write docs/validation.md
+    .venv/bin/python benchmarks/validation.py tests/data/cases/*.json --write docs/validation.md
 
 1. Validation: for every case, ``sectiondeform.reference.validation.validate_case``
    with each fast model (``paper``, and ``hyperelastic`` if given with
-   ``--models``): shape distance (Hausdorff and largest pointwise, absolute
-   and over the mean thickness T), areas, times, speed ratio.
+   ``--models``): shape distance (Hausdorff and largest pointwise, absolute,
+   over the mean thickness T and over the section's height), areas, times,
+   speed ratio.
 2. Refinement study of the reference: mesh sizes 0.4 T ... 0.025 T; largest
    move of an upper point between successive meshes and against the finest,
    over T; area error; time.
@@ -41,9 +42,10 @@ def eprint(*args):
 
 def validation_table(cases, models, figures: Path | None) -> str:
     rows = [
-        "| case | fast model | T (mm) | r | Hausdorff (mm) | Hausdorff / T | max pointwise / T "
+        "| case | fast model | T (mm) | height (mm) | r | Hausdorff (mm) | Hausdorff / T | Hausdorff / height "
+        "| max pointwise / T | max pointwise / height "
         "| area fast (rel. err.) | area reference (rel. err.) | time fast | time reference | speed ratio |",
-        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for path in cases:
         case = sd.load_case(path)
@@ -55,8 +57,9 @@ def validation_table(cases, models, figures: Path | None) -> str:
             f, s = v.fast, v.shape
             ref_err = (v.area_reference - f.area_target) / f.area_target
             rows.append(
-                f"| {case.name} | {model} | {v.thickness:.2f} | {f.area_target / f.area_initial:.2f} "
-                f"| {s.hausdorff:.3f} | {s.hausdorff_relative:.1%} | {s.max_pointwise_relative:.1%} "
+                f"| {case.name} | {model} | {v.thickness:.2f} | {v.height:.2f} | {f.area_target / f.area_initial:.2f} "
+                f"| {s.hausdorff:.3f} | {s.hausdorff_relative:.1%} | {s.hausdorff / v.height:.1%} "
+                f"| {s.max_pointwise_relative:.1%} | {s.max_pointwise / v.height:.1%} "
                 f"| {f.area_final:.1f} ({f.relative_error:+.0e}) | {v.area_reference:.1f} ({ref_err:+.1e}) "
                 f"| {1e3 * v.fast_seconds:.1f} ms | {v.reference_seconds:.2f} s | {v.speed_ratio:,.0f} |"
             )

@@ -11,7 +11,7 @@ import pytest
 
 from conftest import ROOT
 
-CASES = ROOT / "benchmarks" / "cases"  # copies of the shared cases, in the repository
+CASES = ROOT / "tests" / "data" / "cases"
 
 
 def _load_runner():

@@ -54,7 +54,7 @@ STRETCH_LIMITS = (0.5, 2.0)
 #: Largest change of an element's aspect ratio (along over across the layers), either way.
 ASPECT_LIMIT = 4.0
 
-HINT = "the paper model may be far from the material; the hyperelastic model (--model hyperelastic) follows it"
+HINT = 'the paper model may be far from the material; the hyperelastic model (options.model "hyperelastic") follows it'
 
 
 def overhang(lower: np.ndarray, upper: np.ndarray) -> float:

@@ -98,7 +98,7 @@ class AssemblyDeformer:
         self.assembly = assembly
         self.model_name = model or assembly.model
         if self.model_name != "paper":
-            raise CaseError("options.model", f"the {self.model_name} model does not deform assemblies yet; use the paper model (--model paper)")
+            raise CaseError("options.model", f"the {self.model_name} model does not deform assemblies yet; use the paper model (options.model \"paper\")")
         self.model = get_model(self.model_name)
         lay = assembly.layout
         self.layout = lay

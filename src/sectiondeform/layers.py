@@ -46,6 +46,7 @@ from .errors import MeshError
 
 __all__ = [
     "LayeredMesh",
+    "Smoother",
     "grow_mesh",
     "node_frames",
     "end_frames",
@@ -225,7 +226,7 @@ def node_frames(line: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndar
     return t, n
 
 
-class _Smoother:
+class Smoother:
     """Solves (W + lam K'K) Q = W G: the smoothest layer Q close to the raw layer G.
 
     K is the second-difference operator, W weights the two ends ``end_weight``
@@ -491,7 +492,7 @@ def grow_mesh(
     if max_layers is None:
         max_layers = int(math.ceil(2.0 * reach / height)) + 4
     splay = list(_splay_needed(base, orientation, cover))
-    smoother = _Smoother(len(base))
+    smoother = Smoother(len(base))
     frames = end_frames(base, orientation)
     while True:
         dirs = (_end_direction(*frames, 0, splay[0]), _end_direction(*frames, 1, splay[1]))

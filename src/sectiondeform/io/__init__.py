@@ -24,6 +24,7 @@ extension  case in / out           result out
 from __future__ import annotations
 
 import importlib
+import inspect
 from pathlib import Path
 
 from ..errors import CaseError
@@ -84,9 +85,29 @@ def write_case(path, case) -> None:
 
 
 def write_result(path, result, **options) -> None:
-    """Write a result in the format its extension names, atomically."""
+    """Write a result in the format its extension names, atomically.
+
+    Parameters
+    ----------
+    path : str or Path
+    result : Result
+    **options
+        Keywords of that format's writer (``meshes`` for JSON; ``spline``,
+        ``chordal_error`` for DXF; none for SVG and the mesh formats).
+
+    Raises
+    ------
+    CaseError
+        For an unknown extension, or an option the format's writer does not take.
+    """
     path = Path(path)
-    _resolve(RESULT_WRITERS, path, "output")(path, result, **options)
+    writer = _resolve(RESULT_WRITERS, path, "output")
+    known = list(inspect.signature(writer).parameters)[2:]  # after (path, result)
+    for key in options:
+        if key not in known:
+            takes = f"it takes {', '.join(known)}" if known else "it takes none"
+            raise CaseError(key, f"not an option of the {path.suffix.lower()} result writer; {takes}")
+    writer(path, result, **options)
 
 
 MESH_FORMATS = (".vtu", ".vtk", ".msh", ".inp")

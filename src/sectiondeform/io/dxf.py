@@ -397,7 +397,7 @@ def _add_mesh(msp, mesh, layer: str) -> None:
         _add_closed(msp, pts[cell[:corners]], layer)
 
 
-def write_result(path, result, spline: bool = False, chordal_error: float | None = None, **_options) -> None:
+def write_result(path, result, spline: bool = False, chordal_error: float | None = None) -> None:
     """Write a deformed section as a DXF drawing, atomically.
 
     Layers: DEFORMED (the deformed section), INITIAL (the section before),

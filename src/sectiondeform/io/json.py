@@ -55,7 +55,7 @@ def _dump(obj, path: Path) -> None:
     path.write_text(dumps(obj) + "\n", encoding="utf-8")
 
 
-def read_case(path, **_options) -> Case:
+def read_case(path) -> Case:
     """Read a case JSON file (see :func:`sectiondeform.case.load_case`)."""
     return load_case(path)
 

@@ -1,8 +1,7 @@
 """The meshes of a result through meshio: VTU, VTK, Gmsh MSH, Abaqus INP.
 
-``sectiondeform deform case.json -o result.vtu`` writes the *final* mesh;
-``--mesh-out FILE`` and ``--initial-mesh-out FILE`` write the final or the
-initial mesh beside any other output. Numbering is kept: node i of the
+:func:`write_result` writes a result's *final* mesh; :func:`write_mesh`
+writes its final or its initial mesh. Numbering is kept: node i of the
 file is row i of the result's ``points`` (1-based formats such as Gmsh and
 Abaqus number it i + 1), element j is row j of ``cells``, corners
 counter-clockwise as in :class:`~sectiondeform.models.base.MeshData`.
@@ -109,6 +108,6 @@ def write_mesh(path, result, which: str = "final") -> None:
     atomic_write(path, write)
 
 
-def write_result(path, result, **_options) -> None:
+def write_result(path, result) -> None:
     """Write the final mesh of a result (see :func:`write_mesh`)."""
     write_mesh(path, result, "final")

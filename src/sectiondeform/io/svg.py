@@ -366,7 +366,7 @@ def _poly_d(points: np.ndarray, close: bool) -> str:
     return "M" + " L".join(_pt(p) for p in points) + (" Z" if close else "")
 
 
-def write_result(path, result, **_options) -> None:
+def write_result(path, result) -> None:
     """Write a deformed section as SVG: groups initial, mesh-initial, target, mesh-final, deformed.
 
     Parameters

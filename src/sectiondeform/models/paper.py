@@ -43,7 +43,7 @@ from ..errors import LawError, MeshError
 from ..laws import Law
 from ..layers import (
     SMOOTHING_WEIGHTS,
-    _Smoother,
+    Smoother,
     corner_jacobians,
     extend_base,
     grow_mesh,
@@ -162,7 +162,7 @@ class PaperPrepared(Prepared):
         self._weights = (w, w * self.a.ravel()[corners], w * self.b.ravel()[corners])
         dense = len(w) * n <= DENSE_MAP_MAX
         self._maps = tuple(_column_matrix(c, self.columns, n) for c in self._weights) if dense else None
-        self._smoother = _Smoother(n, end_weight=1.0)
+        self._smoother = Smoother(n, end_weight=1.0)
         jac = mesh.jacobians()
         self.initial_mesh = MeshData(mesh.points, mesh.quads, "quad", (mesh.n_layers, mesh.n_columns))
         self.quality = MeshQuality(
@@ -247,7 +247,7 @@ class PaperPrepared(Prepared):
             raise MeshError(
                 f"target: the final mesh has an inverted element (layer {e // cols}, column {e % cols}) "
                 "even with its normals smoothed; the target bends too sharply for this section's thickness "
-                "(the hyperelastic model, --model hyperelastic, follows the material instead of the normals)"
+                '(the hyperelastic model, options.model "hyperelastic", follows the material instead of the normals)'
             )
         upper = fixed_up + k * moving_up
         upper[0], upper[-1] = real[-1], real[0]

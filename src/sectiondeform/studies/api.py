@@ -29,7 +29,7 @@ def _as_study(study, reference) -> Study:
     if reference is not None:
         path = Path(reference)
         if not path.is_file():
-            raise StudyError("--reference", f"no such result file {str(reference)!r}")
+            raise StudyError("reference", f"no such result file {str(reference)!r}")
         from .study import _finish
 
         rows = [replace(r, reference=str(reference), reference_path=str(path.resolve()), row_id="") for r in out.rows]
@@ -47,11 +47,11 @@ def run_study(study: Study, outdir, *, workers: int | None = None, scheduler: st
         ``rows`` (in the study), ``skipped`` (already done), ``run``, ``failed``, ``table`` (Path), ``csv`` (Path or None).
     """
     if save not in SAVE:
-        raise CaseError("--save", f"expected one of {', '.join(SAVE)}, got {save!r}")
+        raise CaseError("save", f"expected one of {', '.join(SAVE)}, got {save!r}")
     if workers is not None and workers < 0:
-        raise CaseError("--workers", f"must be >= 0 (0: in this process), got {workers}")
+        raise CaseError("workers", f"must be >= 0 (0: in this process), got {workers}")
     if scheduler is not None and scheduler != "local" and not scheduler.startswith("tcp://"):
-        raise CaseError("--scheduler", f"expected 'local' or tcp://HOST:PORT, got {scheduler!r}")
+        raise CaseError("scheduler", f"expected 'local' or tcp://HOST:PORT, got {scheduler!r}")
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     store = TableStore(outdir)
