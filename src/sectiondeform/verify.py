@@ -93,15 +93,23 @@ def det_j_p2(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
     ``cells`` is ``(M, 6)``: corners counter-clockwise, then the mid-nodes of
     edges 0-1, 1-2, 2-0 (meshio's ``triangle6``).
     """
-    xi, eta = _P2_PROBES[:, 0], _P2_PROBES[:, 1]
+    m = len(cells)
+    x = points[cells.T].reshape(6, 2 * m)  # node k of every cell, x and y interleaved
+    jx = (_P2_DXI @ x).reshape(-1, m, 2)  # (13, M, 2): one product, not M small ones
+    je = (_P2_DETA @ x).reshape(-1, m, 2)
+    return (jx[..., 0] * je[..., 1] - jx[..., 1] * je[..., 0]).T
+
+
+def _p2_shape_derivatives(probes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """dN/dxi and dN/deta of the six P2 shape functions at ``probes``, each ``(P, 6)``."""
+    xi, eta = probes[:, 0], probes[:, 1]
     l0, l1, l2 = 1.0 - xi - eta, xi, eta
-    # dN/dxi and dN/deta, (13, 6)
     dxi = np.stack([-(4 * l0 - 1), 4 * l1 - 1, 0 * xi, 4 * (l0 - l1), 4 * l2, -4 * l2], axis=1)
     deta = np.stack([-(4 * l0 - 1), 0 * xi, 4 * l2 - 1, -4 * l1, 4 * l1, 4 * (l0 - l2)], axis=1)
-    x = points[cells]  # (M, 6, 2)
-    jx = np.einsum("pk,mkd->mpd", dxi, x)
-    je = np.einsum("pk,mkd->mpd", deta, x)
-    return jx[..., 0] * je[..., 1] - jx[..., 1] * je[..., 0]
+    return dxi, deta
+
+
+_P2_DXI, _P2_DETA = _p2_shape_derivatives(_P2_PROBES)
 
 
 _NEXT, _PREV = [1, 2, 3, 0], [3, 0, 1, 2]
