@@ -81,8 +81,8 @@ class BodyResult:
         """(final - target) / target of the law's quantity."""
         return (self.final - self.target) / self.target
 
-    def to_json(self, meshes: bool = True) -> dict:
-        """The body's object of ``section-result/2``, with the project's extra keys."""
+    def to_json(self, meshes: bool = True, fields: bool = False) -> dict:
+        """The body's object of ``section-result/2``, with the project's extra keys (``fields``: the geometric fields)."""
         out = {
             "name": self.name,
             "lower": self.lower.tolist(),
@@ -97,6 +97,10 @@ class BodyResult:
             out["quality"], out["info"] = out.pop("quality"), out.pop("info")  # keep the format's keys first
         if meshes:
             out["meshes"] = {"initial": self.initial_mesh.to_json(), "final": self.final_mesh.to_json()}
+        if fields:
+            from .geometric_fields import fields_to_json, geometric_fields
+
+            out["fields"] = fields_to_json(geometric_fields(self.initial_mesh, self.final_mesh))
         return out
 
 
@@ -134,19 +138,21 @@ class AssemblyResult:
                 return b
         raise KeyError(name)
 
-    def to_json(self, meshes: bool = True) -> dict:
+    def to_json(self, meshes: bool = True, fields: bool = False) -> dict:
         """The ``section-result/2`` object, with the project's extra keys (model, timings, warnings, meshes).
 
         Parameters
         ----------
         meshes : bool
             Include each body's meshes under ``"meshes"``.
+        fields : bool
+            Include each body's geometric fields under ``"fields"``.
         """
         return {
             "format": ASSEMBLY_RESULT_FORMAT,
             "name": self.name,
             "units": self.units,
-            "bodies": [b.to_json(meshes) for b in self.bodies],
+            "bodies": [b.to_json(meshes, fields) for b in self.bodies],
             "model": self.model,
             "timings": self.timings,
             "warnings": list(self.warnings),

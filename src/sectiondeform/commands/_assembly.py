@@ -47,7 +47,7 @@ def run_assembly(args, assembly: Assembly, report: list) -> int:
     if getattr(args, "model", None):
         assembly = assembly.replace(options=assembly.options.replace(model=args.model))
     result = AssemblyDeformer(assembly, element_size=args.element_size).deform()
-    write_result(args.output, result, meshes=not args.no_meshes)
+    write_result(args.output, result, meshes=not args.no_meshes, fields=getattr(args, "fields", False))
     if args.plot:
         from ..plot import save_figure
 
