@@ -88,9 +88,11 @@ def test_unknown_keys_name_the_nearest_known_one():
     assert refused(data, CaseError).startswith("bodies[0].material.shear_modulus")
 
 
-def test_revolution_is_refused_until_it_is_supported():
-    message = refused(json.loads(DRUM.read_text()), CaseError)
-    assert message.startswith("revolution: bodies of revolution are not supported yet")
+def test_a_revolution_axis_crossing_a_body_or_given_by_one_point_is_refused():
+    data = json.loads(DRUM.read_text())
+    data["revolution"]["axis"] = [[0, 10], [1, 10]]  # through the tread
+    message = refused(data)
+    assert message.startswith("bodies[1] 'tread': the revolution axis crosses it")
     data = json.loads(DRUM.read_text())
     data["revolution"]["axis"] = [[0, 0], [0, 0]]
     assert refused(data, CaseError).startswith("revolution.axis")
@@ -120,6 +122,7 @@ def test_cli_refusals_on_assemblies_exit_2_and_write_nothing(tmp_path, capsys, e
     assert len(capsys.readouterr().err.strip().splitlines()) == 1
 
 
-def test_cli_refuses_revolution_with_exit_2(tmp_path, capsys):
-    assert main(["deform", str(DRUM), "-o", str(tmp_path / "r.json")]) == 2
-    assert "bodies of revolution are not supported yet" in capsys.readouterr().err
+def test_cli_refuses_the_hyperelastic_model_on_revolution_with_exit_2(tmp_path, capsys):
+    assert main(["deform", str(DRUM), "-o", str(tmp_path / "r.json"), "--model", "hyperelastic"]) == 2
+    assert "does not deform bodies of revolution yet" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []

@@ -13,7 +13,10 @@ bodies rest on each other (:func:`layout`):
 - no body rests on itself through others (the error names the cycle);
 - a piece shared by two bodies is in exactly one body's lower curve (a
   piece in both upper curves, or in both lower curves, is refused);
-- names are unique.
+- names are unique;
+- with ``revolution``, the axis crosses no body and every body lies on the
+  same side of it (:func:`check_axis`); a ``volume_ratio`` law is only
+  valid with ``revolution``, and is bound to its axis.
 
 Every message is one line naming the bodies (``bodies[1] 'cover'``) and
 where. The curves are compared through fine polylines (within a quarter of
@@ -23,6 +26,7 @@ recognised as shared.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -35,9 +39,10 @@ from .checks import number
 from .curves import Curve, curve_from_json
 from .errors import CaseError, GeometryError
 from .laws import Law, law_from_json
+from .pappus import signed_distance
 
 __all__ = [
-    "Assembly", "Body", "Revolution", "Layout", "assembly_from_dict", "assembly_to_dict", "layout",
+    "Assembly", "Body", "Revolution", "Layout", "assembly_from_dict", "assembly_to_dict", "layout", "check_axis",
     "ASSEMBLY_FORMAT", "ASSEMBLY_KEYS", "BODY_KEYS", "MATERIAL_KEYS", "CONTACT_FRACTION",
 ]
 
@@ -179,7 +184,22 @@ class Assembly:
             if body.name in seen:
                 raise CaseError(f"bodies[{i}].name", f"{body.name!r} is also the name of bodies[{seen[body.name]}]; give every body its own name")
             seen[body.name] = i
+        object.__setattr__(self, "bodies", tuple(self._bound(i, b) for i, b in enumerate(self.bodies)))
         object.__setattr__(self, "layout", layout(self))
+        if self.revolution is not None:
+            check_axis(self)
+
+    def _bound(self, i: int, body: Body) -> Body:
+        """``body`` with a law of bodies of revolution bound to the axis; refused without one."""
+        law = body.law
+        if not law.needs_axis:
+            return body
+        if self.revolution is None:
+            raise CaseError(f"bodies[{i}].law.{law.key}", "only valid for a body of revolution; give the case a "
+                            "revolution axis or use area_ratio")
+        if law.axis == self.revolution.axis:
+            return body
+        return dataclasses.replace(body, law=law.about(self.revolution.axis))
 
     @property
     def model(self) -> str:
@@ -382,6 +402,40 @@ def layout(assembly: Assembly) -> Layout:
                   fine={"support": support, "uppers": tuple(uppers)})
 
 
+def check_axis(assembly: Assembly) -> None:
+    """Check that the axis of revolution crosses no body and that all bodies lie on one side of it.
+
+    A body may touch the axis (a solid of revolution's section), not cross
+    it; points within the contact tolerance of the axis count as on it.
+
+    Raises
+    ------
+    GeometryError
+        One line naming the body: crossed by the axis (with a point on each
+        side), or lying on the other side from the first body.
+    """
+    axis = assembly.revolution.axis
+    tol = assembly.layout.tolerance
+    side0, first = 0.0, None
+    for i, body in enumerate(assembly.bodies):
+        pts = np.concatenate((_fine(body.lower, 0.25 * tol), _fine(body.upper, 0.25 * tol)))
+        d = signed_distance(pts, axis)
+        lo, hi = int(np.argmin(d)), int(np.argmax(d))
+        if d[lo] < -tol and d[hi] > tol:
+            raise GeometryError(
+                f"{assembly.label(i)}: the revolution axis crosses it (points {_where(pts[lo])} and {_where(pts[hi])} "
+                "lie on either side); a section of revolution lies on one side of its axis: move the axis or the body"
+            )
+        side = d[hi] if d[hi] > tol else d[lo]
+        if first is None:
+            side0, first = side, i
+        elif side * side0 < 0:
+            raise GeometryError(
+                f"{assembly.label(i)}: it lies on the other side of the revolution axis from {assembly.label(first)}; "
+                "all bodies of a section of revolution lie on one side of the axis"
+            )
+
+
 def _resting_order(foundations, label) -> tuple:
     """Bodies from the support up (Kahn); a cycle is refused naming its bodies."""
     n = len(foundations)
@@ -415,10 +469,11 @@ def assembly_from_dict(data) -> Assembly:
     Raises
     ------
     CaseError
-        Naming the first field at fault; a case with ``revolution`` is
-        refused (bodies of revolution are not supported yet).
+        Naming the first field at fault (a ``volume_ratio`` law without
+        ``revolution`` among them).
     GeometryError
-        If the bodies do not rest on each other as the format says (:func:`layout`).
+        If the bodies do not rest on each other as the format says
+        (:func:`layout`), or the axis of revolution crosses a body (:func:`check_axis`).
 
     Examples
     --------
@@ -449,11 +504,11 @@ def assembly_from_dict(data) -> Assembly:
     revolution = None
     if "revolution" in data:
         revolution = revolution_from_json(data["revolution"])
-        raise CaseError("revolution", "bodies of revolution are not supported yet; only plane assemblies (no revolution key) can be deformed")
     raw = data["bodies"]
     if not isinstance(raw, list) or not raw:
         raise CaseError("bodies", f"expected a non-empty list of bodies, got {raw!r}")
-    bodies = [_body_from_json(b, f"bodies[{i}]") for i, b in enumerate(raw)]
+    axis = revolution.axis if revolution is not None else None
+    bodies = [_body_from_json(b, f"bodies[{i}]", axis) for i, b in enumerate(raw)]
     return Assembly(
         support=curve_from_json(data["support"], "support"),
         target=curve_from_json(data["target"], "target"),
@@ -465,7 +520,7 @@ def assembly_from_dict(data) -> Assembly:
     )
 
 
-def _body_from_json(obj, field: str) -> Body:
+def _body_from_json(obj, field: str, axis=None) -> Body:
     if not isinstance(obj, dict):
         raise CaseError(field, f"expected a body object, got {type(obj).__name__}")
     for key in obj:
@@ -481,7 +536,7 @@ def _body_from_json(obj, field: str) -> Body:
         name=name,
         lower=curve_from_json(obj["lower"], f"{field}.lower"),
         upper=curve_from_json(obj["upper"], f"{field}.upper"),
-        law=law_from_json(obj["law"], f"{field}.law"),
+        law=law_from_json(obj["law"], f"{field}.law", axis),
         material=material_from_json(obj.get("material"), f"{field}.material"),
     )
 

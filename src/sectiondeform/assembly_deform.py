@@ -19,9 +19,11 @@ of its polyline are given back on the resting body's deformed lower
 polyline, at their place along it (so the result's ``upper`` keeps one
 image per characteristic point of the case).
 
-Every result is checked: each body's law to :data:`AREA_TOLERANCE`, shared
-points coinciding to 1e-9 of the assembly's size, every body's contour
-simple, and no overlap between deformed bodies.
+Every result is checked: each body's law (its area, or its volume of
+revolution) to :data:`AREA_TOLERANCE`, shared points coinciding to 1e-9 of
+the assembly's size, every body's contour simple, no overlap between
+deformed bodies, and, for a body of revolution, no deformed body crossing
+the axis.
 """
 
 from __future__ import annotations
@@ -36,6 +38,7 @@ from .assembly_result import AssemblyResult, BodyResult
 from .curves import Curve, Polyline, as_points, polygon_area
 from .errors import CaseError, GeometryError, LawError, MeshError, SectionDeformError
 from .models import get_model
+from .pappus import signed_distance, volume
 from .result import ResultQuality
 from .section import build_section
 
@@ -97,6 +100,9 @@ class AssemblyDeformer:
         t0 = time.perf_counter()
         self.assembly = assembly
         self.model_name = model or assembly.model
+        if assembly.revolution is not None and self.model_name != "paper":
+            raise CaseError("options.model", f"the {self.model_name} model does not deform bodies of revolution yet; "
+                            "use the paper model (--model paper)")
         if self.model_name != "paper":
             raise CaseError("options.model", f"the {self.model_name} model does not deform assemblies yet; use the paper model (options.model \"paper\")")
         self.model = get_model(self.model_name)
@@ -292,8 +298,17 @@ class AssemblyDeformer:
             contour_upper = np.concatenate((images[b], taken))[body.contour_order]
             initial_taken = body.original_upper[[k for k, *_ in body.taken]].reshape(-1, 2)
             initial_upper = np.concatenate((initial_upper, initial_taken))[body.contour_order]
-        final = abs(polygon_area(np.concatenate((lowers[b], images[b][1:-1]))))
-        wanted = a.bodies[b].law.target_area(sec.area)
+        final_polygon = np.concatenate((lowers[b], images[b][1:-1]))
+        final = abs(polygon_area(final_polygon))
+        law = a.bodies[b].law
+        wanted = law.target_area(sec.area) if law.measure == "area" else None
+        volumes = {}
+        if a.revolution is not None:
+            axis = a.revolution.axis
+            v0 = volume(sec.contour, axis)
+            volumes = {"volume_initial": v0, "volume_final": volume(final_polygon, axis)}
+            if law.measure == "volume":
+                volumes["volume_target"] = abs(law.target(v0))
         prepared = body.prepared
         return BodyResult(
             name=a.bodies[b].name,
@@ -310,6 +325,7 @@ class AssemblyDeformer:
             final_mesh=placement.final_mesh,
             quality=ResultQuality(prepared.quality, placement.quality),
             info=placement.info,
+            **volumes,
         )
 
     def _check(self, results, lowers, images) -> None:
@@ -317,10 +333,17 @@ class AssemblyDeformer:
         a = self.assembly
         label = a.label
         for b, r in enumerate(results):
-            if not abs(r.area_final - r.area_target) <= AREA_TOLERANCE * r.area_target:
-                raise LawError(f"{label(b)}: the final area {r.area_final:.9g} misses the target {r.area_target:.9g} by more than 1e-9")
+            if not abs(r.final - r.target) <= AREA_TOLERANCE * r.target:
+                raise LawError(f"{label(b)}: the final {r.measure} {r.final:.9g} misses the target {r.target:.9g} by more than 1e-9")
             if not shapely.is_simple(shapely.linearrings(r.contour)):
                 raise GeometryError(f"{label(b)}: the deformed contour crosses itself; the target or the law is too severe for this body")
+            if a.revolution is not None:
+                before = signed_distance(r.initial_contour, a.revolution.axis)
+                after = signed_distance(r.contour, a.revolution.axis)
+                side = before[np.argmax(np.abs(before))]
+                if (np.sign(side) * after < -self.layout.tolerance).any():
+                    raise GeometryError(f"{label(b)}: the deformed body crosses the revolution axis; "
+                                        "the target brings it too close to the axis")
         size = a.size
         for b, body in enumerate(self.bodies):
             for j in self.layout.foundations[b]:

@@ -30,11 +30,17 @@ class BodyResult:
         where another body's lower curve rests on it (shared ends once).
     initial_lower, initial_upper, initial_contour : ndarray
         The same points before deformation.
-    area_initial, area_target, area_final : float
+    area_initial, area_final : float
         Units².
+    area_target : float or None
+        Units², for a body whose law sets its area; None otherwise.
     initial_mesh, final_mesh : MeshData
     quality : ResultQuality
     info : Info
+    volume_initial, volume_final : float, optional
+        Volumes of revolution (Pappus), units³, for an assembly of revolution.
+    volume_target : float, optional
+        Units³, for a body whose law sets its volume.
     """
 
     name: str
@@ -45,33 +51,64 @@ class BodyResult:
     initial_upper: np.ndarray
     initial_contour: np.ndarray
     area_initial: float
-    area_target: float
+    area_target: float | None
     area_final: float
     initial_mesh: MeshData
     final_mesh: MeshData
     quality: ResultQuality | None = None
     info: Info = Info()
+    volume_initial: float | None = None
+    volume_target: float | None = None
+    volume_final: float | None = None
+
+    @property
+    def measure(self) -> str:
+        """The quantity the body's law sets: ``"area"`` or ``"volume"``."""
+        return "area" if self.area_target is not None else "volume"
+
+    @property
+    def target(self) -> float:
+        """Target of the law's quantity (units² or units³)."""
+        return self.area_target if self.area_target is not None else self.volume_target
+
+    @property
+    def final(self) -> float:
+        """Final value of the law's quantity (units² or units³)."""
+        return self.area_final if self.area_target is not None else self.volume_final
 
     @property
     def relative_error(self) -> float:
-        """(final - target) / target of the area."""
-        return (self.area_final - self.area_target) / self.area_target
+        """(final - target) / target of the law's quantity."""
+        return (self.final - self.target) / self.target
 
-    def to_json(self, meshes: bool = True) -> dict:
-        """The body's object of ``section-result/2``, with the project's extra keys."""
+    def to_json(self, meshes: bool = True, fields: bool = False) -> dict:
+        """The body's object of ``section-result/2``, with the project's extra keys (``fields``: the geometric fields)."""
         out = {
             "name": self.name,
             "lower": self.lower.tolist(),
             "upper": self.upper.tolist(),
             "contour": self.contour.tolist(),
-            "area": {"initial": self.area_initial, "target": self.area_target, "final": self.area_final,
-                     "relative_error": self.relative_error},
+            "area": _measure(self.area_initial, self.area_target, self.area_final),
             "quality": self.quality.to_json() if self.quality is not None else {},
             "info": self.info.to_json(),
         }
+        if self.volume_initial is not None:
+            out["volume"] = _measure(self.volume_initial, self.volume_target, self.volume_final)
+            out["quality"], out["info"] = out.pop("quality"), out.pop("info")  # keep the format's keys first
         if meshes:
             out["meshes"] = {"initial": self.initial_mesh.to_json(), "final": self.final_mesh.to_json()}
+        if fields:
+            from .geometric_fields import fields_to_json, geometric_fields
+
+            out["fields"] = fields_to_json(geometric_fields(self.initial_mesh, self.final_mesh))
         return out
+
+
+def _measure(initial, target, final) -> dict:
+    """``{"initial", "target", "final", "relative_error"}``, without the last two when there is no target."""
+    if target is None:
+        return {"initial": initial, "final": final}
+    return {"initial": initial, "target": target, "final": final, "relative_error": (final - target) / target}
 
 
 @dataclass(frozen=True, eq=False)
@@ -101,19 +138,21 @@ class AssemblyResult:
                 return b
         raise KeyError(name)
 
-    def to_json(self, meshes: bool = True) -> dict:
+    def to_json(self, meshes: bool = True, fields: bool = False) -> dict:
         """The ``section-result/2`` object, with the project's extra keys (model, timings, warnings, meshes).
 
         Parameters
         ----------
         meshes : bool
             Include each body's meshes under ``"meshes"``.
+        fields : bool
+            Include each body's geometric fields under ``"fields"``.
         """
         return {
             "format": ASSEMBLY_RESULT_FORMAT,
             "name": self.name,
             "units": self.units,
-            "bodies": [b.to_json(meshes) for b in self.bodies],
+            "bodies": [b.to_json(meshes, fields) for b in self.bodies],
             "model": self.model,
             "timings": self.timings,
             "warnings": list(self.warnings),

@@ -1,10 +1,19 @@
 """Mechanical laws ML: Se(t+1) = f(Se(t)) (paper eq. 1).
 
-A law is a small frozen object that tells the final area of a section from
-its initial area. Each law is a class registered under the case-file key it
-reads (``{"area_ratio": 0.8}``); a new law is a new class, not a new branch.
-The hyperelastic model also asks a law for its out-of-plane stretch, the
-physical reason a volume-preserving section changes area.
+A law is a small frozen object that sets one quantity of the deformed
+section from the initial one: the area (``{"area_ratio": 0.8}``), or the
+volume of revolution about an axis (``{"volume_ratio": 1.0}``). Each law is
+a class registered under the case-file key it reads; a new law is a new
+class, not a new branch. A model asks a law, generically:
+
+- :meth:`Law.quantity` of a polygon (signed: positive counter-clockwise);
+- :meth:`Law.target` of the initial quantity;
+- :meth:`Law.coefficients` of the quantity of a polygon ``fixed + k moving``
+  as a polynomial in ``k`` (the paper model's nodes are affine in its height
+  scale ``k``: the area is a quadratic, the volume a cubic).
+
+The hyperelastic model also asks an area law for its out-of-plane stretch,
+the physical reason a volume-preserving section changes area.
 """
 
 from __future__ import annotations
@@ -12,30 +21,84 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import ClassVar
 
-from .checks import number
-from .errors import CaseError
+import numpy as np
 
-__all__ = ["Law", "AreaRatio", "law_from_json", "LAWS", "RATIO_RANGE"]
+from . import pappus
+from .checks import number
+from .errors import CaseError, LawError
+
+__all__ = ["Law", "AreaRatio", "VolumeRatio", "law_from_json", "area_coefficients", "LAWS", "RATIO_RANGE"]
 
 RATIO_RANGE = (0.01, 100.0)
-"""Accepted area ratios, inclusive: beyond them no rubber section means anything."""
+"""Accepted area and volume ratios, inclusive: beyond them no rubber section means anything."""
 
 LAWS: dict[str, type[Law]] = {}
 
 
+def _next(a):
+    return np.concatenate((a[1:], a[:1]))
+
+
+def area_coefficients(fixed: np.ndarray, moving: np.ndarray) -> np.ndarray:
+    """Signed area of the polygon ``fixed + k moving`` as a quadratic in ``k``: ``(3,)``, constant first.
+
+    Examples
+    --------
+    >>> f = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [0.0, 0.0]])
+    >>> m = np.array([[0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [0.0, 1.0]])
+    >>> area_coefficients(f, m).tolist()
+    [0.0, 1.0, 0.0]
+    """
+    f1, g1 = _next(fixed), _next(moving)
+
+    def cross(a, b):
+        return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+
+    return 0.5 * np.array([cross(fixed, f1).sum(), (cross(fixed, g1) + cross(moving, f1)).sum(), cross(moving, g1).sum()])
+
+
 class Law:
-    """Base class of the mechanical laws."""
+    """Base class of the mechanical laws.
+
+    A subclass sets ``key`` (its case-file key) and ``measure`` (the name of
+    its quantity, for results and messages), and gives :meth:`target`; a law
+    on another quantity than the area also gives :meth:`quantity` and
+    :meth:`coefficients`. ``needs_axis`` marks a law that only means
+    something for a body of revolution.
+    """
 
     key: ClassVar[str] = ""
+    measure: ClassVar[str] = "area"
+    needs_axis: ClassVar[bool] = False
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         if cls.key:
             LAWS[cls.key] = cls
 
-    def target_area(self, initial_area: float) -> float:  # pragma: no cover - abstract
-        """Final area, in units², from the initial area."""
+    def quantity(self, polygon: np.ndarray) -> float:
+        """The law's quantity of a closed polygon ``(N, 2)``, signed (positive counter-clockwise); here its area, units²."""
+        return float(area_coefficients(np.asarray(polygon, dtype=np.float64), np.zeros_like(polygon, dtype=np.float64))[0])
+
+    def coefficients(self, fixed: np.ndarray, moving: np.ndarray) -> np.ndarray:
+        """:meth:`quantity` of the polygon ``fixed + k moving`` (both ``(N, 2)``) as polynomial coefficients in ``k``, constant first."""
+        return area_coefficients(fixed, moving)
+
+    def target(self, initial: float) -> float:  # pragma: no cover - abstract
+        """Final quantity from the initial one (signed in, signed out)."""
         raise NotImplementedError
+
+    def target_area(self, initial_area: float) -> float:
+        """Final area, in units², from the initial area (a law on the area only).
+
+        Raises
+        ------
+        LawError
+            For a law on another quantity (a volume), which no area alone decides.
+        """
+        if self.measure != "area":
+            raise LawError(f"law: {self.key} sets the {self.measure}, not the area; this model cannot meet it yet (use the paper model)")
+        return self.target(initial_area)
 
     def area_ratio(self, initial_area: float) -> float:
         """Final over initial area."""
@@ -72,20 +135,98 @@ class AreaRatio(Law):
             raise CaseError("law.area_ratio", f"must be between {low:g} and {high:g}, got {r!r}")
         object.__setattr__(self, "ratio", r)
 
-    def target_area(self, initial_area):
-        return self.ratio * initial_area
+    def target(self, initial):
+        return self.ratio * initial
 
     def to_json(self):
         return {"area_ratio": float(self.ratio)}
 
 
-def law_from_json(obj, field: str = "law") -> Law:
+@dataclass(frozen=True)
+class VolumeRatio(Law):
+    """Final volume of revolution = ``ratio`` x initial volume (a body of revolution).
+
+    The volume is ``2 pi`` times the section's first moment about the axis
+    (Pappus: area times the centroid's distance from the axis,
+    :mod:`sectiondeform.pappus`). ``ratio`` 1 is an incompressible body: its
+    area changes as the inverse of its centroid's distance from the axis.
+
+    Parameters
+    ----------
+    ratio : float
+        In :data:`RATIO_RANGE`.
+    axis : ((float, float), (float, float)), optional
+        Two distinct points of the axis, units. A law read from a case gets
+        it from the case's ``revolution`` (:meth:`about`); without it the
+        law cannot measure anything.
+
+    Examples
+    --------
+    >>> law = VolumeRatio(1.0, ((0.0, 0.0), (1.0, 0.0)))
+    >>> square = np.array([[0.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]])
+    >>> round(law.quantity(square) / np.pi, 12)  # 2 pi x area 1 x distance 1.5
+    3.0
+    """
+
+    ratio: float
+    axis: tuple | None = None
+    key: ClassVar[str] = "volume_ratio"
+    measure: ClassVar[str] = "volume"
+    needs_axis: ClassVar[bool] = True
+
+    def __post_init__(self):
+        low, high = RATIO_RANGE
+        r = number(self.ratio, "law.volume_ratio", low=0.0, strict_low=True)
+        if not low <= r <= high:
+            raise CaseError("law.volume_ratio", f"must be between {low:g} and {high:g}, got {r!r}")
+        object.__setattr__(self, "ratio", r)
+        if self.axis is not None:
+            p0, p1 = (tuple(float(v) for v in p) for p in self.axis)
+            if p0 == p1:
+                raise CaseError("revolution.axis", "the two points coincide; give two distinct points of the axis")
+            object.__setattr__(self, "axis", (p0, p1))
+
+    def about(self, axis) -> VolumeRatio:
+        """The same law about ``axis``."""
+        return VolumeRatio(self.ratio, axis)
+
+    def _axis(self):
+        if self.axis is None:
+            raise CaseError("law.volume_ratio", "needs the axis of revolution; give the case a revolution axis")
+        return self.axis
+
+    def quantity(self, polygon):
+        """Signed volume of revolution, ``2 pi`` x first moment about the axis, units³."""
+        return 2.0 * np.pi * pappus.first_moment(polygon, self._axis())
+
+    def coefficients(self, fixed, moving):
+        return 2.0 * np.pi * pappus.moment_coefficients(fixed, moving, self._axis())
+
+    def target(self, initial):
+        return self.ratio * initial
+
+    def to_json(self):
+        return {"volume_ratio": float(self.ratio)}
+
+
+def law_from_json(obj, field: str = "law", axis=None) -> Law:
     """Build a :class:`Law` from the case's ``law`` object.
+
+    Parameters
+    ----------
+    obj : object
+        The parsed ``law`` object.
+    field : str
+        Where it sits in the case, for messages.
+    axis : ((float, float), (float, float)), optional
+        The case's axis of revolution; a law that needs one (``volume_ratio``)
+        is refused without it.
 
     Raises
     ------
     CaseError
-        If the object is not a one-key object naming a known law.
+        If the object is not a one-key object naming a known law, or names
+        a law of bodies of revolution in a case without an axis.
 
     Examples
     --------
@@ -94,11 +235,17 @@ def law_from_json(obj, field: str = "law") -> Law:
     >>> law_from_json({"volume": 1})
     Traceback (most recent call last):
     ...
-    sectiondeform.errors.CaseError: law: unknown law 'volume'; use one of area_ratio
+    sectiondeform.errors.CaseError: law: unknown law 'volume'; use one of area_ratio, volume_ratio
     """
     if not isinstance(obj, dict) or len(obj) != 1:
         raise CaseError(field, f"expected one law object such as {{\"area_ratio\": 0.8}}, got {obj!r}")
     (key, value), = obj.items()
     if key not in LAWS:
         raise CaseError(field, f"unknown law {key!r}; use one of {', '.join(sorted(LAWS))}")
-    return LAWS[key](value)
+    law = LAWS[key](value)
+    if law.needs_axis:
+        if axis is None:
+            raise CaseError(f"{field}.{key}", "only valid for a body of revolution; give the case a revolution axis "
+                            "(section-case/2) or use area_ratio")
+        law = law.about(axis)
+    return law

@@ -96,13 +96,16 @@ class Result:
         """(final - target) / target."""
         return (self.area_final - self.area_target) / self.area_target
 
-    def to_json(self, meshes: bool = True) -> dict:
+    def to_json(self, meshes: bool = True, fields: bool = False) -> dict:
         """The ``section-result/1`` object, with the project's extra keys.
 
         Parameters
         ----------
         meshes : bool
             Include both meshes under ``"meshes"``.
+        fields : bool
+            Include the per-element geometric fields of a layered result
+            under ``"fields"`` (:mod:`sectiondeform.geometric_fields`).
         """
         out = {
             "format": RESULT_FORMAT,
@@ -125,4 +128,8 @@ class Result:
         }
         if meshes:
             out["meshes"] = {"initial": self.initial_mesh.to_json(), "final": self.final_mesh.to_json()}
+        if fields:
+            from .geometric_fields import fields_to_json, geometric_fields
+
+            out["fields"] = fields_to_json(geometric_fields(self.initial_mesh, self.final_mesh))
         return out

@@ -28,8 +28,13 @@ def assembly_summary(result) -> str:
     u = result.units
     lines = [f"{result.name} ({result.model} model, {len(result.bodies)} bodies)"]
     for b in result.bodies:
-        lines.append(f"  {b.name:<12} area {b.area_initial:.4f} -> {b.area_final:.4f} {u}² "
-                     f"(target {b.area_target:.4f}, relative error {b.relative_error:+.2e})")
+        if b.measure == "area":
+            lines.append(f"  {b.name:<12} area {b.area_initial:.4f} -> {b.area_final:.4f} {u}² "
+                         f"(target {b.area_target:.4f}, relative error {b.relative_error:+.2e})")
+        else:
+            lines.append(f"  {b.name:<12} volume {b.volume_initial:.6g} -> {b.volume_final:.6g} {u}³ "
+                         f"(target {b.volume_target:.6g}, relative error {b.relative_error:+.2e}), "
+                         f"area {b.area_initial:.4f} -> {b.area_final:.4f} {u}²")
     t = result.timings
     lines.append(f"  time          prepare {1e3 * t['prepare_s']:.2f} ms, deform {1e3 * t['place_s']:.3f} ms")
     for w in result.warnings:
@@ -42,7 +47,7 @@ def run_assembly(args, assembly: Assembly, report: list) -> int:
     if getattr(args, "model", None):
         assembly = assembly.replace(options=assembly.options.replace(model=args.model))
     result = AssemblyDeformer(assembly, element_size=args.element_size).deform()
-    write_result(args.output, result, meshes=not args.no_meshes)
+    write_result(args.output, result, meshes=not args.no_meshes, fields=getattr(args, "fields", False))
     if args.plot:
         from ..plot import save_figure
 

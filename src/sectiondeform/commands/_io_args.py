@@ -196,6 +196,6 @@ def write_meshes(args, result) -> list[Path]:
     written = []
     for which, paths in (("final", getattr(args, "mesh_out", [])), ("initial", getattr(args, "initial_mesh_out", []))):
         for p in paths:
-            write_mesh(p, result, which)
+            write_mesh(p, result, which, fields=getattr(args, "fields", False))
             written.append(p)
     return written

@@ -26,6 +26,9 @@ def add_args(parser) -> None:
                         help="result file (.json, .dxf, .svg; .vtu, .vtk, .msh, .inp: the final mesh)")
     parser.add_argument("--plot", type=Path, metavar="FIG", help="also draw the figure (.png, .svg or .pdf)")
     parser.add_argument("--no-meshes", action="store_true", help="leave the meshes out of the result JSON")
+    parser.add_argument("--fields", action="store_true",
+                        help="add the paper model's geometric fields per element (corner Jacobians, layer stretches) "
+                             "to the result JSON and the meshes written")
     add_model_args(parser)
     add_input_args(parser)
     add_output_args(parser)
@@ -40,6 +43,8 @@ def run(args) -> int:
     case = apply_overrides(case, args)
     result = Deformer(case, element_size=args.element_size).deform()
     options = {"meshes": False} if args.no_meshes and args.output.suffix.lower() == ".json" else output_options(args, args.output)
+    if args.fields and args.output.suffix.lower() in (".json", ".vtu", ".vtk", ".msh"):
+        options["fields"] = True
     write_result(args.output, result, **options)
     meshes = write_meshes(args, result)
     if args.plot:

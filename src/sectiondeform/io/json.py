@@ -65,6 +65,6 @@ def write_case(path, case: Case) -> None:
     atomic_write(path, lambda tmp: _dump(case_to_dict(case), tmp))
 
 
-def write_result(path, result, meshes: bool = True) -> None:
-    """Write a result JSON file atomically, meshes included by default."""
-    atomic_write(path, lambda tmp: _dump(result.to_json(meshes=meshes), tmp))
+def write_result(path, result, meshes: bool = True, fields: bool = False) -> None:
+    """Write a result JSON file atomically, meshes included by default, geometric fields if asked."""
+    atomic_write(path, lambda tmp: _dump(result.to_json(meshes=meshes, fields=fields), tmp))

@@ -11,7 +11,11 @@ Where the two meshes have the same nodes (the layered paper model), VTU,
 VTK and MSH files carry point data: the final mesh has ``initial`` (the
 initial coordinates) and ``displacement`` (final - initial), the initial
 mesh ``final`` and ``displacement``; every file has the cell data
-``element`` (0-based element number). Abaqus INP carries the mesh only.
+``element`` (0-based element number). Any other point or cell data (one row
+per node or element, any number of components) is passed through
+:func:`to_meshio`; ``write_mesh(..., fields=True)`` adds the paper model's
+geometric fields as cell data (:mod:`sectiondeform.geometric_fields`).
+Abaqus INP carries the mesh only.
 """
 
 from __future__ import annotations
@@ -33,7 +37,8 @@ def _xyz(points: np.ndarray) -> np.ndarray:
     return np.column_stack((points, np.zeros(len(points))))
 
 
-def to_meshio(result, which: str = "final", data: bool = True):
+def to_meshio(result, which: str = "final", data: bool = True, point_data: dict | None = None,
+              cell_data: dict | None = None):
     """One mesh of a result as a :class:`meshio.Mesh`.
 
     Parameters
@@ -43,6 +48,13 @@ def to_meshio(result, which: str = "final", data: bool = True):
         ``"final"`` or ``"initial"``.
     data : bool
         Attach the point and cell data described in the module docstring.
+    point_data, cell_data : dict of str to ndarray, optional
+        More data to attach: arrays ``(N, ...)`` per node, ``(M, ...)`` per element.
+
+    Raises
+    ------
+    CaseError
+        For extra data whose row count is not the mesh's node or element count.
 
     Returns
     -------
@@ -53,14 +65,27 @@ def to_meshio(result, which: str = "final", data: bool = True):
     if which not in ("final", "initial"):
         raise CaseError("mesh", f"unknown mesh {which!r}; use final or initial")
     mesh, other = (result.final_mesh, result.initial_mesh) if which == "final" else (result.initial_mesh, result.final_mesh)
+    point_data_in, cell_data_in = point_data, cell_data
     point_data, cell_data = {}, {}
     if data:
         cell_data["element"] = [np.arange(len(mesh.cells), dtype=np.int64)]
         if other.points.shape == mesh.points.shape:
             point_data["initial" if which == "final" else "final"] = _xyz(other.points)
             point_data["displacement"] = _xyz(result.final_mesh.points - result.initial_mesh.points)
+    for name, values in (point_data_in or {}).items():
+        point_data[name] = _rows(values, len(mesh.points), name, "node")
+    for name, values in (cell_data_in or {}).items():
+        cell_data[name] = [_rows(values, len(mesh.cells), name, "element")]
     return meshio.Mesh(_xyz(mesh.points), [(mesh.kind, np.asarray(mesh.cells, dtype=np.int64))],
                        point_data=point_data, cell_data=cell_data)
+
+
+def _rows(values, count: int, name: str, what: str) -> np.ndarray:
+    """``values`` as an array with one row per node or element, checked."""
+    arr = np.asarray(values)
+    if arr.ndim == 0 or len(arr) != count:
+        raise CaseError(name, f"expected one row per {what} ({count}), got shape {arr.shape}")
+    return arr
 
 
 def _teach_meshio_plane_strain() -> None:
@@ -71,7 +96,7 @@ def _teach_meshio_plane_strain() -> None:
         _abaqus.abaqus_to_meshio_type.setdefault(name, "quad")
 
 
-def write_mesh(path, result, which: str = "final") -> None:
+def write_mesh(path, result, which: str = "final", fields: bool = False) -> None:
     """Write one mesh of a result, format by extension, atomically.
 
     Parameters
@@ -81,6 +106,10 @@ def write_mesh(path, result, which: str = "final") -> None:
     result : Result
     which : str
         ``"final"`` or ``"initial"``.
+    fields : bool
+        Add the geometric fields of a layered result as cell data
+        (:func:`~sectiondeform.geometric_fields.geometric_fields`; none for
+        other meshes, nor in Abaqus files).
 
     Raises
     ------
@@ -93,7 +122,12 @@ def write_mesh(path, result, which: str = "final") -> None:
     if ext not in FORMATS:
         raise CaseError(str(path), f"unknown mesh format {ext!r}; use one of {', '.join(FORMATS)}")
     fmt = FORMATS[ext]
-    mesh = to_meshio(result, which, data=fmt != "abaqus")
+    cells = None
+    if fields and fmt != "abaqus":
+        from ..geometric_fields import geometric_fields
+
+        cells = geometric_fields(result.initial_mesh, result.final_mesh)
+    mesh = to_meshio(result, which, data=fmt != "abaqus", cell_data=cells)
     kwargs = {"binary": True} if fmt in ("gmsh", "vtk") else {}
     if fmt == "gmsh":
         tags = np.zeros(len(mesh.cells[0].data), dtype=np.int32)
@@ -108,6 +142,6 @@ def write_mesh(path, result, which: str = "final") -> None:
     atomic_write(path, write)
 
 
-def write_result(path, result) -> None:
-    """Write the final mesh of a result (see :func:`write_mesh`)."""
-    write_mesh(path, result, "final")
+def write_result(path, result, fields: bool = False) -> None:
+    """Write the final mesh of a result (see :func:`write_mesh`), with its geometric fields if asked."""
+    write_mesh(path, result, "final", fields=fields)

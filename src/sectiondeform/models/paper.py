@@ -10,8 +10,12 @@ and columns on the target nodes, each node at ``T_j + k (a t'_j + b n'_j)``
 in the target's frame, and put the upper points at their local coordinates.
 The nodes and so the placed points are affine in the height scale ``k``; the
 area of the deformed section (target + placed upper curve, shoelace) is
-therefore a quadratic in ``k``, solved in closed form: the law holds to
-rounding error. With the target equal to the lower curve and ratio 1, ``k``
+therefore a quadratic in ``k``, and its first moment about an axis of
+revolution (the volume law, Pappus) a cubic, both solved in closed form
+(:func:`scale_roots`; the law asks for its own polynomial,
+:meth:`~sectiondeform.laws.Law.coefficients`): the law holds to rounding
+error. Of several positive roots, the one nearest the expected scale that
+leaves no inverted element is taken. With the target equal to the lower curve and ratio 1, ``k``
 is 1 and every point comes back; a rigid motion of the target moves the
 section rigidly.
 
@@ -59,7 +63,7 @@ from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions
 # smoothing length grows as the fourth root of the weight, in nodes).
 TARGET_SMOOTHING = (0.0,) + SMOOTHING_WEIGHTS + (5e6, 5e7, 5e8, 5e9, 5e10)
 
-__all__ = ["PaperModel", "PaperPrepared", "PaperOptions", "PaperInfo", "MODEL", "solve_scale"]
+__all__ = ["PaperModel", "PaperPrepared", "PaperOptions", "PaperInfo", "MODEL", "solve_scale", "scale_roots"]
 
 DENSE_MAP_MAX = 2**21  # entries of each (upper points x columns) placement matrix kept dense
 
@@ -118,6 +122,66 @@ def solve_scale(fixed: np.ndarray, moving: np.ndarray, signed_area: float, guess
             "this section under this law (check the target's direction and the area ratio)"
         )
     return min(roots, key=lambda r: abs(r - guess))
+
+
+def scale_roots(coefficients, wanted: float, guess: float) -> list[float]:
+    """The positive real ``k`` where a polynomial of degree <= 3 takes the value ``wanted``, nearest ``guess`` first.
+
+    A law's quantity of the placed section is a polynomial in the height
+    scale ``k`` (:meth:`~sectiondeform.laws.Law.coefficients`): a quadratic
+    for the area, a cubic for a volume of revolution. Quadratics are solved
+    by the cancellation-free formula, cubics by :func:`numpy.roots` (the
+    companion matrix's eigenvalues) polished by two Newton steps.
+
+    Parameters
+    ----------
+    coefficients : sequence of float
+        ``c`` with ``q(k) = c[0] + c[1] k + ...``, at most 4.
+    wanted : float
+        Wanted value of ``q``, signed as the coefficients.
+    guess : float
+        Expected ``k``; the roots are sorted by their distance to it.
+
+    Returns
+    -------
+    list of float
+        Positive finite roots, nearest ``guess`` first; empty when none.
+
+    Examples
+    --------
+    >>> scale_roots([0.0, 0.0, 0.0, 1.0], 8.0, 1.0)  # k³ = 8
+    [2.0]
+    >>> [round(k, 12) for k in scale_roots([0.0, 3.0, -1.0], 2.0, 1.2)]  # 3k - k² = 2: k = 1 or 2
+    [1.0, 2.0]
+    """
+    c = np.array(coefficients, dtype=np.float64)
+    c[0] -= wanted
+    while len(c) > 1 and abs(c[-1]) <= 1e-14 * float(np.abs(c[:-1]).sum()):
+        c = c[:-1]
+    if len(c) == 4:
+        raw = np.roots(c[::-1])
+        roots = [float(r.real) for r in raw if abs(r.imag) <= 1e-9 * (1.0 + abs(r))]
+        dc = c[1:] * np.arange(1, len(c))
+        for i, k in enumerate(roots):
+            for _ in range(2):
+                slope = np.polynomial.polynomial.polyval(k, dc)
+                if slope == 0:
+                    break
+                k -= np.polynomial.polynomial.polyval(k, c) / slope
+            roots[i] = float(k)
+    elif len(c) == 3:
+        c0, c1, c2 = (float(v) for v in c)
+        disc = c1 * c1 - 4.0 * c2 * c0
+        if disc < 0:
+            roots = []
+        else:
+            q = -0.5 * (c1 + math.copysign(math.sqrt(disc), c1))
+            roots = [q / c2] + ([c0 / q] if q != 0 else [])
+    elif len(c) == 2:
+        roots = [-float(c[0]) / float(c[1])]
+    else:
+        roots = []
+    return sorted((r for r in roots if r > 0 and math.isfinite(r)), key=lambda r: abs(r - guess))
 
 
 def _column_matrix(weights: np.ndarray, columns: np.ndarray, n: int) -> np.ndarray:
@@ -211,13 +275,14 @@ class PaperPrepared(Prepared):
         ``start`` is ignored: the placement is closed-form.
         """
         sec = self.section
-        target_area = law.target_area(sec.area)
+        initial = law.quantity(sec.contour)
+        wanted = law.target(initial)
         real = target_nodes
         target_nodes = self.extended_target(real)
         t, n = node_frames(target_nodes, sec.orientation)
         steps = real[1:] - real[:-1]
         lengths = np.hypot(steps[:, 0], steps[:, 1]).sum()
-        guess = target_area / sec.area * sec.lower_length / lengths
+        guess = wanted / initial * sec.lower_length / lengths
         fixed_up = self._map(0, target_nodes)
         fixed = np.concatenate((real, fixed_up[1:-1]))
         zeros = np.zeros_like(real)
@@ -228,14 +293,19 @@ class PaperPrepared(Prepared):
                 t, n = _frames_from_normals(self._smoother(n, lam), sec.orientation)
             moving_up = self._moving_up(t, n)
             moving = np.concatenate((zeros, moving_up[1:-1]))
-            try:
-                k = solve_scale(fixed, moving, sec.orientation * target_area, guess)
-            except LawError as exc:  # converging normals cap the reachable area: smooth them more
-                law_error = exc
+            roots = scale_roots(law.coefficients(fixed, moving), wanted, guess)
+            if not roots:  # converging normals cap the reachable quantity: smooth them more
+                law_error = LawError(
+                    f"law: no height scale gives the {law.measure} {abs(wanted):.6g}; the target cannot carry "
+                    f"this section under this law (check the target's direction and the {law.key})"
+                )
                 continue
-            nodes = self._nodes(target_nodes, t, n, k)
-            jac = corner_jacobians(nodes[..., 0], nodes[..., 1], sec.orientation)
-            jac_min = float(np.minimum(np.minimum(jac[0], jac[1]), np.minimum(jac[2], jac[3])).min())
+            for k in roots:  # the nearest root that leaves no inverted element
+                nodes = self._nodes(target_nodes, t, n, k)
+                jac = corner_jacobians(nodes[..., 0], nodes[..., 1], sec.orientation)
+                jac_min = float(np.minimum(np.minimum(jac[0], jac[1]), np.minimum(jac[2], jac[3])).min())
+                if jac_min > 0:
+                    break
             if jac_min > 0:
                 smoothing = lam
                 break
