@@ -16,9 +16,12 @@ __all__ = [
     "MAX_FE_VERTICES",
     "MAX_LAYERED_NODES",
     "MAX_LOWER_NODES",
+    "MAX_NEWTON_ITERATIONS",
+    "MAX_NEWTON_WORK",
     "MAX_SPLINE_PIECES",
     "MAX_UPPER_POINTS",
     "bounded",
+    "newton_budget",
 ]
 
 MAX_CURVE_POINTS = 200_000
@@ -37,7 +40,14 @@ MAX_LAYERED_NODES = 2_000_000
 """Nodes of the paper model's layered mesh (layers x columns)."""
 
 MAX_FE_VERTICES = 3_000
-"""Triangle vertices of the hyperelastic model's mesh (about twice as many triangles)."""
+"""Triangle vertices of the hyperelastic model's mesh (about twice as many triangles), also
+after the mesher's passes that split boundary segments to conform to the contour."""
+
+MAX_NEWTON_ITERATIONS = 100
+"""Newton iterations of one hyperelastic solve, all load steps together (a step's predictor counts one)."""
+
+MAX_NEWTON_WORK = 400_000
+"""Newton iterations x unknowns of one hyperelastic solve (about 15 iterations on the largest mesh)."""
 
 
 def bounded(count: float, limit: int, what: str, fix: str, error=GeometryError) -> float:
@@ -56,3 +66,16 @@ def bounded(count: float, limit: int, what: str, fix: str, error=GeometryError) 
         raise error(f"section: {count:.6g} {what} needed, more than the bound {limit}; {fix}")
     return count
 
+
+
+def newton_budget(unknowns: int) -> int:
+    """Newton iterations one hyperelastic solve on ``unknowns`` unknowns may take.
+
+    ``min(MAX_NEWTON_ITERATIONS, MAX_NEWTON_WORK // unknowns)``, at least 1.
+
+    Examples
+    --------
+    >>> newton_budget(700), newton_budget(25_000)
+    (100, 16)
+    """
+    return max(1, min(MAX_NEWTON_ITERATIONS, MAX_NEWTON_WORK // max(int(unknowns), 1)))

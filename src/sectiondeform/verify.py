@@ -13,7 +13,9 @@ command line can share them:
 - ``simple``: the deformed contour is a simple polygon (shapely);
 - ``ends``: the deformed lower curve starts and ends on the target's ends, and
   the upper points run from its end back to its start;
-- ``upper_on_curve``: the initial upper points lie on the case's upper curve;
+- ``upper_on_curve``: the initial upper points lie on the case's upper curve:
+  within twice the chordal error of a polyline of it at a quarter of the
+  case's nominal chordal error, plus rounding;
 - ``inverted``: no element of either mesh is inverted anywhere: for the P2
   triangles ``det J > 0`` at the corners, the mid-edge nodes and the
   quadrature points; for bilinear quads at the corners (enough: ``det J`` is
@@ -31,6 +33,9 @@ import math
 
 import numpy as np
 import shapely
+
+from .curves import DEFAULT_CHORDAL_FRACTION
+from .errors import SectionDeformError
 
 __all__ = [
     "AREA_LAW_TOLERANCE",
@@ -222,12 +227,34 @@ def _case_checks(result, case, size: float) -> list[str]:
     t0, t1 = case.target.start, case.target.end
     if np.hypot(*(result.lower[0] - t0)) > tol or np.hypot(*(result.lower[-1] - t1)) > tol:
         fails.append("ends: the deformed lower curve does not start and end on the target's ends")
-    dense = case.upper.at_fractions(np.linspace(0.0, 1.0, 4097))
-    # A point on the curve is within the dense polyline's chordal error of it.
-    seg = np.hypot(*np.diff(dense, axis=0).T)
-    slack = max(float(seg.max()) if len(seg) else 0.0, 1e-9 * size)
-    off = _distance_to_polyline(result.initial_upper, dense)
+    scale = float(np.hypot(*np.ptp(result.initial_contour, axis=0)))
+    off, slack = _off_curve(result.initial_upper, case, scale, size)
     if off.max() > slack:
         i = int(np.argmax(off))
-        fails.append(f"upper_on_curve: initial upper point {i} is {off[i]:.3g} from the upper curve")
+        fails.append(f"upper_on_curve: initial upper point {i} is {off[i]:.3g} from the upper curve (allowed {slack:.3g})")
     return fails
+
+
+def _off_curve(points: np.ndarray, case, scale: float, size: float) -> tuple[np.ndarray, float]:
+    """Distances of ``points`` to the case's upper curve, ``(m,)``, and the distance allowed.
+
+    The upper points are points of the curve, so their distance to a
+    polyline of the curve within chordal error ``e`` is at most ``e`` (twice
+    that allowed: the discretisation probes its chords at three points), plus
+    rounding. ``e`` is a quarter of the case's nominal chordal error
+    (``options.chordal_error``, or :data:`~sectiondeform.curves.DEFAULT_CHORDAL_FRACTION`
+    of ``scale``, the initial section's diagonal), recomputed here, not read
+    from the model; ``size`` sets the rounding.
+    """
+    nominal = case.options.chordal_error
+    if nominal is None:
+        nominal = DEFAULT_CHORDAL_FRACTION * scale
+    e = 0.25 * float(nominal)
+    rounding = 1e-9 * size
+    try:
+        line, _ = case.upper.discretise(e)
+    except SectionDeformError:  # over the curve's point bound at e: fall back to a dense sampling
+        line = case.upper.at_fractions(np.linspace(0.0, 1.0, 4097))
+        seg = np.hypot(*np.diff(line, axis=0).T)
+        return _distance_to_polyline(points, line), max(float(seg.max(initial=0.0)), rounding)
+    return _distance_to_polyline(points, line), 2.0 * e + rounding

@@ -242,14 +242,17 @@ def coarse_mesh(ring_points: np.ndarray, fixed: np.ndarray, h: float) -> CoarseM
     with np.errstate(all="ignore"):
         estimate = ring.perimeter / h + abs(float(shapely.area(poly))) / (h * h * math.sqrt(3.0) / 2.0)
     bounded(estimate, MAX_FE_VERTICES, "mesh vertices",
-            "lower options.through_thickness, or simplify the section's small features", MeshError)
+            "lower options.elements_through_thickness, or simplify the section's small features", MeshError)
     turn = np.abs(ring.turning())
     corners = np.concatenate((np.asarray(fixed, dtype=np.int64), np.flatnonzero(turn > math.radians(CORNER_DEG))))
     s_b = _boundary_positions(ring, corners, h)
     bounded(len(s_b), MAX_FE_VERTICES, "mesh boundary vertices",
-            "simplify the section's sharp corners or lower options.through_thickness", MeshError)
+            "simplify the section's sharp corners or lower options.elements_through_thickness", MeshError)
     interior = _lattice(poly, h)
     for _ in range(CONFORM_ITERATIONS):
+        # Each pass splits the missing segments: bound the vertices before building them.
+        bounded(len(s_b) + len(interior), MAX_FE_VERTICES, "mesh vertices (conforming to the contour)",
+                "simplify the section's small features or lower options.elements_through_thickness", MeshError)
         bpts = ring.at(s_b)
         interior = _drop_encroaching(interior, bpts)
         pts = np.concatenate((bpts, interior))

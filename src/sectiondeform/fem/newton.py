@@ -14,8 +14,12 @@ one (``t = 1``). Each step is
    residual norm.
 
 If a step fails it is halved, down to ``1 / 2**MAX_HALVINGS`` of the path;
-then :class:`~sectiondeform.errors.ConvergenceError` is raised. Never a
-quiet unconverged result.
+then :class:`~sectiondeform.errors.ConvergenceError` is raised. The whole
+path has a work budget (:func:`~sectiondeform.limits.newton_budget`: Newton
+iterations, each load step's predictor counted as one, at most
+``MAX_NEWTON_ITERATIONS`` and at most ``MAX_NEWTON_WORK`` / unknowns), so a
+path whose steps keep failing and succeeding stops in bounded time with the
+same error. Never a quiet unconverged result.
 """
 
 from __future__ import annotations
@@ -28,6 +32,7 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
 from ..errors import ConvergenceError
+from ..limits import MAX_NEWTON_ITERATIONS, MAX_NEWTON_WORK, newton_budget
 from .assembly import MixedNeoHooke, Pattern
 
 __all__ = ["State", "Tangent", "NewtonSolver", "MAX_HALVINGS"]
@@ -204,17 +209,21 @@ class NewtonSolver:
         State or None
             None if the iterations fail (inverted points, no decrease, too many).
         """
+        return self._correct(z, lz, tangent, max_iter)[0]
+
+    def _correct(self, z: np.ndarray, lz: float, tangent: Tangent | None, max_iter: int):
+        """:meth:`correct`, and the number of iterations it ran."""
         free = self.pattern.free
         r, f = self.residual(z, lz)
         if r is None:
-            return None
+            return None, 0
         merit = self._merit(r)
         modified = tangent is not None
         counts = [0, 0]
         last = tangent
         prev = math.inf
         target = self.tol * self.length
-        for _ in range(max_iter):
+        for it in range(max_iter):
             if not modified:
                 last = self.tangent(f)
             dz = -last.solve(r)
@@ -237,17 +246,17 @@ class NewtonSolver:
                 if modified:
                     modified = False  # fall back to full Newton from the current point
                     continue
-                return None
+                return None, it + 1
             rate = step / prev
             left = step if (rate >= 1.0 or prev == math.inf) else step * rate / (1.0 - rate)
             if alpha == 1.0 and (step <= target or left <= target):
-                return State(zt, lz, last, tuple(counts), ft)
+                return State(zt, lz, last, tuple(counts), ft), it + 1
             if modified and mt > MODIFIED_RATE * merit:
                 modified = False
             elif not modified and alpha == 1.0 and step <= SWITCH_STEP * self.length:
                 modified = True
             z, r, f, merit, prev = zt, rt, ft, mt, step * alpha
-        return None
+        return None, max_iter
 
     # -- the path ----------------------------------------------------------
     def predict(self, state: State, xd: np.ndarray, lz: float, xd0: np.ndarray | None = None) -> np.ndarray:
@@ -278,19 +287,31 @@ class NewtonSolver:
         Raises
         ------
         ConvergenceError
-            If the path cannot be followed even in ``2**MAX_HALVINGS`` steps.
+            If the path cannot be followed even in ``2**MAX_HALVINGS`` steps,
+            or within the work budget (:func:`~sectiondeform.limits.newton_budget`).
         """
         xd0 = start.z[self.pattern.fixed]
         lnl0, lnl1 = np.log(start.lz), np.log(lz)
         t, dt, state = 0.0, 1.0, start
         total = [0, 0]
         steps = 0
+        unknowns = len(self.pattern.free)
+        budget = newton_budget(unknowns)
+        used = 0
         while t < 1.0:
+            if used >= budget:
+                raise ConvergenceError(
+                    f"hyperelastic: Newton stopped at its bound of {budget} iterations for {unknowns} unknowns "
+                    f"(at most {MAX_NEWTON_ITERATIONS}, and {MAX_NEWTON_WORK} iterations x unknowns), {t:.3g} of the way "
+                    "to the target; "
+                    "the target or the law is too severe for this mesh (try a lower options.elements_through_thickness)"
+                )
             t1 = min(1.0, t + dt)
             xd_t = xd0 + t1 * (xd - xd0)
             lz_t = float(np.exp(lnl0 + t1 * (lnl1 - lnl0)))
             z = self.predict(state, xd_t, lz_t)
-            new = self.correct(z, lz_t, state.tangent if modified else None)
+            new, ran = self._correct(z, lz_t, state.tangent if modified else None, min(MAX_ITERATIONS, budget - used))
+            used += 1 + ran  # the predictor counts as one
             if new is None:
                 dt *= 0.5
                 if dt < 0.5**MAX_HALVINGS:
