@@ -81,14 +81,16 @@ class AssemblyDeformer:
     ----------
     assembly : Assembly
     model : str, optional
-        Only ``"paper"`` so far; by default ``assembly.options.model``.
+        ``"paper"`` (body by body) or ``"hyperelastic"`` (all bodies in one
+        solve, :mod:`~sectiondeform.assembly_hyperelastic`); by default
+        ``assembly.options.model``.
     element_size : float, optional
         Element size of every body's layered mesh, units; overrides the case's.
 
     Raises
     ------
     CaseError
-        For a model that does not deform assemblies yet (the hyperelastic one).
+        For a model that does not deform assemblies, or a material the model cannot take.
     GeometryError, MeshError
         Naming the body whose section or mesh cannot be built.
     """
@@ -97,7 +99,7 @@ class AssemblyDeformer:
         t0 = time.perf_counter()
         self.assembly = assembly
         self.model_name = model or assembly.model
-        if self.model_name != "paper":
+        if self.model_name not in ("paper", "hyperelastic"):
             raise CaseError("options.model", f"the {self.model_name} model does not deform assemblies yet; use the paper model (--model paper)")
         self.model = get_model(self.model_name)
         lay = assembly.layout
@@ -107,7 +109,14 @@ class AssemblyDeformer:
         for b in reversed(lay.order):
             self.bodies[b] = self._build(b, element_size)
         options = assembly.options.for_model(self.model_name)
-        for b in lay.order:
+        self.joint = None
+        if self.model_name == "hyperelastic":
+            from .assembly_hyperelastic import JointHyperelastic
+
+            self.joint = JointHyperelastic(self, options)
+            for b, prepared in enumerate(self.joint.body_meshes):
+                self.bodies[b].prepared = prepared
+        for b in lay.order if self.joint is None else ():
             try:
                 self.bodies[b].prepared = self.model.prepare(self.bodies[b].section, options)
             except SectionDeformError as exc:
@@ -248,7 +257,9 @@ class AssemblyDeformer:
             curve = Polyline(as_points(target, "target", min_count=2))
         n = len(self.bodies)
         lowers, images, placements = [None] * n, [None] * n, [None] * n
-        for b in self.layout.order:
+        if self.joint is not None:
+            lowers, images, placements = self.joint.place(curve)
+        for b in self.layout.order if self.joint is None else ():
             body = self.bodies[b]
             nodes = np.empty((len(body.source), 2))
             sup = body.source == SUPPORT
