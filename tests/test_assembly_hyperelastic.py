@@ -1,12 +1,13 @@
 """Assemblies with the hyperelastic model: one solve, per-body materials and laws, bonded interfaces."""
 
+import dataclasses
 import json
 
 import numpy as np
 import pytest
 import shapely
 
-from sectiondeform.assembly import assembly_from_dict
+from sectiondeform.assembly import Revolution, assembly_from_dict
 from sectiondeform.assembly_deform import AssemblyDeformer
 from sectiondeform.assembly_hyperelastic import offset_to_area
 from sectiondeform.case import case_from_dict
@@ -14,6 +15,7 @@ from sectiondeform.cli import main
 from sectiondeform.curves import Polyline
 from sectiondeform.deform import Deformer
 from sectiondeform.errors import CaseError
+from sectiondeform.fem.mapping import rigid_fit
 
 from conftest import CASES_DIR
 
@@ -112,35 +114,104 @@ def test_identity_and_rigid_motion_are_reproduced_per_body():
         assert rigid.info.area_correction <= 1e-9
 
 
-def test_equal_materials_in_two_stacked_bodies_give_the_shape_of_their_union():
-    data = strip_dict(ratios=(0.9, 0.9), moduli=(1.0, 1.0), through=4.0)
-    assembly = assembly_from_dict(data)
-    result = AssemblyDeformer(assembly).deform()
+def _union_case(assembly, ratio):
+    """The version-1 case of the union of the strip's two bodies: the backing's sides below y = 4, the cover's upper above."""
     backing, cover = assembly.bodies
-    # The union: the backing's sides below y = 4, the cover's upper above.
     b_up = backing.upper.discretise(0.01)[0]
     right, left = b_up[b_up[:, 0] == 100.0], b_up[b_up[:, 0] == 0.0]
-    union = {
+    return {
         "format": "section-case/1",
         "lower": assembly.support.to_json(),
         "upper": {"chain": [{"polyline": right.tolist()}, cover.upper.to_json(), {"polyline": left.tolist()}]},
         "target": assembly.target.to_json(),
-        "law": {"area_ratio": 0.9},
+        "law": {"area_ratio": ratio},
         "options": {"model": "hyperelastic", "chordal_error": 0.01},
     }
-    case = case_from_dict(union)
-    # The same element size as the assembly's mesh (its thinnest body, 4 mm, over 4).
-    thickness = Deformer(case).section.mesh_scale
-    single = Deformer(case_from_dict({**union, "options": {**union["options"], "elements_through_thickness": thickness}})).deform()
-    top = result.body("cover")
+
+
+def test_equal_materials_in_two_stacked_bodies_give_the_shape_of_their_union():
+    # Two bodies of one material under one law are one body: the two-body solve and the single-body model
+    # of their union discretise the same problem, on different meshes of the same element size h, and
+    # each then moves its upper points by its reported law correction. So their upper curves may differ
+    # by those corrections plus the discretisation error, estimated from the change of the assembly's
+    # result when h is halved (4/3 of it for a second-order method), and by at most 0.2 % of the height.
+    ratio, through = 0.9, 2.0
+    deformers = [AssemblyDeformer(assembly_from_dict(strip_dict(ratios=(ratio, ratio), moduli=(1.0, 1.0), through=t)))
+                 for t in (through, 2 * through)]
+    coarse, fine = (d.deform() for d in deformers)
+    assembly = deformers[0].assembly
+    union = _union_case(assembly, ratio)
+    thickness = Deformer(case_from_dict(union)).section.mesh_scale
+    h = deformers[0].joint.mesh.size
+    single = Deformer(case_from_dict({**union, "options": {**union["options"], "elements_through_thickness": thickness / h}}))
+    one = single.deform()
+    top = coarse.body("cover")
     # The union's upper points that are the cover's upper points (the same places before deformation).
-    d = np.hypot(*(top.initial_upper[:, None, :] - single.initial_upper[None, :, :]).transpose(2, 0, 1))
+    d = np.hypot(*(top.initial_upper[:, None, :] - one.initial_upper[None, :, :]).transpose(2, 0, 1))
     same = d.min(axis=1) <= 1e-9
     assert same.sum() >= 88  # at least the flat top, 17 mm high
-    union_top = single.upper[d.argmin(axis=1)[same]]
-    top = top.upper[same]
-    total = 17.0
-    assert np.abs(union_top - top).max() <= 2e-3 * total
+    diff = np.hypot(*(one.upper[d.argmin(axis=1)[same]] - top.upper[same]).T).max()
+    corrections = one.info.area_correction * single.section.thickness + sum(
+        r.info.area_correction * b.section.thickness for r, b in zip(coarse.bodies, deformers[0].bodies))
+    discretisation = 4.0 / 3.0 * np.hypot(*(top.upper - fine.body("cover").upper).T).max()
+    assert 0 < diff <= corrections + discretisation
+    assert diff <= 2e-3 * 17.0
+
+
+def test_shared_piece_has_one_image_in_both_bodies(strip_result):
+    # On their shared piece (y = 4 before deformation) the backing's deformed upper curve and the cover's
+    # deformed lower curve are one curve: each curve's points lie on the other to rounding (the cover's
+    # lower points are the backing's, bit for bit; the backing's own upper points in between lie on the
+    # cover's lower polyline), and the two bodies' meshes have the same nodes there, deformed alike.
+    assembly, result = strip_result
+    backing, cover = result.bodies
+    on_b = np.abs(backing.initial_contour[:, 1] - 4.0) <= 1e-12
+    on_c = np.abs(cover.initial_contour[:, 1] - 4.0) <= 1e-12
+    curve_b, curve_c = (shapely.LineString(c[np.argsort(i[on, 0])]) for c, i, on in (
+        (backing.contour[on_b], backing.initial_contour, on_b), (cover.contour[on_c], cover.initial_contour, on_c)))
+    assert on_c.sum() > 2 and curve_c.length > 90.0
+    assert shapely.distance(shapely.points(backing.contour[on_b]), curve_c).max() <= 1e-12 * assembly.size
+    assert shapely.distance(shapely.points(cover.contour[on_c]), curve_b).max() <= 1e-12 * assembly.size
+    assert set(map(tuple, cover.contour[on_c])) <= set(map(tuple, backing.contour[on_b]))
+    mb, mc = (np.asarray(b.initial_mesh.points) for b in (backing, cover))
+    nb, nc = (np.flatnonzero(np.abs(m[:, 1] - 4.0) <= 1e-12) for m in (mb, mc))
+    nb, nc = nb[np.argsort(mb[nb, 0])], nc[np.argsort(mc[nc, 0])]
+    assert np.array_equal(mb[nb], mc[nc])
+    assert np.array_equal(np.asarray(backing.final_mesh.points)[nb], np.asarray(cover.final_mesh.points)[nc])
+    # The deformed interface is curved (the target is an arc): coinciding is not a trivial property.
+    assert np.ptp(backing.contour[on_b, 1]) > 1.0
+
+
+def _shape_change(body):
+    """Largest distance of the deformed outline from the best rigid motion of the initial one, units."""
+    q, t = rigid_fit(body.initial_contour, body.contour)
+    return float(np.hypot(*(body.initial_contour @ q.T + t - body.contour).T).max())
+
+
+def test_a_stiff_cover_on_a_soft_backing_barely_changes_its_shape():
+    # The support is stretched by 5 % along its length: the backing, bonded to it, is stretched with it
+    # whatever the materials (its ends 2.5 mm off its best rigid placement). A cover of the backing's
+    # material stretches along. A stiffer cover is held back, the thin soft backing shearing under it:
+    # its shape change shrinks as its modulus grows, towards a rigid body. A soft cover on a stiff backing
+    # is stretched more than one on a backing of its own material.
+    target = {"polyline": [[0.0, 0.0], [105.0, 0.0]]}
+    moduli = ((1.0, 1.0), (1.0, 100.0), (1.0, 1000.0), (100.0, 1.0))
+    results = {m: solve(strip_dict(ratios=(1.0, 1.0), moduli=m, target=target)) for m in moduli}
+    cover = {m: _shape_change(r.body("cover")) for m, r in results.items()}
+    assert cover[1.0, 100.0] < 0.15 * cover[1.0, 1.0]
+    assert cover[1.0, 1000.0] < 0.3 * cover[1.0, 100.0]
+    assert cover[100.0, 1.0] > cover[1.0, 1.0]
+    for r in results.values():
+        assert _shape_change(r.body("backing")) == pytest.approx(2.5, rel=0.01)
+
+
+def test_revolution_is_refused_by_the_hyperelastic_model_naming_the_paper_model():
+    assembly = dataclasses.replace(assembly_from_dict(strip_dict()), revolution=Revolution(((0.0, -50.0), (100.0, -50.0))))
+    with pytest.raises(CaseError) as err:
+        AssemblyDeformer(assembly)
+    message = str(err.value)
+    assert message.startswith("revolution: the hyperelastic model deforms plane assemblies only")
+    assert "--model paper" in message and "\n" not in message
 
 
 def _top_waviness(result):

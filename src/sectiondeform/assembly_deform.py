@@ -90,7 +90,8 @@ class AssemblyDeformer:
     Raises
     ------
     CaseError
-        For a model that does not deform assemblies, or a material the model cannot take.
+        For a model that does not deform assemblies, a material the model
+        cannot take, or ``revolution`` with the hyperelastic model.
     GeometryError, MeshError
         Naming the body whose section or mesh cannot be built.
     """
@@ -101,6 +102,8 @@ class AssemblyDeformer:
         self.model_name = model or assembly.model
         if self.model_name not in ("paper", "hyperelastic"):
             raise CaseError("options.model", f"the {self.model_name} model does not deform assemblies yet; use the paper model (--model paper)")
+        if self.model_name == "hyperelastic" and assembly.revolution is not None:
+            raise CaseError("revolution", "the hyperelastic model deforms plane assemblies only; deform a body of revolution with the paper model (--model paper)")
         self.model = get_model(self.model_name)
         lay = assembly.layout
         self.layout = lay

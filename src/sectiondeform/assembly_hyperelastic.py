@@ -41,7 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import CaseError, LawError
+from .errors import CaseError, LawError, MeshError
 from .fem.assembly import MixedNeoHooke, Pattern
 from .fem.elements import geometry
 from .fem.mapping import rigid_fit
@@ -254,6 +254,8 @@ class JointHyperelastic:
             If Newton fails even with small load steps.
         LawError
             Naming the body whose area cannot be corrected.
+        MeshError
+            Naming the body with an inverted element.
         """
         t0 = time.perf_counter()
         mesh = self.mesh
@@ -291,6 +293,9 @@ class JointHyperelastic:
             lowers.append(img[self.lower_ids[b]])
             images.append(img[self.upper_ids[b]])
             det = f.det[bm.elements]
+            if not det.min() > 0:
+                raise MeshError(f"{self.assembly.label(b)}: an element is inverted after deformation (area stretch "
+                                f"{det.min():.3g}); the target or the laws are too severe for this assembly")
             info = HyperelasticInfo(
                 newton_full=int(state.iterations[0]), newton_modified=int(state.iterations[1]),
                 load_steps=int(state.iterations[2]), factorisations=int(self.solver.factorisations - f0),
