@@ -5,7 +5,6 @@ import json
 import pytest
 
 from sectiondeform.assembly import assembly_from_dict
-from sectiondeform.assembly_deform import AssemblyDeformer
 from sectiondeform.cli import main
 from sectiondeform.errors import CaseError, GeometryError
 
@@ -98,11 +97,6 @@ def test_a_revolution_axis_crossing_a_body_or_given_by_one_point_is_refused():
     assert refused(data, CaseError).startswith("revolution.axis")
 
 
-def test_the_hyperelastic_model_is_refused_on_assemblies():
-    with pytest.raises(CaseError, match="the hyperelastic model does not deform assemblies yet"):
-        AssemblyDeformer(assembly_from_dict(json.loads(STRIP.read_text())), model="hyperelastic")
-
-
 def test_cli_deforms_an_assembly_to_section_result_2(tmp_path, capsys):
     out, fig = tmp_path / "r.json", tmp_path / "r.png"
     assert main(["deform", str(STRIP), "-o", str(out), "--plot", str(fig), "--no-meshes"]) == 0
@@ -113,7 +107,7 @@ def test_cli_deforms_an_assembly_to_section_result_2(tmp_path, capsys):
     assert "cover" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("extra", [["--model", "hyperelastic"], ["--area-ratio", "0.9"], ["--mesh-out", "m.vtu"]])
+@pytest.mark.parametrize("extra", [["--area-ratio", "0.9"], ["--mesh-out", "m.vtu"]])
 def test_cli_refusals_on_assemblies_exit_2_and_write_nothing(tmp_path, capsys, extra):
     out = tmp_path / "r.json"
     extra = [str(tmp_path / e) if e.endswith(".vtu") else e for e in extra]

@@ -84,14 +84,17 @@ class AssemblyDeformer:
     ----------
     assembly : Assembly
     model : str, optional
-        Only ``"paper"`` so far; by default ``assembly.options.model``.
+        ``"paper"`` (body by body) or ``"hyperelastic"`` (all bodies in one
+        solve, :mod:`~sectiondeform.assembly_hyperelastic`); by default
+        ``assembly.options.model``.
     element_size : float, optional
         Element size of every body's layered mesh, units; overrides the case's.
 
     Raises
     ------
     CaseError
-        For a model that does not deform assemblies yet (the hyperelastic one).
+        For a model that does not deform assemblies, a material the model
+        cannot take, or ``revolution`` with the hyperelastic model.
     GeometryError, MeshError
         Naming the body whose section or mesh cannot be built.
     """
@@ -100,11 +103,10 @@ class AssemblyDeformer:
         t0 = time.perf_counter()
         self.assembly = assembly
         self.model_name = model or assembly.model
-        if assembly.revolution is not None and self.model_name != "paper":
-            raise CaseError("options.model", f"the {self.model_name} model does not deform bodies of revolution yet; "
-                            "use the paper model (--model paper)")
-        if self.model_name != "paper":
-            raise CaseError("options.model", f"the {self.model_name} model does not deform assemblies yet; use the paper model (options.model \"paper\")")
+        if self.model_name not in ("paper", "hyperelastic"):
+            raise CaseError("options.model", f"the {self.model_name} model does not deform assemblies yet; use the paper model (--model paper)")
+        if self.model_name == "hyperelastic" and assembly.revolution is not None:
+            raise CaseError("revolution", "the hyperelastic model deforms plane assemblies only; deform a body of revolution with the paper model (--model paper)")
         self.model = get_model(self.model_name)
         lay = assembly.layout
         self.layout = lay
@@ -113,7 +115,14 @@ class AssemblyDeformer:
         for b in reversed(lay.order):
             self.bodies[b] = self._build(b, element_size)
         options = assembly.options.for_model(self.model_name)
-        for b in lay.order:
+        self.joint = None
+        if self.model_name == "hyperelastic":
+            from .assembly_hyperelastic import JointHyperelastic
+
+            self.joint = JointHyperelastic(self, options)
+            for b, prepared in enumerate(self.joint.body_meshes):
+                self.bodies[b].prepared = prepared
+        for b in lay.order if self.joint is None else ():
             try:
                 self.bodies[b].prepared = self.model.prepare(self.bodies[b].section, options)
             except SectionDeformError as exc:
@@ -254,7 +263,9 @@ class AssemblyDeformer:
             curve = Polyline(as_points(target, "target", min_count=2))
         n = len(self.bodies)
         lowers, images, placements = [None] * n, [None] * n, [None] * n
-        for b in self.layout.order:
+        if self.joint is not None:
+            lowers, images, placements = self.joint.place(curve)
+        for b in self.layout.order if self.joint is None else ():
             body = self.bodies[b]
             nodes = np.empty((len(body.source), 2))
             sup = body.source == SUPPORT

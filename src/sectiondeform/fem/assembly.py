@@ -75,8 +75,11 @@ class MixedNeoHooke:
         Number of displacement nodes N.
     geom : Geometry
         Shape-function gradients and weights at the quadrature points.
-    kappa : float
-        Bulk modulus over the shear modulus.
+    kappa : float or (E,) float64 ndarray
+        Bulk modulus over the shear modulus, or per element the bulk modulus
+        (in the units of ``mu``).
+    mu : (E,) float64 ndarray, optional
+        Shear modulus per element (several materials in one mesh); 1 by default.
 
     Notes
     -----
@@ -90,12 +93,13 @@ class MixedNeoHooke:
     scatter for the residual, the cheap part of a warm re-solve.
     """
 
-    def __init__(self, cells: np.ndarray, n_nodes: int, geom: Geometry, kappa: float):
+    def __init__(self, cells: np.ndarray, n_nodes: int, geom: Geometry, kappa, mu: np.ndarray | None = None):
         self.cells = cells
         self.n_nodes = n_nodes
         self.geom = geom
-        self.kappa = float(kappa)
         e, q = geom.weight.shape
+        self.kappa = float(kappa) if np.ndim(kappa) == 0 else np.asarray(kappa, dtype=np.float64).reshape(e, 1)
+        self._mu = None if mu is None else np.asarray(mu, dtype=np.float64).reshape(e, 1)
         self.n_vertices = int(cells[:, :3].max()) + 1
         xd = (2 * cells[:, :, None] + np.arange(2)).reshape(e, 12)
         self.edofs = np.concatenate((xd, 2 * n_nodes + cells[:, :3]), axis=1)
@@ -119,7 +123,7 @@ class MixedNeoHooke:
         self._wM = w[:, :, None] * M[None]  # (E, q, 3)
         self._Gt = np.ascontiguousarray(G.transpose(0, 2, 1, 3))  # (E, 6, q, 2)
         self._gg = np.einsum("eqaj,eqbj,eq->eabq", G, G, w).reshape(e, 36, q)  # w grad N_a . grad N_b
-        self._kpp = -np.einsum("eqa,qb->eab", self._wM, M) / self.kappa
+        self._kpp = -np.einsum("eqa,qb->eab", self._wM, M) / (self.kappa if np.ndim(self.kappa) == 0 else self.kappa[:, :, None])
 
     def fields(self, z: np.ndarray, lz: float) -> Fields | None:
         """Kinematics of state ``z``, or None if some J <= 0 (an inverted point)."""
@@ -141,9 +145,14 @@ class MixedNeoHooke:
         it[..., 0, 1], it[..., 1, 0] = -F[..., 1, 0] / det, -F[..., 0, 1] / det
         return it
 
+    def _shear(self, f: Fields) -> np.ndarray:
+        """``mu J^(-2/3)`` at the quadrature points, ``(E, q)``."""
+        a = f.J ** (-2.0 / 3.0)
+        return a if self._mu is None else a * self._mu
+
     def _stress(self, f: Fields) -> np.ndarray:
         """``w P`` at the quadrature points, ``(E, q, 2, 2)``."""
-        a = f.J ** (-2.0 / 3.0)
+        a = self._shear(f)
         c_f = a * self.geom.weight
         c_it = (f.p * f.J - a * f.i1 / 3.0) * self.geom.weight
         return f.F * c_f[..., None, None] + self._inverse_transpose(f) * c_it[..., None, None]
@@ -167,7 +176,7 @@ class MixedNeoHooke:
         """Element tangent matrices, ``(E, 15, 15)``, symmetric."""
         e, q = self.geom.weight.shape
         w = self.geom.weight
-        a = f.J ** (-2.0 / 3.0)
+        a = self._shear(f)
         G = self.geom.grad
         finv_t = self._inverse_transpose(f)
         g = np.matmul(G, finv_t.transpose(0, 1, 3, 2)).reshape(e, q, 12).transpose(0, 2, 1)  # (E, (a,i), q)

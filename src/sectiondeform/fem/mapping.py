@@ -30,7 +30,7 @@ from ..errors import LawError
 from .elements import p2_gradients, p2_values
 from .mesh import CoarseMesh
 
-__all__ = ["boundary_weights", "interpolation_matrix", "rigid_fit", "correct_area"]
+__all__ = ["boundary_weights", "edge_weights", "interpolation_matrix", "rigid_fit", "correct_area"]
 
 
 def _edge_curve(a, m, b, t):
@@ -63,15 +63,41 @@ def boundary_weights(mesh: CoarseMesh, s: np.ndarray, points: np.ndarray) -> sp.
     s_end = np.append(s_b[1:], mesh.ring.perimeter)
     j = np.clip(np.searchsorted(s_b, s, side="right") - 1, 0, len(s_b) - 1)
     cell, loc, direction = mesh.boundary_edges[j].T
-    nodes = mesh.nodes
-    cn = mesh.cells[cell]
+    t = np.clip((s - s_b[j]) / (s_end[j] - s_b[j]), 0.0, 1.0)
+    return edge_weights(mesh.nodes, mesh.cells, cell, loc, direction, t, points)
+
+
+def edge_weights(nodes: np.ndarray, cells: np.ndarray, cell: np.ndarray, loc: np.ndarray, direction: np.ndarray,
+                 t: np.ndarray, points: np.ndarray) -> sp.csr_matrix:
+    """Matrix ``W`` with ``W @ x_nodes`` the images of points lying along given (quadratic) cell edges.
+
+    Parameters
+    ----------
+    nodes : (N, 2) float64 ndarray
+        Initial node positions, units.
+    cells : (E, 6) int64 ndarray
+        ``triangle6`` cells.
+    cell, loc, direction : (m,) int64 ndarray
+        Per point: the cell holding its edge, the local edge (0, 1, 2 for
+        cell nodes 0-1, 1-2, 2-0), and +1 when ``t`` runs along the cell's
+        edge direction, -1 otherwise.
+    t : (m,) float64 ndarray
+        First guess of each point's parameter along its edge, in [0, 1].
+    points : (m, 2) float64 ndarray
+        The points, units.
+
+    Returns
+    -------
+    (m, N) scipy.sparse.csr_matrix
+        Weights ``N_a + grad N_a . d`` on the six nodes of each point's cell.
+    """
+    cn = cells[cell]
     ends = np.array([[0, 1], [1, 2], [2, 0]])[loc]
     first = np.where(direction > 0, ends[:, 0], ends[:, 1])
     second = np.where(direction > 0, ends[:, 1], ends[:, 0])
-    rows = np.arange(len(s))
+    rows = np.arange(len(t))
     a, b = nodes[cn[rows, first]], nodes[cn[rows, second]]
     m = nodes[cn[rows, 3 + loc]]
-    t = np.clip((s - s_b[j]) / (s_end[j] - s_b[j]), 0.0, 1.0)
     for _ in range(4):  # project the point on the quadratic edge
         x, dx, ddx = _edge_curve(a, m, b, t)
         r = x - points
@@ -90,7 +116,7 @@ def boundary_weights(mesh: CoarseMesh, s: np.ndarray, points: np.ndarray) -> sp.
     jac = np.einsum("pai,paj->pij", xe, dref)
     grad = np.einsum("paj,pji->pai", dref, np.linalg.inv(jac))
     w = vals + np.einsum("pai,pi->pa", grad, d)
-    return sp.csr_matrix((w.ravel(), (np.repeat(rows, 6), cn.ravel())), shape=(len(s), len(nodes)))
+    return sp.csr_matrix((w.ravel(), (np.repeat(rows, 6), cn.ravel())), shape=(len(t), len(nodes)))
 
 
 def interpolation_matrix(at: np.ndarray, fractions: np.ndarray) -> np.ndarray:

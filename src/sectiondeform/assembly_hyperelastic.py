@@ -1,0 +1,313 @@
+"""The hyperelastic model of an assembly: all bodies in one solve.
+
+Prepare (once, :class:`JointHyperelastic`):
+
+* one P2 mesh of all bodies (:func:`~sectiondeform.fem.union_mesh.union_mesh`)
+  from the bodies' contours as the paper model's assembly prepares them (on
+  a shared piece both contours have exactly the same points), so a shared
+  piece has shared nodes; every cell carries its body;
+* per body its material (neo-Hookean: ``shear_modulus`` and ``bulk_to_shear``
+  or ``bulk_modulus`` of its ``material``, ``options.bulk_to_shear`` by
+  default) and its own out-of-plane stretch ``1 / r`` of its area law, in
+  one generalised plane strain problem (Taylor-Hood elements, the
+  single-body model's :class:`~sectiondeform.fem.assembly.MixedNeoHooke`
+  with per-cell moduli and stretches);
+* the nodes on the support, bonded to the target by their arc-length
+  fraction on the support; every other node free (a shared piece is bonded
+  by its shared nodes); the tangent at the undeformed state, factorised.
+
+Place (once per target): Newton from the undeformed assembly moved rigidly
+onto the target (:class:`~sectiondeform.fem.newton.NewtonSolver`, the
+stretches following the same path as the target). Every contour point has
+one image (a point shared by two bodies is one point of the mesh's graph);
+the points on the support go exactly to the target at their fractions.
+
+**The exact law per body.** From the support up (the layout's order), each
+body's upper points are offset along their normals by one distance that
+makes its area exact (a quadratic solved in closed form, as the single-body
+model does), except the points that belong to a body already corrected (its
+foundations, or a body touching it at a point) and the points on the
+support. The points a body shares with the bodies resting on it move with
+it, and those bodies' lower curves are these very points: the interfaces
+stay bonded exactly, and each resting body then meets its own law by its
+own upper points. A body covered all over by others still meets its law.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import CaseError, LawError, MeshError
+from .fem.assembly import MixedNeoHooke, Pattern
+from .fem.elements import geometry
+from .fem.mapping import rigid_fit
+from .fem.newton import NewtonSolver, State
+from .fem.union_mesh import union_mesh
+from .materials import NeoHookean, material_from_json
+from .models.base import FinalQuality, MeshData, MeshQuality, Placement
+from .models.hyperelastic import CORRECTION_WARNING, HyperelasticInfo, HyperelasticOptions
+
+__all__ = ["JointHyperelastic", "offset_to_area"]
+
+SUPPORT = -1
+
+
+class _Stretches(MixedNeoHooke):
+    """The mixed neo-Hookean problem with one out-of-plane stretch per body.
+
+    The solver's scalar stretch ``s`` is a path parameter: cell ``e`` has
+    ``lz_e = exp(ln s * ln lz_b(e))``, so ``s = 1`` is the undeformed state
+    and ``s = e`` every body's own stretch.
+    """
+
+    def __init__(self, cells, n_nodes, geom, kappa, mu, ln_stretch):
+        super().__init__(cells, n_nodes, geom, kappa, mu)
+        self.ln_stretch = np.asarray(ln_stretch, dtype=np.float64)[:, None]  # (E, 1)
+
+    def fields(self, z, lz):
+        return super().fields(z, np.exp(math.log(lz) * self.ln_stretch))
+
+
+def offset_to_area(ring: np.ndarray, movable: np.ndarray, signed_area: float) -> tuple[np.ndarray, float]:
+    """Offset the movable points of a closed polyline along their normals so it has ``signed_area``.
+
+    Parameters
+    ----------
+    ring : (k, 2) float64 ndarray
+        Closed polyline (the closing edge implied), units.
+    movable : (k,) bool ndarray
+        The points that may move; each along the normal of the chord
+        between its two neighbours, by one common distance.
+    signed_area : float
+        Wanted signed (shoelace) area, units².
+
+    Returns
+    -------
+    ring : (k, 2) float64 ndarray
+    offset : float
+        The distance applied, units (positive: outward for a
+        counter-clockwise ring).
+
+    Raises
+    ------
+    LawError
+        If no offset gives that area (no movable point, or a degenerate curve).
+
+    Examples
+    --------
+    >>> sq = np.array([[0.0, 0], [1, 0], [1, 1], [0, 1]])
+    >>> out, k = offset_to_area(sq, np.array([False, False, True, True]), 1.5)
+    >>> x, y = out.T
+    >>> round(0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)), 12), out[:2].tolist()
+    (1.5, [[0.0, 0.0], [1.0, 0.0]])
+    """
+    tang = np.roll(ring, -1, axis=0) - np.roll(ring, 1, axis=0)
+    length = np.hypot(tang[:, 0], tang[:, 1])
+    ok = movable & (length > 0)
+    v = np.zeros_like(ring)
+    v[ok] = np.column_stack((tang[ok, 1], -tang[ok, 0])) / length[ok, None]
+    cross = lambda a, b: a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]  # noqa: E731
+    nxt = lambda a: np.roll(a, -1, axis=0)  # noqa: E731
+    area = 0.5 * float(cross(ring, nxt(ring)).sum())
+    c0 = area - signed_area
+    c1 = 0.5 * float((cross(v, nxt(ring)) + cross(ring, nxt(v))).sum())
+    c2 = 0.5 * float(cross(v, nxt(v)).sum())
+    if c1 == 0.0:
+        raise LawError("law: no point of the upper curve is free to move to meet the area")
+    if abs(c2 * c0) <= 1e-12 * c1 * c1:
+        k = -c0 / c1
+    else:
+        disc = c1 * c1 - 4.0 * c2 * c0
+        if disc < 0:
+            raise LawError(f"law: no normal offset of the upper curve gives the area {abs(signed_area):.6g}")
+        q = -0.5 * (c1 + math.copysign(math.sqrt(disc), c1))
+        k = c0 / q
+    return ring + k * v, float(k)
+
+
+@dataclass(frozen=True, eq=False)
+class _BodyMesh:
+    """What the assembly's result reads of a prepared body: its part of the mesh and figures."""
+
+    initial_mesh: MeshData
+    quality: MeshQuality
+    cells: np.ndarray  # (e_b, 6) in the body's own node numbering
+    used: np.ndarray  # (n_b,) global node of each body node
+    elements: np.ndarray  # (e_b,) global cell indices
+
+
+class JointHyperelastic:
+    """An assembly meshed as one and factorised for the hyperelastic model.
+
+    Parameters
+    ----------
+    deformer : AssemblyDeformer
+        Its bodies' sections (with the resting nodes in their foundations'
+        upper polylines) and node sources.
+    options : HyperelasticOptions
+
+    Raises
+    ------
+    CaseError
+        For a body whose material is not neo-Hookean.
+    MeshError
+        If the assembly cannot be meshed.
+    """
+
+    def __init__(self, deformer, options: HyperelasticOptions):
+        a = deformer.assembly
+        self.assembly = a
+        self.layout = deformer.layout
+        bodies = deformer.bodies
+        self.sections = [b.section for b in bodies]
+        materials = []
+        for i, body in enumerate(a.bodies):
+            mat = material_from_json(body.material_data, f"bodies[{i}].material", default_bulk_to_shear=options.bulk_to_shear)
+            if not isinstance(mat, NeoHookean):
+                raise CaseError(f"bodies[{i}].material.model", f"the hyperelastic model of an assembly takes neo-Hookean bodies only so far, "
+                                f"not {mat.model}; give shear_modulus (and bulk_to_shear) for {a.label(i)}")
+            materials.append(mat)
+        self.materials = tuple(materials)
+        thickness = min(s.mesh_scale for s in self.sections)
+        self.length = thickness
+        h = thickness / options.elements_through_thickness
+        rings = [s.contour for s in self.sections]
+        fixed = [np.array([0, len(s.lower) - 1]) for s in self.sections]
+        mesh = union_mesh(rings, fixed, h, self.layout.tolerance)
+        self.mesh = mesh
+        n_low = [len(s.lower) for s in self.sections]
+        self.lower_ids = [r[:n] for r, n in zip(mesh.rings, n_low)]
+        self.upper_ids = [np.concatenate(([r[n - 1]], r[n:], [r[0]])) for r, n in zip(mesh.rings, n_low)]
+        # The support's points: each vertex's fraction, and the chains bonded to the target.
+        V = len(mesh.points)
+        vfrac = np.full(V, np.nan)
+        support_chains = set()
+        for b, body in enumerate(bodies):
+            sup = body.source == SUPPORT
+            ids = self.lower_ids[b]
+            new = sup & np.isnan(vfrac[ids])
+            vfrac[ids[new]] = body.where[new]
+            for i in np.flatnonzero(sup[:-1] & sup[1:]):
+                if ids[i] != ids[i + 1]:
+                    support_chains.add(mesh.chain_of(int(ids[i]), int(ids[i + 1])))
+        self.support_vertices = np.flatnonzero(~np.isnan(vfrac))
+        self.support_fractions = vfrac[self.support_vertices]
+        node_ids, node_frac = [], []
+        for c in sorted(support_chains):
+            ch = mesh.chains[c]
+            f = vfrac[ch.vertices]
+            node_ids += [ch.nodes, ch.mids]
+            node_frac += [np.interp(ch.node_s, ch.s, f), np.interp(0.5 * (ch.node_s[:-1] + ch.node_s[1:]), ch.s, f)]
+        ids, first = np.unique(np.concatenate(node_ids), return_index=True)
+        self.fixed_ids = ids
+        self.fixed_fractions = np.concatenate(node_frac)[first]
+        # Physics: per-cell moduli and stretches.
+        cells = mesh.cells
+        geom = geometry(mesh.nodes, cells)
+        mu = np.array([m.shear_modulus for m in materials])[mesh.body]
+        kappa = np.array([m.kappa for m in materials])[mesh.body]
+        self.stretches = np.array([body.law.out_of_plane_stretch(s.area) for body, s in zip(a.bodies, self.sections)])
+        self.physics = _Stretches(cells, len(mesh.nodes), geom, kappa, mu, np.log(self.stretches)[mesh.body])
+        n = len(mesh.nodes)
+        fixed = (2 * ids[:, None] + np.arange(2)).ravel()
+        pattern = Pattern(self.physics.edofs, 2 * n + mesh.n_vertices, fixed)
+        self.solver = NewtonSolver(self.physics, pattern, thickness, options.newton_tolerance)
+        # d R / d ln s at J = 1: each cell's pressure rows times its body's ln lz.
+        wm = (self.physics._wM * self.physics.ln_stretch[:, :, None]).sum(axis=1)
+        full = np.zeros(pattern.n_dofs)
+        full[2 * n :] = np.bincount(cells[:, :3].ravel(), weights=wm.ravel(), minlength=mesh.n_vertices)
+        self.solver.dres_dlnlz = full[pattern.free]
+        z_ref = np.concatenate((mesh.nodes.ravel(), np.zeros(mesh.n_vertices)))
+        self.reference = State(z_ref, 1.0, self.solver.tangent(self.physics.fields(z_ref, 1.0)))
+        self.body_meshes = tuple(self._body_mesh(b, geom, len(pattern.free), options.elements_through_thickness)
+                                 for b in range(len(a.bodies)))
+
+    def _body_mesh(self, b: int, geom, unknowns: int, through: float) -> _BodyMesh:
+        mesh = self.mesh
+        elements = np.flatnonzero(mesh.body == b)
+        used, local = np.unique(mesh.cells[elements], return_inverse=True)
+        cells = local.reshape(-1, 6).astype(np.int64)
+        quality = MeshQuality(elements=int(len(elements)), element_size=float(mesh.size), nodes=int(len(used)),
+                              unknowns=int(unknowns), through_thickness=float(through),
+                              jacobian_ratio_min=float(geom.detj_ratio[elements].min()))
+        return _BodyMesh(MeshData(mesh.nodes[used], cells, "triangle6"), quality, cells, used, elements)
+
+    def place(self, curve) -> tuple[list, list, list]:
+        """Solve the assembly on the target ``curve``; per body its lower nodes, upper points and placement.
+
+        Returns
+        -------
+        lowers : list of (n_b, 2) float64 ndarray
+            Each body's deformed lower nodes (its section's), units.
+        images : list of (m_b, 2) float64 ndarray
+            Each body's deformed upper points (its section's, with the
+            resting nodes), B' to A', units.
+        placements : list of Placement
+
+        Raises
+        ------
+        ConvergenceError
+            If Newton fails even with small load steps.
+        LawError
+            Naming the body whose area cannot be corrected.
+        MeshError
+            Naming the body with an inverted element.
+        """
+        t0 = time.perf_counter()
+        mesh = self.mesh
+        xd = curve.at_fractions(self.fixed_fractions)
+        q, t = rigid_fit(mesh.nodes[self.fixed_ids], xd)
+        z0 = np.concatenate(((mesh.nodes @ q.T + t).ravel(), np.zeros(mesh.n_vertices)))
+        start = State(z0, 1.0, self.reference.tangent.rotated(q))
+        a0, f0 = self.solver.assemblies, self.solver.factorisations
+        state = self.solver.solve(start, xd.ravel(), math.e)
+        n = len(mesh.nodes)
+        x = state.z[: 2 * n].reshape(n, 2)
+        img = self.mesh.vertex_weights @ x
+        img[self.support_vertices] = curve.at_fractions(self.support_fractions)
+        fixed = np.zeros(len(img), bool)
+        fixed[self.support_vertices] = True
+        corrections = [0.0] * len(self.sections)
+        for b in self.layout.order:
+            sec = self.sections[b]
+            ring = mesh.rings[b]
+            n_low = len(sec.lower)
+            movable = np.zeros(len(ring), bool)
+            movable[n_low:] = ~fixed[ring[n_low:]]
+            wanted = sec.orientation * self.assembly.bodies[b].law.target_area(sec.area)
+            try:
+                new, k = offset_to_area(img[ring], movable, wanted)
+            except LawError as exc:
+                raise LawError(f"{self.assembly.label(b)}: {exc}") from None
+            img[ring[movable]] = new[movable]
+            fixed[ring] = True
+            corrections[b] = abs(k) / sec.thickness
+        solve_s = time.perf_counter() - t0
+        f = state.fields if state.fields is not None else self.physics.fields(state.z, state.lz)
+        lowers, images, placements = [], [], []
+        for b, bm in enumerate(self.body_meshes):
+            lowers.append(img[self.lower_ids[b]])
+            images.append(img[self.upper_ids[b]])
+            det = f.det[bm.elements]
+            if not det.min() > 0:
+                raise MeshError(f"{self.assembly.label(b)}: an element is inverted after deformation (area stretch "
+                                f"{det.min():.3g}); the target or the laws are too severe for this assembly")
+            info = HyperelasticInfo(
+                newton_full=int(state.iterations[0]), newton_modified=int(state.iterations[1]),
+                load_steps=int(state.iterations[2]), factorisations=int(self.solver.factorisations - f0),
+                assemblies=int(self.solver.assemblies - a0), warm_start=False,
+                area_correction=float(corrections[b]), out_of_plane_stretch=float(self.stretches[b]),
+            )
+            warnings = ()
+            if corrections[b] > CORRECTION_WARNING:
+                warnings = (f"hyperelastic: the area correction moved the upper curve by {corrections[b]:.3g} T; the coarse "
+                            "mesh misses this deformation's physics (refine with options.elements_through_thickness)",)
+            final = MeshData(x[bm.used].copy(), bm.cells, "triangle6")
+            quality = FinalQuality(area_stretch_min=float(det.min()), area_stretch_max=float(det.max()))
+            placements.append(Placement(images[-1], final, quality, info, warnings, None))
+        self.last_solve_s = solve_s
+        return lowers, images, placements

@@ -1,0 +1,397 @@
+"""One P2 triangle mesh of several bodies that share pieces of their contours.
+
+The contours (closed polylines, one per body) are merged into one planar
+graph: contour points closer than a tolerance become one *vertex*, and the
+contour edges between vertices its edges, each kept once. A piece shared by
+two bodies is then one run of edges. The graph is cut into *chains* at its
+corners: vertices met by other than two edges (where pieces meet), vertices
+where it turns by more than :data:`~sectiondeform.fem.mesh.CORNER_DEG`, and
+the points asked for (each body's A and B). Every chain gets mesh nodes at
+equal steps of about ``h`` along its arc length (more where it turns), the
+same nodes for both bodies of a shared piece. Interior nodes are a
+hexagonal lattice per body, half a step off its contour; a Delaunay
+triangulation of all nodes is made to contain every chain segment by
+splitting the missing ones (a conforming Delaunay mesh, as
+:func:`~sectiondeform.fem.mesh.coarse_mesh` does for one body). Each
+triangle is tagged with the body holding its centroid; the interior nodes
+are smoothed while no triangle turns over; mid-edge nodes of chain segments
+are put on the chain (isoparametric edges).
+
+Every vertex (contour point) is located on a chain segment, so that
+:func:`~sectiondeform.fem.mapping.edge_weights` gives its image from the
+solved node positions: a vertex shared by two bodies has one image.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+import shapely
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import Delaunay, cKDTree
+
+from ..errors import MeshError
+from ..limits import MAX_FE_VERTICES, bounded
+from .elements import geometry
+from .mapping import edge_weights
+from .mesh import CONFORM_ITERATIONS, CORNER_DEG, PIECE_TURN_DEG, SMOOTH_ITERATIONS, _lattice, _signed_areas, _smooth
+
+__all__ = ["UnionMesh", "Chain", "union_mesh"]
+
+
+@dataclass(frozen=True, eq=False)
+class Chain:
+    """A run of graph edges between two corners, with its mesh nodes.
+
+    Attributes
+    ----------
+    vertices : (k,) int64 ndarray
+        Graph vertices along the chain, corner to corner.
+    s : (k,) float64 ndarray
+        Arc length at each vertex, from 0, units.
+    node_s : (j,) float64 ndarray
+        Arc length of each mesh node on the chain, from 0 to ``s[-1]``, units.
+    nodes : (j,) int64 ndarray
+        Their mesh node indices.
+    mids : (j - 1,) int64 ndarray
+        Mid-edge node of each segment between consecutive nodes.
+    """
+
+    vertices: np.ndarray
+    s: np.ndarray
+    node_s: np.ndarray
+    nodes: np.ndarray
+    mids: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class UnionMesh:
+    """A P2 mesh of several bodies with shared nodes on shared pieces.
+
+    Attributes
+    ----------
+    nodes : (N, 2) float64 ndarray
+        Corner nodes first (chain nodes, then interior), then mid-edge nodes, units.
+    cells : (E, 6) int64 ndarray
+        Counter-clockwise ``triangle6`` cells.
+    body : (E,) int64 ndarray
+        The body of each cell.
+    n_vertices : int
+        Number of corner nodes (the pressure unknowns).
+    points : (V, 2) float64 ndarray
+        The graph's vertices: the contour points, merged, units.
+    rings : tuple of (k_b,) int64 ndarray
+        Each body's contour as vertex indices, in the order given.
+    chains : tuple of Chain
+    edge_chain : dict
+        ``(min(u, w), max(u, w))`` of a graph edge -> its chain's index.
+    vertex_weights : (V, N) scipy.sparse.csr_matrix
+        Image of every vertex from the node positions.
+    size : float
+        Target edge length h, units.
+    """
+
+    nodes: np.ndarray
+    cells: np.ndarray
+    body: np.ndarray
+    n_vertices: int
+    points: np.ndarray
+    rings: tuple
+    chains: tuple
+    edge_chain: dict
+    vertex_weights: sp.csr_matrix
+    size: float
+
+    def chain_of(self, u: int, w: int) -> int:
+        """Index of the chain holding the graph edge ``u``-``w``."""
+        return self.edge_chain[(min(u, w), max(u, w))]
+
+
+def _merge(rings, tol: float):
+    """Contour points merged within ``tol``: the vertices and each ring as vertex indices."""
+    pts = np.concatenate(rings)
+    pairs = cKDTree(pts).query_pairs(tol, output_type="ndarray")
+    n = len(pts)
+    graph = sp.coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n)) if len(pairs) else sp.coo_matrix((n, n))
+    _, label = connected_components(graph, directed=False)
+    _, first, inverse = np.unique(label, return_index=True, return_inverse=True)
+    order = np.argsort(first, kind="stable")  # vertices numbered by first appearance
+    rank = np.empty_like(order)
+    rank[order] = np.arange(len(order))
+    ids = rank[inverse]
+    vertices = pts[np.sort(first)]
+    out, k = [], 0
+    for r in rings:
+        out.append(ids[k : k + len(r)])
+        k += len(r)
+    return vertices, out
+
+
+def _chains(points, rings, fixed):
+    """Cut the graph of the rings' edges into chains between corners: lists of vertex indices."""
+    edges = set()
+    for ring in rings:
+        for u, w in zip(ring, np.roll(ring, -1)):
+            if u != w:
+                edges.add((min(int(u), int(w)), max(int(u), int(w))))
+    adj: dict[int, list[int]] = {}
+    for u, w in sorted(edges):
+        adj.setdefault(u, []).append(w)
+        adj.setdefault(w, []).append(u)
+    corner = set(int(v) for v in fixed)
+    for v, nb in adj.items():
+        if len(nb) != 2:
+            corner.add(v)
+            continue
+        a, b = points[v] - points[nb[0]], points[nb[1]] - points[v]
+        if abs(math.atan2(a[0] * b[1] - a[1] * b[0], a @ b)) > math.radians(CORNER_DEG):
+            corner.add(v)
+    seen, chains = set(), []
+    corner &= set(adj)
+    starts = sorted(corner) + sorted(adj)  # a loop without corners starts anywhere
+    for c in starts:
+        for nxt in adj[c]:
+            if (min(c, nxt), max(c, nxt)) in seen:
+                continue
+            corner.add(c)
+            path = [c, nxt]
+            seen.add((min(c, nxt), max(c, nxt)))
+            while path[-1] not in corner:
+                v = path[-1]
+                step = adj[v][0] if adj[v][0] != path[-2] else adj[v][1]
+                seen.add((min(v, step), max(v, step)))
+                path.append(step)
+            chains.append(path)
+    return chains, sorted(corner)
+
+
+def _edge_keys(pairs: np.ndarray, n: int) -> np.ndarray:
+    return np.minimum(pairs[:, 0], pairs[:, 1]) * n + np.maximum(pairs[:, 0], pairs[:, 1])
+
+
+def _steps(pts: np.ndarray, h: float) -> int:
+    seg = np.diff(pts, axis=0)
+    length = float(np.hypot(*seg.T).sum())
+    theta = 0.0
+    if len(seg) > 1:
+        theta = float(np.abs(np.arctan2(seg[:-1, 0] * seg[1:, 1] - seg[:-1, 1] * seg[1:, 0],
+                                        np.einsum("ij,ij->i", seg[:-1], seg[1:]))).sum())
+    return max(1, int(round(length / h)), math.ceil(theta / math.radians(PIECE_TURN_DEG) - 1e-9))
+
+
+def _at(pts: np.ndarray, s: np.ndarray, at: np.ndarray) -> np.ndarray:
+    return np.column_stack((np.interp(at, s, pts[:, 0]), np.interp(at, s, pts[:, 1])))
+
+
+def union_mesh(rings, fixed, h: float, tol: float) -> UnionMesh:
+    """Mesh several bodies, given by their contours, with P2 triangles of size about ``h``.
+
+    Parameters
+    ----------
+    rings : sequence of (k_b, 2) float64 ndarray
+        Each body's closed contour (closing edge implied), either
+        orientation, units. Contours may share pieces (the same points
+        within ``tol``); their interiors must not overlap.
+    fixed : sequence of (j_b,) int64 ndarray
+        Per body, contour indices that must be mesh nodes (its A and B).
+    h : float
+        Target edge length, units.
+    tol : float
+        Contour points closer than this are one point, units.
+
+    Returns
+    -------
+    UnionMesh
+
+    Raises
+    ------
+    MeshError
+        If the triangulation cannot be made to conform, or does not cover
+        every body exactly.
+
+    Examples
+    --------
+    >>> low = np.array([[0, 0], [2, 0], [2, 1], [0, 1]], float)
+    >>> top = np.array([[0, 1], [2, 1], [2, 2], [0, 2]], float)
+    >>> m = union_mesh([low, top], [np.array([0, 1]), np.array([0, 1])], 0.5, 1e-9)
+    >>> [round(float(_signed_areas(m.nodes, m.cells[m.body == b, :3]).sum()), 9) for b in (0, 1)]
+    [2.0, 2.0]
+    """
+    if not (h > 0 and math.isfinite(h)):
+        raise MeshError(f"assembly: the element size {h!r} is not a positive finite length; check the bodies' scale")
+    rings = [np.asarray(r, dtype=np.float64) for r in rings]
+    polys = [shapely.Polygon(r) for r in rings]
+    with np.errstate(all="ignore"):
+        estimate = sum(float(p.length) / h + abs(float(p.area)) / (h * h * math.sqrt(3.0) / 2.0) for p in polys)
+    bounded(estimate, MAX_FE_VERTICES, "mesh vertices",
+            "lower options.elements_through_thickness, or simplify the bodies' small features", MeshError)
+    points, ids = _merge(rings, tol)
+    fixed_v = np.concatenate([ids[b][np.asarray(f, dtype=np.int64)] for b, f in enumerate(fixed)])
+    paths, corners = _chains(points, ids, fixed_v)
+    geo = []
+    for path in paths:
+        p = points[path]
+        s = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(p, axis=0).T))))
+        n = _steps(p, h)
+        geo.append((np.asarray(path), s, s[-1] * np.arange(n + 1) / n))
+    interior = np.concatenate([_lattice(p, h) for p in polys] + [np.zeros((0, 2))])
+    corner_index = {v: k for k, v in enumerate(corners)}
+    for _ in range(CONFORM_ITERATIONS):
+        # Chain nodes: corners first, then each chain's inner nodes in order.
+        bpts = [points[corners]]
+        chain_nodes, k = [], len(corners)
+        for path, s, ns in geo:
+            inner = _at(points[path], s, ns[1:-1])
+            bpts.append(inner)
+            chain_nodes.append(np.concatenate(([corner_index[path[0]]], np.arange(k, k + len(inner)), [corner_index[path[-1]]])))
+            k += len(inner)
+        bpts = np.concatenate(bpts)
+        nb = len(bpts)
+        seg = np.concatenate([np.column_stack((c[:-1], c[1:])) for c in chain_nodes])
+        mid = 0.5 * (bpts[seg[:, 0]] + bpts[seg[:, 1]])
+        rad = 0.5 * np.hypot(*(bpts[seg[:, 1]] - bpts[seg[:, 0]]).T)
+        if len(interior):
+            hits = cKDTree(interior).query_ball_point(mid, rad * 1.02)
+            bad = np.unique(np.concatenate([np.asarray(x, dtype=np.int64) for x in hits] + [np.zeros(0, np.int64)]))
+            interior = np.delete(interior, bad, axis=0)
+        pts = np.concatenate((bpts, interior))
+        tri = Delaunay(pts).simplices
+        e = np.concatenate((tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]))
+        missing = ~np.isin(_edge_keys(seg, len(pts)), _edge_keys(e, len(pts)))
+        if not missing.any():
+            break
+        start = 0
+        for c, (path, s, ns) in enumerate(geo):
+            m = missing[start : start + len(ns) - 1]
+            start += len(ns) - 1
+            if m.any():
+                geo[c] = (path, s, np.sort(np.concatenate((ns, 0.5 * (ns[:-1] + ns[1:])[m]))))
+    else:
+        raise MeshError(f"assembly: the mesh (h = {h:.4g}) does not conform to the bodies' contours; try a finer one")
+    centroid = pts[tri].mean(axis=1)
+    flat = np.abs(_signed_areas(pts, tri)) <= 1e-9 * h * h
+    body = np.full(len(tri), -1)
+    for b, p in enumerate(polys):
+        inside = shapely.contains_xy(p, centroid[:, 0], centroid[:, 1]) & (body < 0)
+        body[inside] = b
+    keep = (body >= 0) & ~flat
+    tri, body = tri[keep], body[keep]
+    areas = _signed_areas(pts, tri)
+    tri[areas < 0] = tri[areas < 0][:, [0, 2, 1]]
+    for b, ring in enumerate(ids):
+        want = abs(float(shapely.area(shapely.Polygon(bpts[_ring_nodes(ring, geo, chain_nodes)]))))
+        got = float(np.abs(areas[body == b]).sum())
+        if not math.isclose(got, want, rel_tol=1e-9):
+            raise MeshError(f"assembly: the mesh (h = {h:.4g}) does not cover body {b} exactly ({got:.9g} for {want:.9g})")
+    used = np.zeros(len(pts), bool)
+    used[tri] = True
+    if not used.all():
+        remap = np.cumsum(used) - 1
+        pts, tri = pts[used], remap[tri]  # chain nodes come first and are all used
+    pts = _smooth(pts, tri, nb, SMOOTH_ITERATIONS)
+    nodes, cells, edge_cell = _midnodes(pts, tri)
+    chains = []
+    nv = len(pts)
+    for (path, s, ns), cn in zip(geo, chain_nodes):
+        keys = np.minimum(cn[:-1], cn[1:]) * nv + np.maximum(cn[:-1], cn[1:])
+        cell, loc = edge_cell(keys)
+        mids = cells[cell, 3 + loc]
+        nodes[mids] = _at(points[path], s, 0.5 * (ns[:-1] + ns[1:]))  # on the contour
+        chains.append(Chain(path, s, ns, cn, mids))
+    g = geometry(nodes, cells)
+    bad = np.flatnonzero(g.detj_ratio < 0.2)
+    if len(bad):  # a mid-node on a tight curve: straighten that element's edges
+        corner = cells[bad, :3]
+        pairs = np.array([[0, 1], [1, 2], [2, 0]])
+        nodes[cells[bad, 3:]] = 0.5 * (nodes[corner[:, pairs[:, 0]]] + nodes[corner[:, pairs[:, 1]]])
+    edge_chain = {}
+    for c, ch in enumerate(chains):
+        for u, w in zip(ch.vertices[:-1], ch.vertices[1:]):
+            edge_chain[(min(int(u), int(w)), max(int(u), int(w)))] = c
+    weights = _vertex_weights(nodes, cells, nv, points, chains, edge_cell)
+    return UnionMesh(nodes, cells, body.astype(np.int64), nv, points, tuple(ids), tuple(chains), edge_chain, weights, float(h))
+
+
+def _ring_nodes(ring, geo, chain_nodes) -> np.ndarray:
+    """A ring's chain nodes in its order (each node once): its outline in the mesh."""
+    lookup = {}
+    for c, (path, _, _) in enumerate(geo):
+        for k, (u, w) in enumerate(zip(path[:-1], path[1:])):
+            lookup[(int(u), int(w))] = (c, k, 1)
+            lookup[(int(w), int(u))] = (c, k + 1, -1)
+    out = []
+    for u, w in zip(ring, np.roll(ring, -1)):
+        if u == w:
+            continue
+        c, k, sign = lookup[(int(u), int(w))]
+        path, s, ns = geo[c]
+        a, b = (s[k], s[k + 1]) if sign > 0 else (s[k], s[k - 1])
+        lo, hi = min(a, b), max(a, b)
+        pick = np.flatnonzero((ns >= lo) & (ns < hi)) if sign > 0 else np.flatnonzero((ns > lo) & (ns <= hi))[::-1]
+        out.append(chain_nodes[c][pick])
+    return np.concatenate(out)
+
+
+def _midnodes(pts, tri):
+    """Mid-edge nodes of every edge; the cells; a lookup from edge keys to (cell, local edge)."""
+    nv = len(pts)
+    local = np.array([[0, 1], [1, 2], [2, 0]])
+    e = tri[:, local]
+    lo, hi = e.min(axis=2), e.max(axis=2)
+    uniq, inv = np.unique((lo * nv + hi).ravel(), return_inverse=True)
+    inv = inv.reshape(-1, 3)
+    a, b = uniq // nv, uniq % nv
+    nodes = np.concatenate((pts, 0.5 * (pts[a] + pts[b])))
+    cells = np.column_stack((tri, nv + inv)).astype(np.int64)
+    where = np.full(len(uniq), -1)
+    where[inv.ravel()] = np.arange(inv.size)
+
+    def edge_cell(keys):
+        k = np.searchsorted(uniq, keys)
+        if not (np.all(k < len(uniq)) and np.all(uniq[np.minimum(k, len(uniq) - 1)] == keys)):
+            raise MeshError("assembly: the mesh's edges do not follow the bodies' contours")
+        pos = where[k]
+        return pos // 3, pos % 3
+
+    return nodes, cells, edge_cell
+
+
+def _vertex_weights(nodes, cells, nv, points, chains, edge_cell):
+    """Weights of every vertex on its chain segment (a corner is its own node)."""
+    V = len(points)
+    rows, cols, vals = [], [], []
+    done = np.zeros(V, bool)
+    cell_l, loc_l, dir_l, t_l, who = [], [], [], [], []
+    for ch in chains:
+        for end, node in ((ch.vertices[0], ch.nodes[0]), (ch.vertices[-1], ch.nodes[-1])):
+            if not done[end]:
+                done[end] = True
+                rows.append(end)
+                cols.append(node)
+                vals.append(1.0)
+        inner = np.arange(1, len(ch.vertices) - 1)
+        inner = inner[~done[ch.vertices[inner]]]
+        if not len(inner):
+            continue
+        done[ch.vertices[inner]] = True
+        s = ch.s[inner]
+        j = np.clip(np.searchsorted(ch.node_s, s, side="right") - 1, 0, len(ch.node_s) - 2)
+        u, w = ch.nodes[j], ch.nodes[j + 1]
+        cell, loc = edge_cell(np.minimum(u, w) * nv + np.maximum(u, w))
+        first = cells[cell, np.array([0, 1, 2])[loc]]
+        cell_l.append(cell)
+        loc_l.append(loc)
+        dir_l.append(np.where(first == u, 1, -1))
+        t_l.append(np.clip((s - ch.node_s[j]) / (ch.node_s[j + 1] - ch.node_s[j]), 0.0, 1.0))
+        who.append(ch.vertices[inner])
+    corner = sp.csr_matrix((vals, (rows, cols)), shape=(V, len(nodes)))
+    if not who:
+        return corner
+    who = np.concatenate(who)
+    w = edge_weights(nodes, cells, np.concatenate(cell_l), np.concatenate(loc_l), np.concatenate(dir_l),
+                     np.concatenate(t_l), points[who])
+    moved = sp.csr_matrix((np.ones(len(who)), (who, np.arange(len(who)))), shape=(V, len(who)))
+    return (corner + moved @ w).tocsr()
