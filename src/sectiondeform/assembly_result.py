@@ -122,6 +122,9 @@ class AssemblyResult:
     timings : dict
         Seconds spent in ``prepare`` and ``place``.
     warnings : tuple of str
+    axis : ((float, float), (float, float)) or None
+        The revolution axis of an assembly of revolution (two of its points,
+        units); None for extruded sections.
     """
 
     name: str
@@ -130,6 +133,7 @@ class AssemblyResult:
     bodies: tuple
     timings: dict = field(default_factory=dict)
     warnings: tuple = ()
+    axis: tuple | None = None
 
     def body(self, name: str) -> BodyResult:
         """The result of the body called ``name``."""
@@ -141,6 +145,10 @@ class AssemblyResult:
     def to_json(self, meshes: bool = True, fields: bool = False) -> dict:
         """The ``section-result/2`` object, with the project's extra keys (model, timings, warnings, meshes).
 
+        An assembly of revolution also carries the case's ``revolution``
+        object (``{"axis": [[x, y], [x, y]]}``), so the result's volumes can be
+        checked without the case.
+
         Parameters
         ----------
         meshes : bool
@@ -148,7 +156,7 @@ class AssemblyResult:
         fields : bool
             Include each body's geometric fields under ``"fields"``.
         """
-        return {
+        out = {
             "format": ASSEMBLY_RESULT_FORMAT,
             "name": self.name,
             "units": self.units,
@@ -157,3 +165,6 @@ class AssemblyResult:
             "timings": self.timings,
             "warnings": list(self.warnings),
         }
+        if self.axis is not None:
+            out["revolution"] = {"axis": [list(map(float, p)) for p in self.axis]}
+        return out
