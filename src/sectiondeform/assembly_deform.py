@@ -284,7 +284,8 @@ class AssemblyDeformer:
         seconds = time.perf_counter() - t0
         warnings = tuple(f"{a.label(b)}: {w}" for b in range(n) for w in placements[b].warnings)
         return AssemblyResult(name=a.name, units=a.units, model=self.model_name, bodies=results,
-                              timings={"prepare_s": self.prepare_seconds, "place_s": seconds}, warnings=warnings)
+                              timings={"prepare_s": self.prepare_seconds, "place_s": seconds}, warnings=warnings,
+                              axis=a.revolution.axis if a.revolution is not None else None)
 
     def _upper_images(self, b: int, lowers, images) -> tuple[np.ndarray, np.ndarray]:
         """Images of the case's upper points of body ``b``, and of the points taken out of it."""

@@ -81,8 +81,13 @@ class BodyResult:
         """(final - target) / target of the law's quantity."""
         return (self.final - self.target) / self.target
 
-    def to_json(self, meshes: bool = True, fields: bool = False) -> dict:
-        """The body's object of ``section-result/2``, with the project's extra keys (``fields``: the geometric fields)."""
+    def to_json(self, meshes: bool = True, fields: bool = False, model: str = "paper", axis=None) -> dict:
+        """The body's object of ``section-result/2``, with the project's extra keys.
+
+        ``fields``: add the per-element fields of the ``model``'s meshes
+        (:func:`~sectiondeform.strain_fields.result_fields`; with the
+        revolution ``axis``, the hoop stretch out of the plane).
+        """
         out = {
             "name": self.name,
             "lower": self.lower.tolist(),
@@ -98,9 +103,12 @@ class BodyResult:
         if meshes:
             out["meshes"] = {"initial": self.initial_mesh.to_json(), "final": self.final_mesh.to_json()}
         if fields:
-            from .geometric_fields import fields_to_json, geometric_fields
+            from .geometric_fields import fields_to_json
+            from .strain_fields import result_fields
 
-            out["fields"] = fields_to_json(geometric_fields(self.initial_mesh, self.final_mesh))
+            kind, values = result_fields(self.initial_mesh, self.final_mesh, model,
+                                         getattr(self.info, "out_of_plane_stretch", 1.0), axis)
+            out["fields"] = fields_to_json(values, kind)
         return out
 
 
@@ -122,6 +130,9 @@ class AssemblyResult:
     timings : dict
         Seconds spent in ``prepare`` and ``place``.
     warnings : tuple of str
+    axis : ((float, float), (float, float)) or None
+        The revolution axis of an assembly of revolution (two of its points,
+        units); None for extruded sections.
     """
 
     name: str
@@ -130,6 +141,7 @@ class AssemblyResult:
     bodies: tuple
     timings: dict = field(default_factory=dict)
     warnings: tuple = ()
+    axis: tuple | None = None
 
     def body(self, name: str) -> BodyResult:
         """The result of the body called ``name``."""
@@ -141,19 +153,27 @@ class AssemblyResult:
     def to_json(self, meshes: bool = True, fields: bool = False) -> dict:
         """The ``section-result/2`` object, with the project's extra keys (model, timings, warnings, meshes).
 
+        An assembly of revolution also carries the case's ``revolution``
+        object (``{"axis": [[x, y], [x, y]]}``), so the result's volumes can be
+        checked without the case.
+
         Parameters
         ----------
         meshes : bool
             Include each body's meshes under ``"meshes"``.
         fields : bool
-            Include each body's geometric fields under ``"fields"``.
+            Include each body's per-element fields under ``"fields"`` (geometric
+            for the paper model; with the hoop stretch for bodies of revolution).
         """
-        return {
+        out = {
             "format": ASSEMBLY_RESULT_FORMAT,
             "name": self.name,
             "units": self.units,
-            "bodies": [b.to_json(meshes, fields) for b in self.bodies],
+            "bodies": [b.to_json(meshes, fields, self.model, self.axis) for b in self.bodies],
             "model": self.model,
             "timings": self.timings,
             "warnings": list(self.warnings),
         }
+        if self.axis is not None:
+            out["revolution"] = {"axis": [list(map(float, p)) for p in self.axis]}
+        return out

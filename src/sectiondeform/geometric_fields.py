@@ -76,9 +76,12 @@ def geometric_fields(initial: MeshData, final: MeshData) -> dict[str, np.ndarray
     }
 
 
-def fields_to_json(fields: dict[str, np.ndarray]) -> dict:
-    """The result's ``fields`` object: the fields as lists, labelled geometric, per cell."""
+MECHANICAL_NOTE = "strains of the hyperelastic model's solution"
+
+
+def fields_to_json(fields: dict[str, np.ndarray], kind: str = "geometric") -> dict:
+    """The result's ``fields`` object: the fields as lists, labelled by kind (geometric or mechanical), per cell."""
     if not fields:
         return {}
-    return {"kind": "geometric", "location": "cell", "note": GEOMETRIC_NOTE,
-            **{name: values.tolist() for name, values in fields.items()}}
+    note = GEOMETRIC_NOTE if kind == "geometric" else MECHANICAL_NOTE
+    return {"kind": kind, "location": "cell", "note": note, **{name: values.tolist() for name, values in fields.items()}}

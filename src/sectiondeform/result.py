@@ -104,8 +104,9 @@ class Result:
         meshes : bool
             Include both meshes under ``"meshes"``.
         fields : bool
-            Include the per-element geometric fields of a layered result
-            under ``"fields"`` (:mod:`sectiondeform.geometric_fields`).
+            Include the per-element fields under ``"fields"``: the hyperelastic
+            model's strains, or the paper model's geometric fields
+            (:mod:`sectiondeform.strain_fields`).
         """
         out = {
             "format": RESULT_FORMAT,
@@ -129,7 +130,9 @@ class Result:
         if meshes:
             out["meshes"] = {"initial": self.initial_mesh.to_json(), "final": self.final_mesh.to_json()}
         if fields:
-            from .geometric_fields import fields_to_json, geometric_fields
+            from .geometric_fields import fields_to_json
+            from .strain_fields import result_fields
 
-            out["fields"] = fields_to_json(geometric_fields(self.initial_mesh, self.final_mesh))
+            lz = getattr(self.info, "out_of_plane_stretch", 1.0)
+            out["fields"] = fields_to_json(*result_fields(self.initial_mesh, self.final_mesh, self.model, lz)[::-1])
         return out

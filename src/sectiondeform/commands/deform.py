@@ -27,8 +27,8 @@ def add_args(parser) -> None:
     parser.add_argument("--plot", type=Path, metavar="FIG", help="also draw the figure (.png, .svg or .pdf)")
     parser.add_argument("--no-meshes", action="store_true", help="leave the meshes out of the result JSON")
     parser.add_argument("--fields", action="store_true",
-                        help="add the paper model's geometric fields per element (corner Jacobians, layer stretches) "
-                             "to the result JSON and the meshes written")
+                        help="add per-element fields to the result JSON and the meshes written: principal stretches, J, "
+                             "Green-Lagrange strain (hyperelastic model); the paper model's geometric ones")
     add_model_args(parser)
     add_input_args(parser)
     add_output_args(parser)

@@ -13,8 +13,8 @@ initial coordinates) and ``displacement`` (final - initial), the initial
 mesh ``final`` and ``displacement``; every file has the cell data
 ``element`` (0-based element number). Any other point or cell data (one row
 per node or element, any number of components) is passed through
-:func:`to_meshio`; ``write_mesh(..., fields=True)`` adds the paper model's
-geometric fields as cell data (:mod:`sectiondeform.geometric_fields`).
+:func:`to_meshio`; ``write_mesh(..., fields=True)`` adds the per-element
+strain or geometric fields as cell data (:mod:`sectiondeform.strain_fields`).
 Abaqus INP carries the mesh only.
 """
 
@@ -88,6 +88,18 @@ def _rows(values, count: int, name: str, what: str) -> np.ndarray:
     return arr
 
 
+def _gmsh_components(data: dict) -> dict:
+    """Gmsh data fields have 1, 3 or 9 components: any other field is split into ``name_0``, ``name_1``, ..."""
+    out = {}
+    for name, values in data.items():
+        values = np.asarray(values)
+        if values.ndim == 1 or values.shape[1] in (1, 3, 9):
+            out[name] = values
+        else:
+            out.update({f"{name}_{i}": values[:, i] for i in range(values.shape[1])})
+    return out
+
+
 def _teach_meshio_plane_strain() -> None:
     """Let meshio's Abaqus reader read back the plane-strain quads written here (it knows CPS4, not CPE4)."""
     from meshio.abaqus import _abaqus
@@ -107,9 +119,12 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
     which : str
         ``"final"`` or ``"initial"``.
     fields : bool
-        Add the geometric fields of a layered result as cell data
-        (:func:`~sectiondeform.geometric_fields.geometric_fields`; none for
-        other meshes, nor in Abaqus files).
+        Add the per-element fields as cell data
+        (:func:`~sectiondeform.strain_fields.result_fields`: the hyperelastic
+        model's strains, the paper model's geometric fields and its mesh's
+        strains prefixed ``geometric_``; none in Abaqus files). Gmsh files
+        take 1, 3 or 9 components per field: the others are split into
+        ``name_0``, ``name_1``, ...
 
     Raises
     ------
@@ -124,9 +139,12 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
     fmt = FORMATS[ext]
     cells = None
     if fields and fmt != "abaqus":
-        from ..geometric_fields import geometric_fields
+        from ..strain_fields import result_fields
 
-        cells = geometric_fields(result.initial_mesh, result.final_mesh)
+        lz = getattr(result.info, "out_of_plane_stretch", 1.0)
+        cells = result_fields(result.initial_mesh, result.final_mesh, result.model, lz)[1]
+        if fmt == "gmsh":
+            cells = _gmsh_components(cells)
     mesh = to_meshio(result, which, data=fmt != "abaqus", cell_data=cells)
     kwargs = {"binary": True} if fmt in ("gmsh", "vtk") else {}
     if fmt == "gmsh":
@@ -143,5 +161,5 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
 
 
 def write_result(path, result, fields: bool = False) -> None:
-    """Write the final mesh of a result (see :func:`write_mesh`), with its geometric fields if asked."""
+    """Write the final mesh of a result (see :func:`write_mesh`), with its per-element fields if asked."""
     write_mesh(path, result, "final", fields=fields)
