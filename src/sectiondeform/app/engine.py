@@ -74,6 +74,13 @@ class DeformerCache:
             self._last.pop(id(old), None)
         return deformer, True
 
+    def ready(self, case_json, model) -> bool:
+        """True if the section of ``case_json`` is already prepared for ``model`` (a preview is then fast)."""
+        try:
+            return isinstance(case_json, dict) and section_key(case_json, model) in self._items
+        except (TypeError, ValueError):
+            return False
+
     def start(self, deformer: Deformer) -> Result | None:
         """The last full deformation of ``deformer``, from which a preview or a solve starts (or None)."""
         return self._last.get(id(deformer))
@@ -104,7 +111,8 @@ def answer(cache: DeformerCache, case_json: dict, model: str, ratio, final: bool
     -------
     dict
         Contours and mesh points as ``(n, 2)`` float64 arrays, mesh cells,
-        areas, quality figures, compute time in ms.
+        areas, quality figures, compute time in ms (see :func:`describe`
+        for what a preview leaves out).
 
     Raises
     ------
@@ -127,15 +135,21 @@ def answer(cache: DeformerCache, case_json: dict, model: str, ratio, final: bool
 
 
 def describe(result: Result, final: bool, prepared: bool, meshes: bool, compute_ms: float) -> dict:
-    """The page's view of a :class:`Result`."""
+    """The page's view of a :class:`Result`.
+
+    A full deformation, or the first answer of a newly prepared section,
+    carries everything; a preview while dragging carries only what moves
+    (the contour, the support and the final mesh's points), the page keeping
+    the initial contour and the meshes' cells of the last full answer.
+    """
     q = result.quality
+    whole = final or prepared  # the initial contour and mesh change only with the section
     out = {
         "final": bool(final),
         "model": result.model,
         "prepared": prepared,
         "contour": result.contour,
         "lower": result.lower,
-        "initial_contour": result.initial_contour,
         "area_initial": result.area_initial,
         "area_target": result.area_target,
         "area_final": result.area_final,
@@ -145,11 +159,12 @@ def describe(result: Result, final: bool, prepared: bool, meshes: bool, compute_
         "warnings": list(result.warnings),
         "compute_ms": compute_ms,
     }
+    if whole:
+        out["initial_contour"] = result.initial_contour
     if meshes:
-        if final or prepared:  # the initial mesh changes only with the section
-            out["mesh_initial"] = {"points": result.initial_mesh.points, "cells": result.initial_mesh.cells.tolist()}
         out["mesh_final"] = {"points": result.final_mesh.points}
-        if final or prepared:
+        if whole:
+            out["mesh_initial"] = {"points": result.initial_mesh.points, "cells": result.initial_mesh.cells.tolist()}
             out["mesh_final"]["cells"] = result.final_mesh.cells.tolist()
     return out
 

@@ -17,6 +17,7 @@ const state = {
   sentAt: new Map(),   // seq -> performance.now() once sent
   result: null,        // last good answer
   view: { s: 1, tx: 0, ty: 0 },
+  q: 1e3,              // path rounding: coordinates kept to 1/q world units (see applyView)
   undo: [],
   selected: null,      // {curve: "target"|"upper", index}
   drag: null,
@@ -26,17 +27,36 @@ window.sdState = state;
 
 // ---- drawing -----------------------------------------------------------
 
-const pathOf = (pts, close) => pts.length ? "M" + pts.map((p) => p[0] + " " + p[1]).join("L") + (close ? "Z" : "") : "";
+// Path coordinates are rounded to a twentieth of a screen pixel (state.q: a power of ten per world unit):
+// short strings, quick to build and to parse, and no visible difference.
+const round = (v) => Math.round(v * state.q) / state.q;
 
+function pathOf(pts, close) {
+  if (!pts || !pts.length) return "";
+  let d = "M" + round(pts[0][0]) + " " + round(pts[0][1]);
+  for (let i = 1; i < pts.length; i++) d += "L" + round(pts[i][0]) + " " + round(pts[i][1]);
+  return close ? d + "Z" : d;
+}
+
+// A mesh as one path: each cell a closed polygon of its nodes. Points are flat x, y (Float64Array).
 function meshPath(mesh) {
-  if (!mesh) return "";
-  const P = mesh.points;
-  return mesh.cells.map((c) => "M" + c.map((i) => P[i][0] + " " + P[i][1]).join("L") + "Z").join("");
+  if (!mesh || !mesh.cells || !mesh.points) return "";
+  const P = mesh.points, n = P.length / 2, S = new Array(n);
+  for (let i = 0; i < n; i++) S[i] = round(P[2 * i]) + " " + round(P[2 * i + 1]);
+  let d = "";
+  for (const c of mesh.cells) {
+    d += "M" + S[c[0]];
+    for (let j = 1; j < c.length; j++) d += "L" + S[c[j]];
+    d += "Z";
+  }
+  return d;
 }
 
 function applyView() {
   const v = state.view;
   $("world").setAttribute("transform", `matrix(${v.s} 0 0 ${-v.s} ${v.tx} ${v.ty})`);
+  const q = 10 ** Math.max(0, Math.ceil(Math.log10(Math.max(20 * v.s, 1e-300))));
+  if (q !== state.q && Number.isFinite(q)) { state.q = q; drawResult(true); drawEdits(false); }
   drawHandles();
 }
 
@@ -47,7 +67,7 @@ function toWorld(evt) {
 }
 
 function fit() {
-  const pts = [...Geo.points(state.case.target), ...(state.result ? state.result.initial_contour : Geo.points(state.case.upper))];
+  const pts = [...Geo.points(state.case.target), ...((state.result && state.result.initial_contour) || Geo.points(state.case.upper))];
   if (state.result) pts.push(...state.result.contour);
   const xs = pts.map((p) => p[0]), ys = pts.map((p) => p[1]);
   const x0 = Math.min(...xs), x1 = Math.max(...xs), y0 = Math.min(...ys), y1 = Math.max(...ys);
@@ -71,10 +91,11 @@ function drawResult(all) {
   $("mesh-final").setAttribute("d", show ? meshPath(res.mesh_final) : "");
 }
 
-function drawEdits() {
+function drawEdits(handles = true) {
+  if (!state.case) return;
   $("target-polygon").setAttribute("d", pathOf(Geo.points(state.case.target), false));
   $("upper-polygon").setAttribute("d", state.case.upper.bspline ? pathOf(Geo.points(state.case.upper), false) : "");
-  drawHandles();
+  if (handles) drawHandles();
 }
 
 // Handles: the target's points (red), the upper curve's inner points (green), whole-target handles.
@@ -160,7 +181,11 @@ let queued = null;
 
 function connect() {
   socket = new WebSocket(`ws://${location.host}/ws`);
-  socket.onmessage = (e) => { const t = performance.now(); onAnswer(JSON.parse(e.data), t); };
+  socket.binaryType = "arraybuffer";
+  socket.onmessage = (e) => {
+    const t = performance.now();
+    onAnswer(typeof e.data === "string" ? JSON.parse(e.data) : unframe(e.data), t);
+  };
   socket.onopen = () => { if (queued) { socket.send(queued); queued = null; } };
   socket.onclose = () => { message("connection to the server lost; reload the page when it runs again", "error"); };
 }
@@ -175,25 +200,32 @@ function request(final, t0) {
   svg.dataset.pending = state.seq;
 }
 
-// Point arrays come as {f64: base64 of little-endian float64 x, y pairs}: back to [[x, y], ...].
-function unpack(v) {
-  if (v && typeof v === "object" && !Array.isArray(v)) {
-    if (typeof v.f64 === "string") {
-      const bytes = Uint8Array.from(atob(v.f64), (c) => c.charCodeAt(0));
-      const f = new Float64Array(bytes.buffer);
-      const out = new Array(f.length / 2);
-      for (let i = 0; i < out.length; i++) out[i] = [f[2 * i], f[2 * i + 1]];
-      return out;
-    }
-    const o = {};
-    for (const k in v) o[k] = unpack(v[k]);
-    return o;
-  }
-  return v;
+// A result comes as one binary frame: uint32 n, n bytes of JSON header, then float64 data (8-byte aligned);
+// each array of the header is {f64: [byte offset in the data, count, columns]}. Arrays become Float64Arrays
+// (flat x, y pairs), read in place.
+const utf8 = new TextDecoder();
+function unframe(buf) {
+  const n = new DataView(buf).getUint32(0, true);
+  const base = 4 + n;
+  const head = JSON.parse(utf8.decode(new Uint8Array(buf, 4, n)));
+  const arrays = (v) => {
+    if (!v || typeof v !== "object" || Array.isArray(v)) return v;
+    if (Array.isArray(v.f64)) return new Float64Array(buf, base + v.f64[0], v.f64[1]);
+    for (const k in v) v[k] = arrays(v[k]);
+    return v;
+  };
+  return arrays(head);
 }
 
-function onAnswer(packedMsg, received) {
-  const msg = unpack(packedMsg);
+// Flat x, y values as [[x, y], ...].
+function pairs(f) {
+  if (!f) return f;
+  const out = new Array(f.length / 2);
+  for (let i = 0; i < out.length; i++) out[i] = [f[2 * i], f[2 * i + 1]];
+  return out;
+}
+
+function onAnswer(msg, received) {
   if (msg.type === "dropped") { state.sent.delete(msg.seq); return; }
   if (msg.seq !== null && msg.seq <= state.shown) return;          // stale: a newer answer is drawn
   const t0 = state.sent.get(msg.seq), t1 = state.sentAt.get(msg.seq);
@@ -207,9 +239,15 @@ function onAnswer(packedMsg, received) {
     return;
   }
   svg.classList.remove("refused");
-  msg.initialSent = Boolean(msg.mesh_initial);   // sent with each full deformation and each new section
-  if (!msg.mesh_initial && state.result) msg.mesh_initial = state.result.mesh_initial;
-  if (!msg.mesh_final.cells && state.result) msg.mesh_final.cells = state.result.mesh_final.cells;
+  // a preview sends only what moves; the rest comes with each full deformation and each new section
+  msg.initialSent = Boolean(msg.initial_contour);
+  for (const k of ["contour", "lower", "initial_contour"]) msg[k] = pairs(msg[k]);
+  const last = state.result;
+  if (!msg.initialSent && last) {
+    msg.initial_contour = last.initial_contour;
+    msg.mesh_initial = last.mesh_initial;
+    if (msg.mesh_final && last.mesh_final) msg.mesh_final.cells = last.mesh_final.cells;
+  }
   state.result = msg;
   drawResult();
   if (!state.drag) drawHandles();
@@ -270,8 +308,8 @@ svg.addEventListener("pointermove", (e) => {
   }
   if (!setPoints(d.curve, P)) return;
   d.moved = true;
+  request(false, t0);   // first: the server computes while the page redraws the edited curve
   drawEdits();
-  request(false, t0);
 });
 
 function endDrag(e) {
