@@ -49,6 +49,8 @@ def receive(ws) -> dict:
             return flat.reshape(-1, columns) if columns > 1 else flat
         if isinstance(value, dict):
             return {k: arrays(v) for k, v in value.items()}
+        if isinstance(value, list) and value and isinstance(value[0], dict):  # an assembly's bodies
+            return [arrays(v) for v in value]
         return value
 
     return arrays(header)

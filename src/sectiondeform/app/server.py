@@ -100,11 +100,24 @@ def framed(reply: dict) -> bytes:
             return ref
         if isinstance(value, dict):
             return {k: walk(v) for k, v in value.items()}
+        if isinstance(value, list) and value and isinstance(value[0], dict):  # an assembly's bodies
+            return [walk(v) for v in value]
         return value
 
     header = json.dumps(walk(reply), separators=(",", ":")).encode("utf-8")
     header += b" " * ((-(4 + len(header))) % 8)
     return struct.pack("<I", len(header)) + header + b"".join(blobs)
+
+
+def packed_json(value):
+    """``value`` with each float64 array as a list of ``[x, y]`` pairs (for the page's plain JSON answers)."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, dict):
+        return {k: packed_json(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [packed_json(v) for v in value]
+    return value
 
 
 def _refusal(status: int, message: str) -> JSONResponse:
@@ -140,6 +153,13 @@ def _read_upload(name: str, data: bytes, form: dict) -> dict:
             except ValueError:
                 raise CaseError(key, f"expected a number, got {form[key]!r}") from None
     report: list[str] = []
+    if ext == ".json":
+        try:
+            data_json = json.loads(data.decode("utf-8"))
+        except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+            raise CaseError("file", f"not valid JSON ({exc})".splitlines()[0]) from None
+        if engine.is_assembly(data_json):
+            return _assembly_opened(data_json)
     with tempfile.TemporaryDirectory(prefix="sectiondeform-") as tmp:
         path = Path(tmp) / f"upload{ext}"  # the server's own name, never the page's
         path.write_bytes(data)
@@ -156,11 +176,32 @@ def _read_upload(name: str, data: bytes, form: dict) -> dict:
     return {"case": engine.case_json_of(case), "model": engine.case_model(case), "report": report}
 
 
+def _assembly_opened(case_json: dict) -> dict:
+    """An assembly for the page: checked by the library, or, if it refuses it, its outline and the refusal.
+
+    The page then shows the bodies as drawn and the library's message (a
+    model or a feature it does not support yet); the same refusal comes
+    back for each deformation until the case or the library changes.
+    """
+    report: list[str] = []
+    try:
+        case_json = engine.case_json_of(engine.case_from_json(case_json))
+    except SectionDeformError as exc:
+        report.append(f"the library refuses this assembly: {exc}")
+    return {"case": case_json, "model": engine.model_of_json(case_json), "report": report,
+            "outline": engine.outline(case_json)}
+
+
 def _write(case_json: dict, model: str, what: str, ext: str) -> bytes:
     """The bytes of a case or result file, written in a private temporary folder."""
     from ..case import case_from_dict
     from ..io import write_case, write_result
 
+    if engine.is_assembly(case_json):
+        if what != "case" or ext != ".json":
+            raise CaseError("save", f"the page saves an assembly as case.json only, not {what}{ext}; "
+                                    "deform it with the deform command for its result")
+        return json.dumps(engine.case_json_of(engine.case_from_json(case_json)), indent=1).encode("utf-8")
     with tempfile.TemporaryDirectory(prefix="sectiondeform-") as tmp:
         path = Path(tmp) / f"out{ext}"
         if what == "case":
@@ -183,7 +224,10 @@ def create_app(case_json: dict, hosts, message_limit: int = MAX_MESSAGE, upload_
         Largest WebSocket message (characters) and request body (bytes).
     """
     hosts = frozenset(h.lower() for h in hosts)
-    start_model = engine.case_model(engine.case_from_json(case_json))
+    start_model = engine.model_of_json(case_json)
+    first = {"case": case_json, "model": start_model, "models": list(engine.MODELS)}
+    if engine.is_assembly(case_json):
+        first["outline"] = engine.outline(case_json)
 
     async def index(request: Request):
         if not host_ok(request.headers, hosts):
@@ -193,7 +237,7 @@ def create_app(case_json: dict, hosts, message_limit: int = MAX_MESSAGE, upload_
     async def start(request: Request):
         if not host_ok(request.headers, hosts):
             return _refusal(400, "unknown host")
-        return JSONResponse({"case": case_json, "model": start_model, "models": list(engine.MODELS)})
+        return JSONResponse(packed_json(first))
 
     async def open_file(request: Request):
         if not origin_ok(request.headers, hosts):
@@ -216,7 +260,7 @@ def create_app(case_json: dict, hosts, message_limit: int = MAX_MESSAGE, upload_
             return _refusal(422, str(exc))
         except Exception as exc:  # noqa: BLE001 - any unreadable upload is the user's file, not a crash
             return _refusal(422, f"file: cannot be read ({type(exc).__name__}: {exc})".splitlines()[0])
-        return JSONResponse(out)
+        return JSONResponse(packed_json(out))
 
     async def save(request: Request):
         if not origin_ok(request.headers, hosts):
