@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import io
 import json
+import struct
 
+import numpy as np
 import pytest
 
 pytest.importorskip("starlette")
@@ -30,6 +32,30 @@ def client(case_json):
     return TestClient(create_app(case_json, ["testserver"], message_limit=200_000, upload_limit=100_000))
 
 
+def receive(ws) -> dict:
+    """The next answer: a text JSON message, or a binary result frame decoded here from its documented layout."""
+    message = ws.receive()
+    if message.get("text") is not None:
+        return json.loads(message["text"])
+    data = message["bytes"]
+    (n,) = struct.unpack_from("<I", data, 0)
+    assert (4 + n) % 8 == 0  # the float64 data are aligned
+    header = json.loads(data[4:4 + n].decode("utf-8"))
+
+    def arrays(value):
+        if isinstance(value, dict) and isinstance(value.get("f64"), list):
+            offset, count, columns = value["f64"]
+            flat = np.frombuffer(data, dtype="<f8", count=count, offset=4 + n + offset)
+            return flat.reshape(-1, columns) if columns > 1 else flat
+        if isinstance(value, dict):
+            return {k: arrays(v) for k, v in value.items()}
+        if isinstance(value, list) and value and isinstance(value[0], dict):  # an assembly's bodies
+            return [arrays(v) for v in value]
+        return value
+
+    return arrays(header)
+
+
 def request(case_json, seq, final=True, model="paper", ratio=0.8, target=None):
     case = dict(case_json, target=target or case_json["target"])
     return json.dumps({"seq": seq, "final": final, "case": case, "model": model, "ratio": ratio})
@@ -52,7 +78,7 @@ def test_a_foreign_host_is_refused_everywhere(client):
 @pytest.mark.parametrize("headers", [{}, {"origin": "http://evil.example"}, {"origin": "null"}])
 def test_websocket_refuses_another_origin(client, headers):
     with pytest.raises(WebSocketDisconnect), client.websocket_connect("/ws", headers=headers) as ws:
-        ws.receive_json()
+        receive(ws)
 
 
 @pytest.mark.parametrize("url", ["/api/open", "/api/save/case.json"])
@@ -64,7 +90,7 @@ def test_post_refuses_another_origin(client, url, case_json):
 def test_the_answer_meets_the_law(client, case_json):
     with client.websocket_connect("/ws", headers=ORIGIN) as ws:
         ws.send_text(request(case_json, 1, ratio=0.7))
-        r = ws.receive_json()
+        r = receive(ws)
     assert r["type"] == "result" and r["seq"] == 1 and r["final"]
     assert abs(r["area_final"] - 0.7 * r["area_initial"]) <= 1e-9 * r["area_final"]
     assert r["jacobian_min"] > 0
@@ -75,11 +101,11 @@ def test_a_refusal_is_answered_and_the_server_keeps_going(client, case_json):
     folded = {"polyline": [[0.0, 0.0], [110.0, 0.0], [10.0, 1.0]]}
     with client.websocket_connect("/ws", headers=ORIGIN) as ws:
         ws.send_text(request(case_json, 1, target=folded))
-        bad = ws.receive_json()
+        bad = receive(ws)
         ws.send_text(request(case_json, 2, ratio=-1.0))
-        bad_law = ws.receive_json()
+        bad_law = receive(ws)
         ws.send_text(request(case_json, 3))
-        good = ws.receive_json()
+        good = receive(ws)
     assert bad["type"] == "refused" and bad["seq"] == 1 and bad["message"]
     assert bad_law["type"] == "refused" and ("ratio" in bad_law["message"] or "law" in bad_law["message"])
     assert good["type"] == "result" and good["seq"] == 3
@@ -88,12 +114,12 @@ def test_a_refusal_is_answered_and_the_server_keeps_going(client, case_json):
 def test_malformed_and_oversized_messages_are_refused(client, case_json):
     with client.websocket_connect("/ws", headers=ORIGIN) as ws:
         ws.send_text("not json")
-        assert ws.receive_json()["type"] == "refused"
+        assert receive(ws)["type"] == "refused"
         ws.send_text(json.dumps({"seq": 1, "pad": "x" * 250_000}))
-        r = ws.receive_json()
+        r = receive(ws)
         assert r["type"] == "refused" and "limit" in r["message"]
         ws.send_text(request(case_json, 2))
-        assert ws.receive_json()["type"] == "result"
+        assert receive(ws)["type"] == "result"
 
 
 def test_requests_are_coalesced(client, case_json):
@@ -104,7 +130,7 @@ def test_requests_are_coalesced(client, case_json):
             ws.send_text(request(case_json, seq, final=False, model="hyperelastic", ratio=0.8 - 0.01 * seq))
         answers = []
         while not answers or answers[-1].get("seq") != 6 or answers[-1]["type"] != "result":
-            answers.append(ws.receive_json())
+            answers.append(receive(ws))
     results = [a["seq"] for a in answers if a["type"] == "result"]
     dropped = [a["seq"] for a in answers if a["type"] == "dropped"]
     assert results[0] == 1 and results[-1] == 6
@@ -116,10 +142,10 @@ def test_requests_are_coalesced(client, case_json):
 def test_an_older_request_after_a_newer_one_is_ignored(client, case_json):
     with client.websocket_connect("/ws", headers=ORIGIN) as ws:
         ws.send_text(request(case_json, 5))
-        assert ws.receive_json()["seq"] == 5
+        assert receive(ws)["seq"] == 5
         ws.send_text(request(case_json, 3))
         ws.send_text(request(case_json, 6))
-        assert ws.receive_json()["seq"] == 6
+        assert receive(ws)["seq"] == 6
 
 
 def test_a_dxf_upload_opens(client, case_json, tmp_path):
@@ -207,15 +233,11 @@ def test_hosts_are_loopback_names_and_the_given_one():
 
 
 def test_points_arrive_exactly(client, case_json):
-    """The packed contour decodes to the library's own result, bit for bit."""
-    import base64
-
-    import numpy as np
-
+    """The framed contour decodes to the library's own result, bit for bit."""
     with client.websocket_connect("/ws", headers=ORIGIN) as ws:
         ws.send_text(request(case_json, 1, ratio=0.75))
-        r = ws.receive_json()
-    contour = np.frombuffer(base64.b64decode(r["contour"]["f64"]), dtype="<f8").reshape(-1, 2)
+        r = receive(ws)
+    contour = r["contour"]
     expected = sd.Deformer(sd.case_from_dict(case_json)).deform(law=sd.AreaRatio(0.75)).contour
     np.testing.assert_array_equal(contour, expected)
     assert len(r["mesh_final"]["cells"]) == len(r["mesh_initial"]["cells"])
@@ -235,3 +257,18 @@ def test_serve_warns_for_another_host():
         proc.wait(timeout=10)
     assert first.startswith("warning: listening on 127.0.0.2")
     assert "http://127.0.0.2:" in second
+
+
+def test_a_preview_carries_only_what_moves(client, case_json):
+    """While dragging, the answer has the contour and the final mesh's points, not the initial data or the cells."""
+    with client.websocket_connect("/ws", headers=ORIGIN) as ws:
+        ws.send_text(request(case_json, 1, ratio=0.8))
+        full = receive(ws)
+        ws.send_text(request(case_json, 2, final=False, ratio=0.78))
+        preview = receive(ws)
+    assert full["final"] and "initial_contour" in full and "cells" in full["mesh_final"]
+    assert not preview["final"] and preview["seq"] == 2
+    assert "initial_contour" not in preview and "mesh_initial" not in preview and "cells" not in preview["mesh_final"]
+    assert preview["mesh_final"]["points"].shape == full["mesh_final"]["points"].shape
+    assert preview["contour"].shape[1] == 2 and np.all(np.isfinite(preview["contour"]))
+    assert abs(preview["area_final"] - 0.78 * preview["area_initial"]) <= 1e-9 * preview["area_initial"]

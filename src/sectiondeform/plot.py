@@ -38,7 +38,7 @@ def draw_mesh(ax, mesh: MeshData, **style) -> None:
     """Draw a mesh's element edges on a matplotlib axes."""
     from matplotlib.collections import PolyCollection
 
-    corners = {"quad": 4, "triangle": 3, "triangle6": 3}.get(mesh.kind, mesh.cells.shape[1])
+    corners = {"quad": 4, "quad8": 4, "triangle": 3, "triangle6": 3}.get(mesh.kind, mesh.cells.shape[1])
     polys = mesh.points[mesh.cells[:, :corners]]
     kw = {"facecolors": "none", "edgecolors": "0.55", "linewidths": 0.4}
     kw.update(style)

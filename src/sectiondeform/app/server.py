@@ -9,9 +9,9 @@ Routes
 ``WS /ws``
     Live deformation. The page sends ``{"seq", "final", "case", "model",
     "ratio"}``; only the latest pending request is computed (coalescing); the
-    server answers ``{"type": "result", "seq", ...}`` (point arrays as base64
-    float64, see :func:`packed`) or ``{"type": "refused",
-    "seq", "message"}`` and keeps running.
+    server answers a result as one binary frame (a JSON header and the point
+    arrays as raw float64, see :func:`framed`), a refusal as the text
+    ``{"type": "refused", "seq", "message"}``, and keeps running.
 ``POST /api/open``
     An uploaded case file (.json, .dxf, .svg, multipart field ``file``),
     read in a private temporary folder: the case as JSON.
@@ -28,8 +28,8 @@ page is ever read or written.
 from __future__ import annotations
 
 import asyncio
-import base64
 import json
+import struct
 import tempfile
 from importlib import resources
 from pathlib import Path
@@ -69,12 +69,54 @@ def origin_ok(headers, hosts: frozenset) -> bool:
     return host in hosts and origin is not None and origin.lower() == f"http://{host}"
 
 
-def packed(value):
-    """``value`` with each float64 array as ``{"f64": base64 of its bytes, little-endian}``: exact and fast to send."""
+def framed(reply: dict) -> bytes:
+    """A reply as one binary WebSocket frame: exact, and nothing to parse but a small header.
+
+    Layout: a little-endian uint32 ``n``; ``n`` bytes of UTF-8 JSON (the
+    reply, each float64 array replaced by ``{"f64": [offset, count, columns]}``,
+    padded with spaces so that the data starts on an 8-byte boundary); then
+    the arrays' little-endian float64 values, ``offset`` counting bytes from
+    the start of the data.
+
+    Parameters
+    ----------
+    reply : dict
+        JSON values and ``(n, 2)`` float64 arrays, at any depth of dicts.
+
+    Returns
+    -------
+    bytes
+    """
+    blobs: list[bytes] = []
+    size = 0
+
+    def walk(value):
+        nonlocal size
+        if isinstance(value, np.ndarray):
+            data = np.ascontiguousarray(value, dtype="<f8")
+            ref = {"f64": [size, int(data.size), int(data.shape[1]) if data.ndim == 2 else 1]}
+            blobs.append(data.tobytes())
+            size += data.nbytes
+            return ref
+        if isinstance(value, dict):
+            return {k: walk(v) for k, v in value.items()}
+        if isinstance(value, list) and value and isinstance(value[0], dict):  # an assembly's bodies
+            return [walk(v) for v in value]
+        return value
+
+    header = json.dumps(walk(reply), separators=(",", ":")).encode("utf-8")
+    header += b" " * ((-(4 + len(header))) % 8)
+    return struct.pack("<I", len(header)) + header + b"".join(blobs)
+
+
+def packed_json(value):
+    """``value`` with each float64 array as a list of ``[x, y]`` pairs (for the page's plain JSON answers)."""
     if isinstance(value, np.ndarray):
-        return {"f64": base64.b64encode(np.ascontiguousarray(value, dtype="<f8").tobytes()).decode("ascii")}
+        return value.tolist()
     if isinstance(value, dict):
-        return {k: packed(v) for k, v in value.items()}
+        return {k: packed_json(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [packed_json(v) for v in value]
     return value
 
 
@@ -111,6 +153,13 @@ def _read_upload(name: str, data: bytes, form: dict) -> dict:
             except ValueError:
                 raise CaseError(key, f"expected a number, got {form[key]!r}") from None
     report: list[str] = []
+    if ext == ".json":
+        try:
+            data_json = json.loads(data.decode("utf-8"))
+        except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+            raise CaseError("file", f"not valid JSON ({exc})".splitlines()[0]) from None
+        if engine.is_assembly(data_json):
+            return _assembly_opened(data_json)
     with tempfile.TemporaryDirectory(prefix="sectiondeform-") as tmp:
         path = Path(tmp) / f"upload{ext}"  # the server's own name, never the page's
         path.write_bytes(data)
@@ -127,11 +176,32 @@ def _read_upload(name: str, data: bytes, form: dict) -> dict:
     return {"case": engine.case_json_of(case), "model": engine.case_model(case), "report": report}
 
 
+def _assembly_opened(case_json: dict) -> dict:
+    """An assembly for the page: checked by the library, or, if it refuses it, its outline and the refusal.
+
+    The page then shows the bodies as drawn and the library's message (a
+    model or a feature it does not support yet); the same refusal comes
+    back for each deformation until the case or the library changes.
+    """
+    report: list[str] = []
+    try:
+        case_json = engine.case_json_of(engine.case_from_json(case_json))
+    except SectionDeformError as exc:
+        report.append(f"the library refuses this assembly: {exc}")
+    return {"case": case_json, "model": engine.model_of_json(case_json), "report": report,
+            "outline": engine.outline(case_json)}
+
+
 def _write(case_json: dict, model: str, what: str, ext: str) -> bytes:
     """The bytes of a case or result file, written in a private temporary folder."""
     from ..case import case_from_dict
     from ..io import write_case, write_result
 
+    if engine.is_assembly(case_json):
+        if what != "case" or ext != ".json":
+            raise CaseError("save", f"the page saves an assembly as case.json only, not {what}{ext}; "
+                                    "deform it with the deform command for its result")
+        return json.dumps(engine.case_json_of(engine.case_from_json(case_json)), indent=1).encode("utf-8")
     with tempfile.TemporaryDirectory(prefix="sectiondeform-") as tmp:
         path = Path(tmp) / f"out{ext}"
         if what == "case":
@@ -154,7 +224,10 @@ def create_app(case_json: dict, hosts, message_limit: int = MAX_MESSAGE, upload_
         Largest WebSocket message (characters) and request body (bytes).
     """
     hosts = frozenset(h.lower() for h in hosts)
-    start_model = engine.case_model(engine.case_from_json(case_json))
+    start_model = engine.model_of_json(case_json)
+    first = {"case": case_json, "model": start_model, "models": list(engine.MODELS)}
+    if engine.is_assembly(case_json):
+        first["outline"] = engine.outline(case_json)
 
     async def index(request: Request):
         if not host_ok(request.headers, hosts):
@@ -164,7 +237,7 @@ def create_app(case_json: dict, hosts, message_limit: int = MAX_MESSAGE, upload_
     async def start(request: Request):
         if not host_ok(request.headers, hosts):
             return _refusal(400, "unknown host")
-        return JSONResponse({"case": case_json, "model": start_model, "models": list(engine.MODELS)})
+        return JSONResponse(packed_json(first))
 
     async def open_file(request: Request):
         if not origin_ok(request.headers, hosts):
@@ -187,7 +260,7 @@ def create_app(case_json: dict, hosts, message_limit: int = MAX_MESSAGE, upload_
             return _refusal(422, str(exc))
         except Exception as exc:  # noqa: BLE001 - any unreadable upload is the user's file, not a crash
             return _refusal(422, f"file: cannot be read ({type(exc).__name__}: {exc})".splitlines()[0])
-        return JSONResponse(out)
+        return JSONResponse(packed_json(out))
 
     async def save(request: Request):
         if not origin_ok(request.headers, hosts):
@@ -259,17 +332,23 @@ def create_app(case_json: dict, hosts, message_limit: int = MAX_MESSAGE, upload_
                 if msg["seq"] <= last:
                     continue
                 last = msg["seq"]
+                args = (cache, msg.get("case"), msg.get("model", "paper"), msg.get("ratio"), bool(msg.get("final")))
                 try:
-                    out = await asyncio.to_thread(engine.answer, cache, msg.get("case"), msg.get("model", "paper"),
-                                                  msg.get("ratio"), bool(msg.get("final")))
-                    reply = {"type": "result", "seq": msg["seq"], **packed(out)}
+                    if args[-1] or not cache.ready(args[1], args[2]):
+                        out = await asyncio.to_thread(engine.answer, *args)
+                    else:  # a preview of a prepared section: about a millisecond, not worth a thread hop
+                        out = engine.answer(*args)
+                    reply = framed({"type": "result", "seq": msg["seq"], **out})
                 except SectionDeformError as exc:
                     reply = {"type": "refused", "seq": msg["seq"], "message": str(exc)}
                 except Exception as exc:  # noqa: BLE001 - the server keeps running whatever one request does
                     reply = {"type": "refused", "seq": msg["seq"],
                              "message": f"internal error: {type(exc).__name__}: {exc}".splitlines()[0]}
                 try:
-                    await ws.send_json(reply)
+                    if isinstance(reply, bytes):
+                        await ws.send_bytes(reply)
+                    else:
+                        await ws.send_json(reply)
                 except (WebSocketDisconnect, RuntimeError):
                     return
 

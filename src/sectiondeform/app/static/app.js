@@ -4,11 +4,17 @@
 const $ = (id) => document.getElementById(id);
 const svg = $("view");
 const NS = "http://www.w3.org/2000/svg";
-const clone = (x) => JSON.parse(JSON.stringify(x));
+const clone = (x) => (x === undefined ? undefined : JSON.parse(JSON.stringify(x)));
+const isAssembly = () => Boolean(state.case && state.case.format === "section-case/2");
+// an assembly's bodies, each in its own colour
+const COLOURS = ["#1a4fa8", "#c2571a", "#2a8a3a", "#8a2aa8", "#a8891a", "#1a8aa8", "#a81a4f", "#555"];
+const colour = (i) => COLOURS[i % COLOURS.length];
 
 const state = {
   opened: null,        // the case as opened (for reset)
-  case: null,          // the case being edited (section-case/1)
+  case: null,          // the case being edited (section-case/1, or section-case/2: an assembly)
+  body: 0,             // an assembly's body whose law the slider sets
+  outline: null,       // an assembly's bodies as drawn, before (or without) any answer
   model: "paper",
   ratio: 0.8,
   seq: 0,              // last request sent
@@ -17,6 +23,7 @@ const state = {
   sentAt: new Map(),   // seq -> performance.now() once sent
   result: null,        // last good answer
   view: { s: 1, tx: 0, ty: 0 },
+  q: 1e3,              // path rounding: coordinates kept to 1/q world units (see applyView)
   undo: [],
   selected: null,      // {curve: "target"|"upper", index}
   drag: null,
@@ -26,17 +33,36 @@ window.sdState = state;
 
 // ---- drawing -----------------------------------------------------------
 
-const pathOf = (pts, close) => pts.length ? "M" + pts.map((p) => p[0] + " " + p[1]).join("L") + (close ? "Z" : "") : "";
+// Path coordinates are rounded to a twentieth of a screen pixel (state.q: a power of ten per world unit):
+// short strings, quick to build and to parse, and no visible difference.
+const round = (v) => Math.round(v * state.q) / state.q;
 
+function pathOf(pts, close) {
+  if (!pts || !pts.length) return "";
+  let d = "M" + round(pts[0][0]) + " " + round(pts[0][1]);
+  for (let i = 1; i < pts.length; i++) d += "L" + round(pts[i][0]) + " " + round(pts[i][1]);
+  return close ? d + "Z" : d;
+}
+
+// A mesh as one path: each cell a closed polygon of its nodes. Points are flat x, y (Float64Array).
 function meshPath(mesh) {
-  if (!mesh) return "";
-  const P = mesh.points;
-  return mesh.cells.map((c) => "M" + c.map((i) => P[i][0] + " " + P[i][1]).join("L") + "Z").join("");
+  if (!mesh || !mesh.cells || !mesh.points) return "";
+  const P = mesh.points, n = P.length / 2, S = new Array(n);
+  for (let i = 0; i < n; i++) S[i] = round(P[2 * i]) + " " + round(P[2 * i + 1]);
+  let d = "";
+  for (const c of mesh.cells) {
+    d += "M" + S[c[0]];
+    for (let j = 1; j < c.length; j++) d += "L" + S[c[j]];
+    d += "Z";
+  }
+  return d;
 }
 
 function applyView() {
   const v = state.view;
   $("world").setAttribute("transform", `matrix(${v.s} 0 0 ${-v.s} ${v.tx} ${v.ty})`);
+  const q = 10 ** Math.max(0, Math.ceil(Math.log10(Math.max(20 * v.s, 1e-300))));
+  if (q !== state.q && Number.isFinite(q)) { state.q = q; drawResult(true); drawEdits(false); }
   drawHandles();
 }
 
@@ -47,8 +73,12 @@ function toWorld(evt) {
 }
 
 function fit() {
-  const pts = [...Geo.points(state.case.target), ...(state.result ? state.result.initial_contour : Geo.points(state.case.upper))];
-  if (state.result) pts.push(...state.result.contour);
+  const pts = [...Geo.points(state.case.target)];
+  const res = state.result;
+  if (res && res.assembly) res.bodies.forEach((b) => pts.push(...b.initial_contour, ...b.contour));
+  else if (res) pts.push(...res.initial_contour, ...res.contour);
+  else if (state.outline) state.outline.forEach((b) => pts.push(...b.contour));
+  else if (state.case.upper) pts.push(...Geo.points(state.case.upper));
   const xs = pts.map((p) => p[0]), ys = pts.map((p) => p[1]);
   const x0 = Math.min(...xs), x1 = Math.max(...xs), y0 = Math.min(...ys), y1 = Math.max(...ys);
   const r = svg.getBoundingClientRect();
@@ -59,8 +89,10 @@ function fit() {
 
 function drawResult(all) {
   const res = state.result;
-  if (!res) return;
+  if (!res) { drawOutline(); return; }
   const show = $("show-mesh").checked;
+  if (res.assembly) { drawBodies(res, all, show); return; }
+  if (all) $("bodies").replaceChildren();
   // the initial section and mesh change only with the section: redrawn only then
   if (all || res.initialSent) {
     $("initial").setAttribute("d", pathOf(res.initial_contour, true));
@@ -71,10 +103,59 @@ function drawResult(all) {
   $("mesh-final").setAttribute("d", show ? meshPath(res.mesh_final) : "");
 }
 
-function drawEdits() {
+// An assembly's bodies: one group per body (initial, its mesh, deformed, its mesh), in the body's colour.
+function bodyPaths(n) {
+  const g = $("bodies");
+  if (g.children.length !== n) {
+    g.replaceChildren();
+    for (let i = 0; i < n; i++) {
+      const b = document.createElementNS(NS, "g");
+      b.setAttribute("class", "body");
+      b.dataset.body = i;
+      b.style.setProperty("--c", colour(i));
+      for (const k of ["initial", "mesh-initial", "deformed", "mesh-final"]) {
+        const p = document.createElementNS(NS, "path");
+        p.setAttribute("class", "body-" + k);
+        b.appendChild(p);
+      }
+      g.appendChild(b);
+    }
+    for (const id of ["initial", "mesh-initial", "deformed", "mesh-final"]) $(id).setAttribute("d", "");
+  }
+  return [...g.children].map((b) => b.children);
+}
+
+function drawBodies(res, all, show) {
+  const paths = bodyPaths(res.bodies.length);
+  res.bodies.forEach((b, i) => {
+    const [initial, meshInitial, deformed, meshFinal] = paths[i];
+    if (all || res.initialSent) {
+      initial.setAttribute("d", pathOf(b.initial_contour, true));
+      meshInitial.setAttribute("d", show ? meshPath(b.mesh_initial) : "");
+    }
+    deformed.setAttribute("d", pathOf(b.contour, true));
+    meshFinal.setAttribute("d", show ? meshPath(b.mesh_final) : "");
+  });
+  $("target").setAttribute("d", pathOf(res.lower, false));
+}
+
+// An assembly the library has not deformed (yet, or at all): its bodies as drawn.
+function drawOutline() {
+  if (!state.outline) { $("bodies").replaceChildren(); return; }
+  const paths = bodyPaths(state.outline.length);
+  state.outline.forEach((b, i) => {
+    paths[i][0].setAttribute("d", pathOf(b.contour, true));
+    for (let k = 1; k < 4; k++) paths[i][k].setAttribute("d", "");
+  });
+  $("target").setAttribute("d", "");
+}
+
+function drawEdits(handles = true) {
+  if (!state.case) return;
   $("target-polygon").setAttribute("d", pathOf(Geo.points(state.case.target), false));
-  $("upper-polygon").setAttribute("d", state.case.upper.bspline ? pathOf(Geo.points(state.case.upper), false) : "");
-  drawHandles();
+  const up = state.case.upper;
+  $("upper-polygon").setAttribute("d", up && up.bspline ? pathOf(Geo.points(up), false) : "");
+  if (handles) drawHandles();
 }
 
 // Handles: the target's points (red), the upper curve's inner points (green), whole-target handles.
@@ -82,8 +163,8 @@ function handleList() {
   const list = [];
   const tp = Geo.points(state.case.target);
   tp.forEach((p, i) => list.push({ curve: "target", index: i, p }));
-  const up = Geo.points(state.case.upper);
-  if (!state.case.upper.arc) up.forEach((p, i) => { if (i > 0 && i < up.length - 1) list.push({ curve: "upper", index: i, p }); });
+  const up = state.case.upper ? Geo.points(state.case.upper) : [];   // an assembly's bodies are not edited here
+  if (state.case.upper && !state.case.upper.arc) up.forEach((p, i) => { if (i > 0 && i < up.length - 1) list.push({ curve: "upper", index: i, p }); });
   const f = Geo.frame(tp);
   const low = state.result ? state.result.lower : tp;    // the whole-curve handles hang below the target's middle
   const mid = low[Math.floor(low.length / 2)];
@@ -128,12 +209,54 @@ function drawHandles() {
 
 const fmt = (v, d = 4) => (v === null || v === undefined ? "—" : Number(v).toPrecision(d + 2));
 
+const expo = (v) => (v === null || v === undefined ? "—" : Number(v).toExponential(2));
+
+// Area readouts, or volumes for a body of revolution (sums over an assembly's bodies, its worst law error).
+function quantityLabels(volume) {
+  const what = volume ? "volume" : "area";
+  $("l-initial").textContent = "initial " + what;
+  $("l-target").textContent = "target " + what;
+  $("l-final").textContent = "final " + what;
+  $("ratio-label").textContent = what + " ratio";
+}
+
+function showBodies(res, u) {
+  const table = $("bodies-readout");
+  table.hidden = !res.assembly;
+  if (!res.assembly) return;
+  const vol = res.revolution;
+  const unit = u + (vol ? "³" : "²");
+  $("bodies-head").textContent = vol ? "volume final / target" : "area final / target";
+  const rows = res.bodies.map((b, i) => {
+    const tr = document.createElement("tr");
+    tr.dataset.body = i;
+    const cells = [b.name,
+      vol ? `${fmt(b.volume_final)} / ${fmt(b.volume_target)} ${unit}` : `${fmt(b.area_final)} / ${fmt(b.area_target)} ${unit}`,
+      expo(vol ? b.volume_error : b.relative_error), fmt(b.jacobian_min, 3)];
+    cells.forEach((c, k) => {
+      const td = document.createElement("td");
+      td.textContent = c;
+      if (k === 0) td.style.borderLeft = `0.6em solid ${colour(i)}`;
+      tr.appendChild(td);
+    });
+    return tr;
+  });
+  $("bodies-rows").replaceChildren(...rows);
+}
+
 function showReadout(res, roundtrip) {
   const u = state.case.units || "";
-  $("r-initial").textContent = fmt(res.area_initial) + " " + u + "²";
-  $("r-target").textContent = fmt(res.area_target) + " " + u + "²";
-  $("r-final").textContent = fmt(res.area_final) + " " + u + "²";
-  $("r-error").textContent = Number(res.relative_error).toExponential(2);
+  const vol = Boolean(res.revolution);
+  const sum = (k) => res.bodies.reduce((s, b) => s + b[k], 0);
+  quantityLabels(vol);
+  const [q0, qt, q1] = vol ? [sum("volume_initial"), sum("volume_target"), sum("volume_final")]
+                           : [res.area_initial, res.area_target, res.area_final];
+  const unit = " " + u + (vol ? "³" : "²");
+  $("r-initial").textContent = fmt(q0) + unit;
+  $("r-target").textContent = fmt(qt) + unit;
+  $("r-final").textContent = fmt(q1) + unit;
+  $("r-error").textContent = expo(res.relative_error);
+  showBodies(res, u);
   $("r-jacobian").textContent = fmt(res.jacobian_min, 3);
   $("r-info").textContent = Object.entries(res.info).map(([k, v]) => `${k} ${typeof v === "number" ? fmt(v, 3) : v}`).join(", ") || "—";
   $("r-compute").textContent = res.compute_ms.toFixed(2) + " ms";
@@ -143,7 +266,11 @@ function showReadout(res, roundtrip) {
   d.seq = res.seq; d.final = res.final ? "1" : "0"; d.model = res.model;
   d.areaInitial = res.area_initial; d.areaTarget = res.area_target; d.areaFinal = res.area_final;
   d.relativeError = res.relative_error; d.jacobianMin = res.jacobian_min;
-  d.contourHash = res.contour.length + ":" + res.contour.reduce((s, p) => s + p[0] * 1.3 + p[1] * 0.7, 0);
+  const contours = res.assembly ? res.bodies.map((b) => b.contour) : [res.contour];
+  d.contourHash = contours.map((c) => c.length + ":" + c.reduce((s, p) => s + p[0] * 1.3 + p[1] * 0.7, 0)).join(",");
+  d.bodies = res.assembly ? JSON.stringify(res.bodies.map((b) => ({
+    name: b.name, areaInitial: b.area_initial, areaTarget: b.area_target, areaFinal: b.area_final,
+    relativeError: b.relative_error, volumeError: b.volume_error }))) : "";
   d.roundtripMs = roundtrip; d.computeMs = res.compute_ms;
 }
 
@@ -160,7 +287,11 @@ let queued = null;
 
 function connect() {
   socket = new WebSocket(`ws://${location.host}/ws`);
-  socket.onmessage = (e) => { const t = performance.now(); onAnswer(JSON.parse(e.data), t); };
+  socket.binaryType = "arraybuffer";
+  socket.onmessage = (e) => {
+    const t = performance.now();
+    onAnswer(typeof e.data === "string" ? JSON.parse(e.data) : unframe(e.data), t);
+  };
   socket.onopen = () => { if (queued) { socket.send(queued); queued = null; } };
   socket.onclose = () => { message("connection to the server lost; reload the page when it runs again", "error"); };
 }
@@ -168,32 +299,43 @@ function connect() {
 function request(final, t0) {
   state.seq += 1;
   state.sent.set(state.seq, t0 === undefined ? performance.now() : t0);
-  state.case.law = { area_ratio: state.ratio };
+  if (!isAssembly()) state.case.law = { area_ratio: state.ratio };   // an assembly's laws are its bodies' (setRatio)
   const text = JSON.stringify({ seq: state.seq, final, case: state.case, model: state.model, ratio: state.ratio });
   if (socket.readyState === WebSocket.OPEN) socket.send(text); else queued = text;
   state.sentAt.set(state.seq, performance.now());
   svg.dataset.pending = state.seq;
 }
 
-// Point arrays come as {f64: base64 of little-endian float64 x, y pairs}: back to [[x, y], ...].
-function unpack(v) {
-  if (v && typeof v === "object" && !Array.isArray(v)) {
-    if (typeof v.f64 === "string") {
-      const bytes = Uint8Array.from(atob(v.f64), (c) => c.charCodeAt(0));
-      const f = new Float64Array(bytes.buffer);
-      const out = new Array(f.length / 2);
-      for (let i = 0; i < out.length; i++) out[i] = [f[2 * i], f[2 * i + 1]];
-      return out;
+// A result comes as one binary frame: uint32 n, n bytes of JSON header, then float64 data (8-byte aligned);
+// each array of the header is {f64: [byte offset in the data, count, columns]}. Arrays become Float64Arrays
+// (flat x, y pairs), read in place.
+const utf8 = new TextDecoder();
+function unframe(buf) {
+  const n = new DataView(buf).getUint32(0, true);
+  const base = 4 + n;
+  const head = JSON.parse(utf8.decode(new Uint8Array(buf, 4, n)));
+  const arrays = (v) => {
+    if (Array.isArray(v)) {   // an assembly's bodies; not the meshes' cells
+      if (v.length && v[0] && typeof v[0] === "object" && !Array.isArray(v[0])) v.forEach((x, i) => { v[i] = arrays(x); });
+      return v;
     }
-    const o = {};
-    for (const k in v) o[k] = unpack(v[k]);
-    return o;
-  }
-  return v;
+    if (!v || typeof v !== "object") return v;
+    if (Array.isArray(v.f64)) return new Float64Array(buf, base + v.f64[0], v.f64[1]);
+    for (const k in v) v[k] = arrays(v[k]);
+    return v;
+  };
+  return arrays(head);
 }
 
-function onAnswer(packedMsg, received) {
-  const msg = unpack(packedMsg);
+// Flat x, y values as [[x, y], ...].
+function pairs(f) {
+  if (!f) return f;
+  const out = new Array(f.length / 2);
+  for (let i = 0; i < out.length; i++) out[i] = [f[2 * i], f[2 * i + 1]];
+  return out;
+}
+
+function onAnswer(msg, received) {
   if (msg.type === "dropped") { state.sent.delete(msg.seq); return; }
   if (msg.seq !== null && msg.seq <= state.shown) return;          // stale: a newer answer is drawn
   const t0 = state.sent.get(msg.seq), t1 = state.sentAt.get(msg.seq);
@@ -203,13 +345,33 @@ function onAnswer(packedMsg, received) {
   if (msg.type === "refused") {
     svg.classList.add("refused");
     svg.dataset.refusedSeq = msg.seq;
-    message("refused: " + msg.message + " (the last good shape is kept)", "error");
+    message("refused: " + msg.message + (state.result ? " (the last good shape is kept)" : ""), "error");
     return;
   }
   svg.classList.remove("refused");
-  msg.initialSent = Boolean(msg.mesh_initial);   // sent with each full deformation and each new section
-  if (!msg.mesh_initial && state.result) msg.mesh_initial = state.result.mesh_initial;
-  if (!msg.mesh_final.cells && state.result) msg.mesh_final.cells = state.result.mesh_final.cells;
+  // a preview sends only what moves; the rest comes with each full deformation and each new section
+  const last = state.result;
+  msg.lower = pairs(msg.lower);
+  if (msg.assembly) {
+    msg.initialSent = Boolean(msg.bodies[0].initial_contour);
+    const before = last && last.assembly && last.bodies.length === msg.bodies.length ? last.bodies : null;
+    msg.bodies.forEach((b, i) => {
+      b.contour = pairs(b.contour); b.initial_contour = pairs(b.initial_contour);
+      if (!msg.initialSent && before) {
+        b.initial_contour = before[i].initial_contour;
+        b.mesh_initial = before[i].mesh_initial;
+        if (b.mesh_final && before[i].mesh_final) b.mesh_final.cells = before[i].mesh_final.cells;
+      }
+    });
+  } else {
+    msg.initialSent = Boolean(msg.initial_contour);
+    for (const k of ["contour", "initial_contour"]) msg[k] = pairs(msg[k]);
+  }
+  if (!msg.assembly && !msg.initialSent && last) {
+    msg.initial_contour = last.initial_contour;
+    msg.mesh_initial = last.mesh_initial;
+    if (msg.mesh_final && last.mesh_final) msg.mesh_final.cells = last.mesh_final.cells;
+  }
   state.result = msg;
   drawResult();
   if (!state.drag) drawHandles();
@@ -226,7 +388,10 @@ function onAnswer(packedMsg, received) {
 
 // ---- editing -----------------------------------------------------------
 
-function snapshot() { return { target: clone(state.case.target), upper: clone(state.case.upper), ratio: state.ratio }; }
+function snapshot() {
+  return { target: clone(state.case.target), upper: clone(state.case.upper), ratio: state.ratio,
+           laws: isAssembly() ? state.case.bodies.map((b) => clone(b.law)) : null };
+}
 
 function setPoints(curve, P) {
   const made = Geo.withPoints(state.case[curve], P);
@@ -270,8 +435,8 @@ svg.addEventListener("pointermove", (e) => {
   }
   if (!setPoints(d.curve, P)) return;
   d.moved = true;
+  request(false, t0);   // first: the server computes while the page redraws the edited curve
   drawEdits();
-  request(false, t0);
 });
 
 function endDrag(e) {
@@ -296,14 +461,38 @@ svg.addEventListener("wheel", (e) => {
 function undo() {
   const s = state.undo.pop();
   if (!s) return;
-  state.case.target = s.target; state.case.upper = s.upper; setRatio(s.ratio);
+  state.case.target = s.target;
+  if (s.laws) { s.laws.forEach((law, i) => { state.case.bodies[i].law = law; }); showRatio(); }
+  else { state.case.upper = s.upper; setRatio(s.ratio); }
   drawEdits(); request(true);
 }
 
+// The law key of an assembly's body: its own, else the volume ratio for a body of revolution.
+function lawKey(body) {
+  const own = body.law && Object.keys(body.law)[0];
+  return own === "area_ratio" || own === "volume_ratio" ? own : (state.case.revolution ? "volume_ratio" : "area_ratio");
+}
+
+// The slider's ratio: the case's law, or the law of the assembly's selected body.
 function setRatio(r) {
   state.ratio = r;
   $("ratio").value = r;
   $("ratio-value").value = Number(r).toFixed(3);
+  if (isAssembly()) {
+    const body = state.case.bodies[state.body];
+    body.law = { [lawKey(body)]: r };
+  }
+}
+
+// Show the selected body's ratio (and its kind) on the slider, changing nothing.
+function showRatio() {
+  const body = state.case.bodies[state.body];
+  const key = lawKey(body);
+  const r = body.law && typeof body.law[key] === "number" ? body.law[key] : 1;
+  state.ratio = r;
+  $("ratio").value = r;
+  $("ratio-value").value = Number(r).toFixed(3);
+  $("ratio-label").textContent = key === "volume_ratio" ? "volume ratio" : "area ratio";
 }
 
 document.addEventListener("keydown", (e) => {
@@ -326,11 +515,12 @@ $("ratio").addEventListener("input", (e) => { setRatio(Number(e.target.value)); 
 $("ratio").addEventListener("change", () => request(true));
 $("ratio-value").addEventListener("change", (e) => {
   const r = Number(e.target.value);
-  if (!(r > 0)) { message("area ratio: must be a number > 0", "error"); return; }
+  if (!(r > 0)) { message($("ratio-label").textContent + ": must be a number > 0", "error"); return; }
   state.undo.push(snapshot());
   setRatio(r);
   request(true);
 });
+$("body").addEventListener("change", (e) => { state.body = Number(e.target.value); showRatio(); });
 $("model").addEventListener("change", (e) => { state.model = e.target.value; request(true); });
 $("show-mesh").addEventListener("change", () => drawResult(true));
 $("undo").addEventListener("click", undo);
@@ -345,12 +535,26 @@ function load(data, refit = true) {
   state.case = clone(data.case);
   state.model = state.openedModel;
   $("model").value = state.model;
-  setRatio(data.case.law && data.case.law.area_ratio !== undefined ? data.case.law.area_ratio : 0.8);
+  state.body = 0;
+  state.outline = data.outline || null;
+  const bodies = isAssembly() ? state.case.bodies : [];
+  $("body").replaceChildren(...bodies.map((b, i) => new Option(b.name || `body ${i}`, i)));
+  $("body-label").hidden = !bodies.length;
+  svg.classList.remove("refused");
+  if (bodies.length) { showRatio(); quantityLabels(Boolean(state.case.revolution)); }
+  else {
+    setRatio(data.case.law && data.case.law.area_ratio !== undefined ? data.case.law.area_ratio : 0.8);
+    quantityLabels(false);
+  }
+  $("bodies-readout").hidden = true;
+  for (const id of ["initial", "target", "final", "error", "jacobian", "info", "compute", "roundtrip", "state"]) $("r-" + id).textContent = "—";
   state.undo = []; state.selected = null;
   $("case-name").textContent = data.case.name || "";
   state.result = null;
   state.fitPending = refit;
+  drawResult(true);
   drawEdits();
+  if (refit && state.outline) fit();
   request(true);
 }
 

@@ -1,0 +1,155 @@
+"""The interactive page with an assembly (section-case/2) in Chromium: bodies in colour, per-body readouts, refusals.
+
+Same set-up as test_app_browser.py (skips without Chromium or Playwright,
+unless ``SECTIONDEFORM_REQUIRE_BROWSER=1``); the server starts on the
+two-layer strip.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from test_app_browser import LAUNCH_ARGS, _missing, centre, chromium_path, shown, wait_for
+
+from sectiondeform.assembly import assembly_from_dict
+from sectiondeform.errors import SectionDeformError
+
+CASES = Path(__file__).parent / "data" / "cases" / "v2"
+STRIP = CASES / "two-layer-strip.json"
+DRUM = CASES / "tread-on-drum.json"
+
+
+@pytest.fixture(scope="module")
+def server():
+    why = _missing()
+    if why:
+        if os.environ.get("SECTIONDEFORM_REQUIRE_BROWSER") == "1":
+            pytest.fail(f"browser tests required but cannot run: {why}")
+        pytest.skip(why)
+    proc = subprocess.Popen([sys.executable, "-m", "sectiondeform", "serve", str(STRIP), "--port", "0", "--no-browser"],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    line = proc.stdout.readline()
+    match = re.search(r"(http://\S+/)", line)
+    if not match:
+        proc.kill()
+        pytest.fail(f"the server did not start: {line}{proc.stdout.read()}")
+    yield match.group(1)
+    proc.terminate()
+    proc.wait(timeout=10)
+
+
+@pytest.fixture(scope="module")
+def browser(server):
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        b = p.chromium.launch(executable_path=chromium_path(), args=LAUNCH_ARGS)
+        yield b
+        b.close()
+
+
+@pytest.fixture()
+def page(browser, server):
+    context = browser.new_context(viewport={"width": 1200, "height": 700})
+    page = context.new_page()
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(server)
+    page.wait_for_selector("#view[data-final='1']", timeout=60_000)
+    yield page
+    context.close()
+    assert not errors, errors
+
+
+def bodies(d: dict) -> list[dict]:
+    return json.loads(d["bodies"])
+
+
+def test_each_body_in_its_own_colour_with_its_readouts(page):
+    case = json.loads(STRIP.read_text())
+    d = shown(page)
+    got = bodies(d)
+    assert [b["name"] for b in got] == [b["name"] for b in case["bodies"]]
+    for b, case_body in zip(got, case["bodies"]):
+        assert b["areaTarget"] == pytest.approx(case_body["law"]["area_ratio"] * b["areaInitial"], rel=1e-12)
+        assert abs(b["areaFinal"] - b["areaTarget"]) <= 1e-9 * b["areaTarget"]
+    groups = page.locator("#bodies g.body")
+    assert groups.count() == 2
+    strokes = {groups.nth(i).locator(".body-deformed").evaluate("e => getComputedStyle(e).stroke") for i in range(2)}
+    assert len(strokes) == 2  # two colours
+    assert all(groups.nth(i).locator(".body-deformed").get_attribute("d").count("L") > 50 for i in range(2))
+    rows = page.locator("#bodies-rows tr")
+    assert rows.count() == 2 and "backing" in rows.nth(0).inner_text() and "cover" in rows.nth(1).inner_text()
+    assert page.locator("#body-label").is_visible()
+
+
+def test_dragging_the_target_moves_every_body_on_its_law(page):
+    before = shown(page)
+    x, y = centre(page, 'circle[data-curve=target][data-index="1"]')
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for k in range(1, 6):
+        page.mouse.move(x, y + 4 * k)
+    d = wait_for(page, f"d.pending === d.seq && d.seq > {before['seq']}")
+    page.mouse.up()
+    d = wait_for(page, f"d.final === '1' && d.pending === d.seq && d.seq > {d['seq']}")
+    assert d["contourHash"] != before["contourHash"]
+    for b in bodies(d):
+        assert abs(b["areaFinal"] - b["areaTarget"]) <= 1e-9 * b["areaTarget"]
+
+
+def test_the_slider_sets_the_selected_bodys_law(page):
+    page.select_option("#body", "1")
+    assert page.locator("#ratio-value").input_value() == "0.900"
+    seq = shown(page)["seq"]
+    page.locator("#ratio-value").fill("0.85")
+    page.locator("#ratio-value").press("Enter")
+    d = wait_for(page, f"d.seq > {seq} && d.final === '1' && d.pending === d.seq")
+    backing, cover = bodies(d)
+    assert cover["areaTarget"] == pytest.approx(0.85 * cover["areaInitial"], rel=1e-12)
+    assert backing["areaTarget"] == pytest.approx(0.95 * backing["areaInitial"], rel=1e-12)  # unchanged
+    page.select_option("#body", "0")
+    assert page.locator("#ratio-value").input_value() == "0.950"
+
+
+def test_the_hyperelastic_model_is_refused_and_the_last_shape_stays(page):
+    good = shown(page)
+    page.select_option("#model", "hyperelastic")
+    page.wait_for_selector("#message[data-kind=error]")
+    assert "does not deform assemblies" in page.locator("#message").inner_text()
+    d = wait_for(page, "d.refusedSeq === d.pending")
+    assert d["contourHash"] == good["contourHash"] and d["model"] == "paper"  # the last good shape stays
+    assert page.locator("#bodies g.body .body-deformed").first.get_attribute("d").count("L") > 50
+    page.select_option("#model", "paper")
+    wait_for(page, f"d.seq > {d['refusedSeq']} && d.final === '1'")
+    page.wait_for_selector("#message[data-kind=none]", state="attached")
+
+
+def test_a_body_of_revolution_opens_with_volumes_and_the_librarys_refusal(page):
+    try:
+        assembly_from_dict(json.loads(DRUM.read_text()))
+        refusal = None
+    except SectionDeformError as exc:
+        refusal = str(exc)
+    page.set_input_files("#file", str(DRUM))
+    page.wait_for_function("document.getElementById('case-name').textContent === 'tread-on-drum'")
+    assert page.locator("#ratio-label").inner_text() == "volume ratio"
+    assert page.locator("#l-final").inner_text() == "final volume"
+    assert page.locator("#ratio-value").input_value() == "1.000"  # the first body's volume ratio
+    if refusal is None:  # the library deforms bodies of revolution
+        d = wait_for(page, "d.pending === d.seq && d.final === '1'")
+        assert all(abs(b["volumeError"]) <= 1e-6 for b in bodies(d))
+        return
+    page.wait_for_function(f"document.getElementById('message').textContent.includes({json.dumps(refusal)})")
+    assert page.locator("#message").get_attribute("data-kind") == "error"
+    assert page.locator("#bodies g.body").count() == 2  # the bodies as drawn
+    assert page.locator("#bodies g.body .body-initial").first.get_attribute("d").count("L") > 50
+    page.set_input_files("#file", str(STRIP))  # and the page goes on
+    d = wait_for(page, "d.pending === d.seq && d.final === '1' && d.refusedSeq !== d.seq")
+    assert [b["name"] for b in bodies(d)] == ["backing", "cover"]

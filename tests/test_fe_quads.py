@@ -1,0 +1,64 @@
+"""Quadrilateral decks (CPE8R) run in CalculiX, and their meshes draw (skipped without ccx, failing in CI)."""
+
+from __future__ import annotations
+
+import os
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import sectiondeform as sd
+from sectiondeform.compare import compare_curves
+
+DATA = Path(__file__).parent / "data" / "fe"
+
+
+@pytest.fixture(scope="module")
+def ccx():
+    exe = os.environ.get("SECTIONDEFORM_CCX") or shutil.which("ccx")
+    if exe is None or shutil.which(exe) is None:
+        if os.environ.get("SECTIONDEFORM_REQUIRE_CCX") == "1":
+            pytest.fail("SECTIONDEFORM_REQUIRE_CCX=1 but CalculiX's ccx is not installed (apt-get install calculix-ccx)")
+        pytest.skip("CalculiX's ccx is not installed (apt-get install calculix-ccx)")
+    return exe
+
+
+@pytest.fixture(scope="module")
+def solutions(ccx):
+    from sectiondeform.external.solve import solve_calculix
+
+    case = sd.load_case(DATA / "square.json")
+    return case, solve_calculix(case, element="CPE8R", mesh_size=0.5), solve_calculix(case, element="CPE6", mesh_size=0.5)
+
+
+def test_a_cpe8r_deck_runs_and_agrees_with_cpe6(solutions):
+    case, quads, triangles = solutions
+    assert quads.deck.element.name == "CPE8R" and quads.mesh.kind == "quad8" and quads.mesh.cells.shape[1] == 8
+    T = quads.area_initial / case.lower.length
+    # nearly incompressible (kappa = 1000 mu): the area is kept to the compressibility
+    assert abs(quads.volume_change) < 2e-3
+    # the support went onto the target
+    on_target = case.target.at_fractions(quads.deck.mesh.lower_fractions)
+    assert np.allclose(quads.lower, on_target, atol=1e-4 * T)
+    # two element families, two meshes, one physics: the same upper curve to a small fraction of the thickness
+    assert compare_curves(quads.upper, triangles.upper, scale=T).hausdorff_relative < 0.01
+
+
+def test_a_quad8_mesh_is_drawn_by_its_corners(solutions):
+    pytest.importorskip("matplotlib")
+    from matplotlib.collections import PolyCollection
+
+    from sectiondeform.plot import draw_mesh, new_figure
+
+    _, quads, _ = solutions
+    fig = new_figure()
+    ax = fig.subplots()
+    draw_mesh(ax, quads.mesh)
+    (polys,) = [c for c in ax.collections if isinstance(c, PolyCollection)]
+    paths = polys.get_paths()
+    assert len(paths) == len(quads.mesh.cells)
+    first = paths[0].vertices
+    corners = quads.mesh.points[quads.mesh.cells[0, :4]]
+    assert len(first) <= 5 and np.allclose(first[:4], corners)  # the four corners (closed), not the mid-side nodes
