@@ -2,39 +2,49 @@
 
 Model
 -----
-Generalised plane strain: the deformation gradient is
+The deformation gradient is block diagonal,
 
-    F = [[F2D, 0], [0, λz]],   F2D = I + ∇u,   λz prescribed,
+    F = [[F2D, 0], [0, F₃₃]],   F2D = I + ∇u,
 
-so the section may change area while the body keeps its volume: with
-λz = 1 / r an incompressible section ends with area r × A0, the law.
+with two kinematics:
 
-Material: compressible neo-Hookean with a decoupled volumetric part,
+- generalised plane strain (a long extruded body): F₃₃ = λz prescribed, so
+  the section may change area while the body keeps its volume: with
+  λz = 1 / r an incompressible section ends with area r × A0, the law;
+- a body of revolution about an axis of the section's plane: F₃₃ = r / R,
+  the hoop stretch, the current distance of the point from the axis over
+  its initial one, and every integral weighted by R (the volume is
+  2π ∫ R dA). A volume law v is an isotropic growth of the body,
+  F = Fe · v^(1/3) I (:mod:`sectiondeform.reference.mixed`); v = 1 is
+  plain near-incompressibility.
 
-    Ψ(F) = μ/2 (J^(-2/3) tr(FᵀF) − 3) + κ/2 (J − 1)²,   J = det F = λz det F2D,
+Material: any rubber of :mod:`sectiondeform.materials` (neo-Hookean by
+default, Mooney–Rivlin, Yeoh), W = W_iso(F) + κ/2 (J − 1)², written in
+mixed displacement–pressure form (perturbed Lagrangian) so the nearly
+incompressible material (κ/μ ≥ 100) does not lock:
 
-written in mixed displacement–pressure form (perturbed Lagrangian) so the
-nearly incompressible material (κ/μ ≥ 100) does not lock:
+    Π(u, p) = ∫ W_iso(F) + p (J − 1) − p² / (2κ) w dA,   w = 1 or R.
 
-    Π(u, p) = ∫ μ/2 (J^(-2/3) tr(FᵀF) − 3) + p (J − 1) − p² / (2κ) dA.
-
-Eliminating p (p = κ (J − 1)) gives back Ψ. Elements: Taylor–Hood, P2
+Eliminating p (p = κ (J − 1)) gives back W. Elements: Taylor–Hood, P2
 displacement with continuous P1 pressure, inf-sup stable.
 
 Boundary conditions: every lower node (vertices and mid-edge nodes) at
 arc-length fraction s goes to the target point at s; the rest is traction
 free.
 
-Solution: full Newton on (u, p), with the support displacement and λz
-ramped together. The load path splits the support's motion into a rigid
-part (the best-fitting rotation and translation, Kabsch) and a remainder;
-each load step first moves the whole body by the step's rigid increment
-(exact, stress free), then imposes the remainder's increment through the
-tangent. A step that does not converge, or that would invert an element,
-is cut in half; a backtracking line search on the residual guards each
-Newton update. The weak forms are evaluated on scikit-fem's bases (shape
-functions, quadrature, degree-of-freedom numbering) and assembled in a few
-vectorised ``einsum`` calls.
+Solution: full Newton on (u, p), with the support displacement and the load
+parameter (λz, or the growth v) ramped together. The load path splits the
+support's motion into a rigid part (the best-fitting rotation and
+translation, Kabsch) and a remainder; each load step first moves the whole
+body by the step's rigid increment (exact and stress free in plane strain;
+for a body of revolution a predictor only, as moving off the axis stretches
+the hoops), then imposes the remainder's increment through the tangent. A
+step that does not converge, or that would invert an element, is cut in
+half; a backtracking line search on the residual guards each Newton update.
+The weak forms are evaluated on scikit-fem's bases (shape functions,
+quadrature, degree-of-freedom numbering) and assembled in a few vectorised
+``einsum`` calls. :func:`neo_hookean` is the closed-form plane neo-Hookean
+of the first version, kept as an independent check of the general path.
 """
 
 from __future__ import annotations
@@ -47,12 +57,14 @@ import numpy as np
 
 from ..errors import ConvergenceError, require
 from .mesh import SectionMesh
+from .mixed import mixed_state
+from .revolution import Axis
 
 __all__ = ["MixedProblem", "NewtonReport", "neo_hookean", "kabsch", "solve_mixed"]
 
 
 def neo_hookean(grad_u: np.ndarray, stretch_z: float, p: np.ndarray, mu: float, kappa: float, tangent: bool = True):
-    """Stress and tangent of the mixed neo-Hookean model in generalised plane strain.
+    """Stress and tangent of the mixed neo-Hookean model in generalised plane strain, in closed form.
 
     Parameters
     ----------
@@ -170,18 +182,41 @@ class NewtonReport:
 class MixedProblem:
     """The discrete Taylor–Hood problem on one mesh: bases, Dirichlet data, assembly.
 
+    Two kinematics: generalised plane strain (no ``axis``), the out-of-plane
+    stretch λz the load parameter; or a body of revolution (``axis``), the
+    hoop stretch r / R at each point, every integral weighted by the initial
+    radius R (per radian: the volume is 2π ∫ R dA), the load parameter the
+    volume ratio v of the body's isotropic growth (F = Fe · v^(1/3) I).
+
+    At each quadrature point the strain is written as the five components
+    (F₀₀, F₀₁, F₁₀, F₁₁, F₃₃) of the block-diagonal 3 × 3 gradient: the
+    in-plane block and the out-of-plane stretch. ``B[a, e, q, m]`` is the
+    derivative of component m by displacement dof a of element e (the
+    shape-function gradients, and for F₃₃ the hoop term n · φ_a / R), so
+    the residual is ∫ Bᵀ P and the tangent ∫ Bᵀ A B.
+
     Parameters
     ----------
     mesh : SectionMesh
     shear_modulus : float
-        μ, in any stress unit; the shape does not depend on it.
+        μ of the default neo-Hookean rubber (when ``material`` is not given).
     bulk_to_shear : float
-        κ / μ.
+        κ / μ of the default neo-Hookean rubber.
+    material : NeoHookean or MooneyRivlin or Yeoh, optional
+        The rubber (:mod:`sectiondeform.materials`); overrides the two
+        numbers above.
+    axis : Axis, optional
+        The axis of revolution (:mod:`sectiondeform.reference.revolution`);
+        without it, generalised plane strain.
 
     Attributes
     ----------
     n_u, n_p : int
         Number of displacement and pressure degrees of freedom.
+    mu, kappa : float
+        Initial shear and bulk moduli of the rubber.
+    weight : (nel, nq) float64 ndarray
+        Integration weight: the initial radius R, or 1 in plane strain.
     dirichlet : (d,) int64 ndarray
         Displacement dofs of the lower nodes (x and y of vertices and
         mid-edge nodes).
@@ -191,11 +226,18 @@ class MixedProblem:
         Arc-length fraction of each Dirichlet node on the lower curve.
     """
 
-    def __init__(self, mesh: SectionMesh, shear_modulus: float = 1.0, bulk_to_shear: float = 1000.0):
+    def __init__(self, mesh: SectionMesh, shear_modulus: float = 1.0, bulk_to_shear: float = 1000.0, *,
+                 material=None, axis: Axis | None = None):
         skfem = require("skfem", "fem", "the finite-element reference")
+        from ..materials import NeoHookean
+
         self.section_mesh = mesh
-        self.mu = float(shear_modulus)
-        self.kappa = float(bulk_to_shear) * self.mu
+        if material is None:
+            material = NeoHookean(float(shear_modulus), bulk_to_shear=float(bulk_to_shear))
+        self.rubber = material
+        self.mu = float(material.shear_modulus)
+        self.kappa = float(material.kappa)
+        self.axis = axis
         m = skfem.MeshTri(np.ascontiguousarray(mesh.points.T), np.ascontiguousarray(mesh.triangles.T))
         self.skmesh = m
         self.ubasis = skfem.Basis(m, skfem.ElementVector(skfem.ElementTriP2()), intorder=4)
@@ -209,6 +251,18 @@ class MixedProblem:
         self.pdofs = pb.element_dofs  # (3, nel)
         # Initial position of every displacement dof's node (x and y rows repeat the node).
         self.doflocs = ub.doflocs.T  # (n_u, 2)
+        nb_u, nel, nq = self.G.shape[0], self.dx.shape[0], self.dx.shape[1]
+        B = np.empty((nb_u, nel, nq, 5))
+        B[..., :4] = np.moveaxis(self.G, (1, 2), (3, 4)).reshape(nb_u, nel, nq, 4)
+        if axis is None:
+            self.weight = np.ones_like(self.dx)
+            B[..., 4] = 0.0
+        else:
+            self.weight = axis.radius(np.moveaxis(np.asarray(ub.global_coordinates()), 0, -1))  # R, (nel, nq)
+            phi = np.stack([np.asarray(ub.basis[a][0]) for a in range(ub.Nbfun)])  # (12, 2, nel, nq)
+            B[..., 4] = np.einsum("i,aieq->aeq", axis.normal, phi) / self.weight
+        self.B = B
+        self.wdx = self.weight * self.dx
 
         # Dirichlet nodes: lower vertices, and the mid-edge nodes of lower edges.
         pos = np.full(len(mesh.points), -1, dtype=np.int64)
@@ -238,6 +292,11 @@ class MixedProblem:
         self._nb = nb
         self._dofs = dofs
 
+    @property
+    def revolution(self) -> bool:
+        """True for a body of revolution."""
+        return self.axis is not None
+
     # --- fields ---------------------------------------------------------------
 
     def grad_u(self, u: np.ndarray) -> np.ndarray:
@@ -248,20 +307,69 @@ class MixedProblem:
         """Pressure at the quadrature points, ``(nel, nq)``."""
         return np.einsum("ce,ceq->eq", p[self.pdofs], self.Nq)
 
-    def material(self, x: np.ndarray, stretch_z: float, tangent: bool = True) -> dict:
-        """:func:`neo_hookean` at every quadrature point for the state ``x = [u, p]``."""
-        u, p = x[: self.n_u], x[self.n_u:]
-        return neo_hookean(self.grad_u(u), stretch_z, self.pressure(p), self.mu, self.kappa, tangent)
+    def gradient(self, x: np.ndarray, load: float) -> np.ndarray:
+        """The 3 × 3 deformation gradient at the quadrature points, ``(nel, nq, 3, 3)``.
+
+        ``load`` is λz in plane strain; for a body of revolution the
+        out-of-plane component is the hoop stretch 1 + n · u / R and ``load``
+        (the growth) does not enter F.
+        """
+        strain = np.einsum("ae,aeqm->eqm", x[: self.n_u][self.udofs], self.B)
+        F = np.zeros(self.dx.shape + (3, 3))
+        F[..., :2, :2] = strain[..., :4].reshape(self.dx.shape + (2, 2)) + np.eye(2)
+        F[..., 2, 2] = 1.0 + strain[..., 4] if self.revolution else load
+        return F
+
+    def growth(self, load: float) -> float:
+        """Volume ratio of the isotropic growth at ``load`` (1 in plane strain)."""
+        return float(load) if self.revolution else 1.0
+
+    def material(self, x: np.ndarray, load: float, tangent: bool = True) -> dict:
+        """The mixed rubber (:func:`~sectiondeform.reference.mixed.mixed_state`) at every quadrature point.
+
+        Parameters
+        ----------
+        x : (n_u + n_p,) float64 ndarray
+            Displacements then pressures.
+        load : float
+            λz (generalised plane strain) or the growth volume ratio (body
+            of revolution).
+        tangent : bool
+
+        Returns
+        -------
+        dict
+            ``valid`` (False if an element inverts: then nothing else but
+            ``det2`` and ``stretch3``); ``P5`` (nel, nq, 5) the stress
+            components conjugate to the five strain components, ``A5``
+            (nel, nq, 5, 5), ``D5`` (nel, nq, 5) their derivative by p,
+            ``constraint``, ``kpp``, ``Je``, ``psi``, ``cauchy`` (nel, nq, 3, 3),
+            ``det2`` det F2D and ``stretch3`` F₃₃ (nel, nq).
+        """
+        F = self.gradient(x, load)
+        det2 = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
+        out = {"det2": det2, "stretch3": F[..., 2, 2], "valid": bool(np.all(det2 > 0) and np.all(F[..., 2, 2] > 0))}
+        if not out["valid"]:
+            return out
+        s = mixed_state(self.rubber, F, self.pressure(x[self.n_u:]), self.growth(load), tangent)
+        out.update(s)
+        out["P5"] = np.concatenate((s["P"][..., :2, :2].reshape(self.dx.shape + (4,)), s["P"][..., 2:, 2]), axis=-1)
+        out["D5"] = np.concatenate((s["dPdp"][..., :2, :2].reshape(self.dx.shape + (4,)), s["dPdp"][..., 2:, 2]), axis=-1)
+        if tangent:
+            A = s["A"]
+            idx = np.array([[0, 0], [0, 1], [1, 0], [1, 1], [2, 2]])
+            out["A5"] = A[..., idx[:, 0][:, None], idx[:, 1][:, None], idx[:, 0][None, :], idx[:, 1][None, :]]
+        out["valid"] = bool(np.all(np.isfinite(out["P5"])))
+        return out
 
     # --- assembly -------------------------------------------------------------
 
-    def residual(self, x: np.ndarray, stretch_z: float, mat: dict | None = None) -> np.ndarray:
-        """Residual ``[∫ P : ∇v, ∫ q (J − 1 − p/κ)]``, ``(n_u + n_p,)``."""
+    def residual(self, x: np.ndarray, load: float, mat: dict | None = None) -> np.ndarray:
+        """Residual ``[∫ P : δF w dA, ∫ q ∂ψ/∂p w dA]``, ``(n_u + n_p,)``, w the weight (R or 1)."""
         if mat is None:
-            mat = self.material(x, stretch_z, tangent=False)
-        p = self.pressure(x[self.n_u:])
-        r_u = np.einsum("aijeq,ijeq->ae", self.G, mat["P"] * self.dx)
-        r_p = np.einsum("ceq,eq->ce", self.Nq, (mat["J"] - 1.0 - p / self.kappa) * self.dx)
+            mat = self.material(x, load, tangent=False)
+        r_u = np.einsum("aeqm,eqm->ae", self.B, mat["P5"] * self.wdx[..., None])
+        r_p = np.einsum("ceq,eq->ce", self.Nq, mat["constraint"] * self.wdx)
         out = np.bincount(self.udofs.ravel(), r_u.ravel(), minlength=self.n_u)
         return np.concatenate((out, np.bincount(self.pdofs.ravel(), r_p.ravel(), minlength=self.n_p)))
 
@@ -269,12 +377,12 @@ class MixedProblem:
         """Tangent matrix of the residual, CSR ``(n_u + n_p, n_u + n_p)``, symmetric indefinite."""
         from scipy import sparse
 
-        G, Nq, dx = self.G, self.Nq, self.dx
-        AG = np.einsum("ijkleq,bkleq->bijeq", mat["A"] * dx, G)
-        k_uu = np.einsum("aijeq,bijeq->abe", G, AG)
-        k_up = np.einsum("aijeq,ijeq,ceq->ace", G, mat["dPdp"] * dx, Nq)
-        k_pp = -np.einsum("ceq,deq,eq->cde", Nq, Nq, dx) / self.kappa
-        nu, nel = G.shape[0], dx.shape[0]
+        B, Nq, wdx = self.B, self.Nq, self.wdx
+        AB = np.einsum("eqmn,beqn->beqm", mat["A5"] * wdx[..., None, None], B)
+        k_uu = np.einsum("aeqm,beqm->abe", B, AB)
+        k_up = np.einsum("aeqm,eqm,ceq->ace", B, mat["D5"] * wdx[..., None], Nq)
+        k_pp = mat["kpp"] * np.einsum("ceq,deq,eq->cde", Nq, Nq, wdx)
+        nu, nel = B.shape[0], wdx.shape[0]
         blocks = np.empty((self._nb, self._nb, nel))
         blocks[:nu, :nu] = k_uu
         blocks[:nu, nu:] = k_up
@@ -284,23 +392,23 @@ class MixedProblem:
         data = np.bincount(self._slot, blocks.ravel(), minlength=len(self._indices))
         return sparse.csr_matrix((data, self._indices, self._indptr), shape=(n, n))
 
-    def energy(self, x: np.ndarray, stretch_z: float) -> float:
-        """Strain energy per unit depth, units of μ × length².
+    def energy(self, x: np.ndarray, load: float) -> float:
+        """Strain energy per unit depth (plane) or per radian (revolution), units of μ × length² (× length).
 
-        The mixed form ∫ Ψ_iso + p (J − 1) − p² / (2κ) dA, which at a
-        solution equals ∫ Ψ_iso + p² / (2κ) dA: the volumetric energy is
+        The mixed form ∫ ψ_iso + p (Je − 1) − p² / (2κ) w dA, which at a
+        solution equals ∫ ψ_iso + p² / (2κ) w dA: the volumetric energy is
         taken from the pressure field, as the formulation controls J only
         through it (κ/2 (J − 1)² from the displacement alone would pick up
         the pointwise part of J − 1 that the P1 pressure does not see).
         """
-        mat = self.material(x, stretch_z, tangent=False)
-        return float(np.sum(mat["psi_mixed"] * self.dx))
+        mat = self.material(x, load, tangent=False)
+        return float(np.sum(mat["psi"] * self.wdx))
 
 
 def solve_mixed(
     problem: MixedProblem,
     support: np.ndarray,
-    stretch_z: float,
+    load: float,
     *,
     length_scale: float,
     tol: float = 1e-8,
@@ -309,15 +417,17 @@ def solve_mixed(
     min_step: float = 1.0 / 1024.0,
     progress=None,
 ) -> tuple[np.ndarray, NewtonReport]:
-    """Solve the mixed problem with the support moved to ``support`` and λz = ``stretch_z``.
+    """Solve the mixed problem with the support moved to ``support`` and the load parameter at ``load``.
 
     Parameters
     ----------
     problem : MixedProblem
     support : (d / 2, 2) float64 ndarray
         Final position of each Dirichlet node (``problem.dirichlet_points``).
-    stretch_z : float
-        Final out-of-plane stretch λz; ramped from 1 with the support.
+    load : float
+        Final load parameter, ramped from 1 with the support: the
+        out-of-plane stretch λz (generalised plane strain), or the growth
+        volume ratio v (body of revolution, ``problem.axis`` set).
     length_scale : float
         Length for the convergence test (the mean thickness T), units.
     tol : float
@@ -354,7 +464,7 @@ def solve_mixed(
         return c0 + t * (c1 - c0)
 
     def lam(t):
-        return 1.0 + t * (stretch_z - 1.0)
+        return 1.0 + t * (load - 1.0)
 
     def rigid_increment(x, t, t_new):
         """Move the whole deformed body by the rigid part of the load from t to t_new."""
@@ -409,13 +519,15 @@ def solve_mixed(
     return x, NewtonReport(iterations=iterations, steps=steps, cuts=cuts, residual=residual)
 
 
-def _newton(pr: MixedProblem, x, stretch_z, lift, free, length_scale, tol, max_iterations):
+def _newton(pr: MixedProblem, x, load, lift, free, length_scale, tol, max_iterations):
     """Newton iterations of one load step; returns (converged, iterations, residual norm, x)."""
     from scipy.sparse.linalg import spsolve
 
     n_u = pr.n_u
-    mat = pr.material(x, stretch_z)
-    r = pr.residual(x, stretch_z, mat)
+    mat = pr.material(x, load)
+    if not mat["valid"]:
+        return False, 0, math.inf, x
+    r = pr.residual(x, load, mat)
     norm = float(np.linalg.norm(r[free]))
     first = bool(lift.any())
     for it in range(1, max_iterations + 1):
@@ -439,9 +551,9 @@ def _newton(pr: MixedProblem, x, stretch_z, lift, free, length_scale, tol, max_i
         for _ in range(6):
             cand = x + alpha * dx
             with np.errstate(all="ignore"):
-                mat_c = pr.material(cand, stretch_z)
-            if np.all(mat_c["det2"] > 0) and np.all(np.isfinite(mat_c["P"])):
-                r_c = pr.residual(cand, stretch_z, mat_c)
+                mat_c = pr.material(cand, load)
+            if mat_c["valid"]:
+                r_c = pr.residual(cand, load, mat_c)
                 norm_c = float(np.linalg.norm(r_c[free]))
                 if first or norm_c <= norm or small:
                     break
