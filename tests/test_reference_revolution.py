@@ -157,7 +157,9 @@ def test_a_one_body_assembly_of_revolution_takes_its_axis_law_and_material():
     from sectiondeform.assembly import Assembly, Body, Revolution
 
     case = ring(2 * T)
-    law = SimpleNamespace(key="volume_ratio", ratio=0.95)  # what a volume law of the case format carries
+    from sectiondeform.laws import VolumeRatio
+
+    law = VolumeRatio(0.95)  # the case format's volume law
     body = Body(name="ring", lower=case.lower, upper=case.upper, law=law, material='{"model": "yeoh", "c10": 0.4, "c20": 0.01, "c30": 0.0}')
     asm = Assembly(support=case.lower, target=case.target, bodies=(body,), revolution=Revolution(tuple(map(tuple, AXIS))))
     ref = solve_reference(asm, mesh_size=0.5)

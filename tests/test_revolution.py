@@ -268,5 +268,5 @@ def test_a_target_that_brings_the_body_across_the_axis_is_refused():
 def test_the_hyperelastic_model_is_refused_on_bodies_of_revolution_in_one_line():
     with pytest.raises(CaseError) as info:
         AssemblyDeformer(assembly_from_dict(json.loads(DRUM.read_text())), model="hyperelastic")
-    assert str(info.value) == ("options.model: the hyperelastic model does not deform bodies of revolution yet; "
-                               "use the paper model (--model paper)")
+    assert str(info.value) == ("revolution: the hyperelastic model deforms plane assemblies only; "
+                               "deform a body of revolution with the paper model (--model paper)")

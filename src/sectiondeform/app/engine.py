@@ -16,14 +16,12 @@ from __future__ import annotations
 import copy
 import dataclasses
 import json
-import math
 import time
 from collections import OrderedDict
 
 import numpy as np
-import shapely
 
-from ..assembly import ASSEMBLY_FORMAT, Assembly, assembly_from_dict, assembly_to_dict
+from ..assembly import ASSEMBLY_FORMAT, Assembly, assembly_from_dict, assembly_to_dict, revolution_from_json
 from ..assembly_deform import AssemblyDeformer
 from ..case import MODELS, Case, case_from_dict, case_to_dict
 from ..curves import curve_from_json
@@ -213,7 +211,10 @@ def laws_of(case_json: dict) -> tuple:
     bodies = case_json.get("bodies")
     if not isinstance(bodies, list):
         raise CaseError("bodies", "expected a non-empty list of bodies")
-    return tuple(law_from_json(b.get("law") if isinstance(b, dict) else None, f"bodies[{i}].law") for i, b in enumerate(bodies))
+    revolution = case_json.get("revolution")
+    axis = revolution_from_json(revolution).axis if revolution is not None else None
+    return tuple(law_from_json(b.get("law") if isinstance(b, dict) else None, f"bodies[{i}].law", axis=axis)
+                 for i, b in enumerate(bodies))
 
 
 def with_laws(deformer: AssemblyDeformer, laws: tuple) -> AssemblyDeformer:
@@ -238,28 +239,6 @@ def with_laws(deformer: AssemblyDeformer, laws: tuple) -> AssemblyDeformer:
     return placed
 
 
-def volume_of_revolution(contour: np.ndarray, axis) -> float:
-    """Volume swept by a closed section turning about ``axis`` (Pappus: 2 pi x area x centroid's distance).
-
-    Parameters
-    ----------
-    contour : (n, 2) float64 ndarray
-        The closed section, units.
-    axis : ((float, float), (float, float))
-        Two points of the axis, units.
-
-    Returns
-    -------
-    float
-        Units³.
-    """
-    polygon = shapely.Polygon(contour)
-    (p, q), c = np.asarray(axis, dtype=float), np.asarray(polygon.centroid.coords[0])
-    d = q - p
-    distance = abs(d[0] * (c[1] - p[1]) - d[1] * (c[0] - p[0])) / math.hypot(*d)
-    return 2.0 * math.pi * polygon.area * distance
-
-
 def assembly_answer(cache: DeformerCache, case_json: dict, model: str, final: bool, meshes: bool, t0: float) -> dict:
     """:func:`answer` for an assembly: every body placed under its own law (full deformation each time)."""
     deformer, prepared = cache.get(case_json, model)
@@ -268,7 +247,7 @@ def assembly_answer(cache: DeformerCache, case_json: dict, model: str, final: bo
     whole = final or prepared
     axis = deformer.assembly.revolution.axis if deformer.assembly.revolution is not None else None
     bodies = []
-    for b, law_json in zip(result.bodies, (body.get("law") for body in case_json["bodies"])):
+    for b in result.bodies:
         q = b.quality
         out = {
             "name": b.name,
@@ -276,14 +255,13 @@ def assembly_answer(cache: DeformerCache, case_json: dict, model: str, final: bo
             "area_initial": b.area_initial,
             "area_target": b.area_target,
             "area_final": b.area_final,
-            "relative_error": (b.area_final - b.area_target) / b.area_target,
+            "relative_error": (b.area_final - b.area_target) / b.area_target if b.area_target else None,
             "jacobian_min": q.final.jacobian_min if q is not None else None,
         }
-        if axis is not None:
-            v0, v1 = volume_of_revolution(b.initial_contour, axis), volume_of_revolution(b.contour, axis)
-            vt = float(law_json["volume_ratio"]) * v0 if "volume_ratio" in law_json else None
-            out.update(volume_initial=v0, volume_final=v1, volume_target=vt,
-                       volume_error=(v1 - vt) / vt if vt else None)
+        if axis is not None:  # the library's volumes of revolution (Pappus)
+            vt = b.volume_target
+            out.update(volume_initial=b.volume_initial, volume_final=b.volume_final, volume_target=vt,
+                       volume_error=(b.volume_final - vt) / vt if vt else None)
         if whole:
             out["initial_contour"] = b.initial_contour
         if meshes:
@@ -304,7 +282,7 @@ def assembly_answer(cache: DeformerCache, case_json: dict, model: str, final: bo
         "bodies": bodies,
         "lower": target.at_fractions(np.linspace(0.0, 1.0, TARGET_SAMPLES)),
         "area_initial": sum(o["area_initial"] for o in bodies),
-        "area_target": sum(o["area_target"] for o in bodies),
+        "area_target": None if any(o["area_target"] is None for o in bodies) else sum(o["area_target"] for o in bodies),
         "area_final": sum(o["area_final"] for o in bodies),
         "relative_error": worst,
         "jacobian_min": min(jacobians, default=None),
