@@ -98,6 +98,21 @@ def test_shared_nodes_are_one_point_of_the_mesh(strip_result):
     assert np.diff(xs).max() <= 2 * mesh.size
 
 
+def test_each_body_is_meshed_at_its_own_thickness_over_elements_through_thickness(strip_result):
+    # The 4 mm backing and the 13 mm cover: element sizes 4 / 2 and 12.8 / 2, the shared piece at the
+    # finer one. Every cell of a body has edges near its own size (the mean edge over the size).
+    assembly, result = strip_result
+    deformer = AssemblyDeformer(assembly)
+    sections = [b.section for b in deformer.bodies]
+    for body, section in zip(result.bodies, sections):
+        h = section.mesh_scale / THROUGH
+        assert body.quality.initial.element_size == pytest.approx(h)
+        pts, cells = np.asarray(body.initial_mesh.points), np.asarray(body.initial_mesh.cells)[:, :3]
+        edges = np.hypot(*(pts[cells] - pts[np.roll(cells, -1, axis=1)]).transpose(2, 0, 1))
+        assert 0.6 * h <= float(np.median(edges)) <= 1.4 * h
+    assert deformer.joint.mesh.size == pytest.approx(min(s.mesh_scale for s in sections) / THROUGH)
+
+
 def test_identity_and_rigid_motion_are_reproduced_per_body():
     data = strip_dict(ratios=(1.0, 1.0))
     assembly = assembly_from_dict(data)
