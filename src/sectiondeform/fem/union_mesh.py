@@ -244,7 +244,9 @@ def union_mesh(rings, fixed, h, tol: float) -> UnionMesh:
         p = points[path]
         s = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(p, axis=0).T))))
         n = _steps(p, min(edge_size[(min(u, w), max(u, w))] for u, w in zip(path[:-1], path[1:])))
-        geo.append((np.asarray(path), s, s[-1] * np.arange(n + 1) / n))
+        ns = s[-1] * np.arange(n + 1) / n
+        ns[-1] = s[-1]  # exactly the chain's end (a ring's outline picks its nodes by arc length)
+        geo.append((np.asarray(path), s, ns))
     interior = np.concatenate([_lattice(p, float(hb)) for p, hb in zip(polys, sizes)] + [np.zeros((0, 2))])
     corner_index = {v: k for k, v in enumerate(corners)}
     for _ in range(CONFORM_ITERATIONS):
