@@ -5,7 +5,9 @@ Prepare (once, :class:`JointHyperelastic`):
 * one P2 mesh of all bodies (:func:`~sectiondeform.fem.union_mesh.union_mesh`)
   from the bodies' contours as the paper model's assembly prepares them (on
   a shared piece both contours have exactly the same points), so a shared
-  piece has shared nodes; every cell carries its body;
+  piece has shared nodes; every cell carries its body; each body's element
+  size is its own thickness over ``elements_through_thickness`` (a shared
+  piece takes the smaller of its two bodies');
 * per body its material (neo-Hookean: ``shear_modulus`` and ``bulk_to_shear``
   or ``bulk_modulus`` of its ``material``, ``options.bulk_to_shear`` by
   default) and its own out-of-plane stretch ``1 / r`` of its area law, in
@@ -173,11 +175,10 @@ class JointHyperelastic:
             materials.append(mat)
         self.materials = tuple(materials)
         thickness = min(s.mesh_scale for s in self.sections)
-        self.length = thickness
-        h = thickness / options.elements_through_thickness
+        self.sizes = np.array([s.mesh_scale for s in self.sections]) / options.elements_through_thickness
         rings = [s.contour for s in self.sections]
         fixed = [np.array([0, len(s.lower) - 1]) for s in self.sections]
-        mesh = union_mesh(rings, fixed, h, self.layout.tolerance)
+        mesh = union_mesh(rings, fixed, self.sizes, self.layout.tolerance)
         self.mesh = mesh
         n_low = [len(s.lower) for s in self.sections]
         self.lower_ids = [r[:n] for r, n in zip(mesh.rings, n_low)]
@@ -231,7 +232,7 @@ class JointHyperelastic:
         elements = np.flatnonzero(mesh.body == b)
         used, local = np.unique(mesh.cells[elements], return_inverse=True)
         cells = local.reshape(-1, 6).astype(np.int64)
-        quality = MeshQuality(elements=int(len(elements)), element_size=float(mesh.size), nodes=int(len(used)),
+        quality = MeshQuality(elements=int(len(elements)), element_size=float(self.sizes[b]), nodes=int(len(used)),
                               unknowns=int(unknowns), through_thickness=float(through),
                               jacobian_ratio_min=float(geom.detj_ratio[elements].min()))
         return _BodyMesh(MeshData(mesh.nodes[used], cells, "triangle6"), quality, cells, used, elements)

@@ -91,7 +91,7 @@ class UnionMesh:
     vertex_weights : (V, N) scipy.sparse.csr_matrix
         Image of every vertex from the node positions.
     size : float
-        Target edge length h, units.
+        Target edge length h, units (the smallest body's).
     """
 
     nodes: np.ndarray
@@ -186,8 +186,8 @@ def _at(pts: np.ndarray, s: np.ndarray, at: np.ndarray) -> np.ndarray:
     return np.column_stack((np.interp(at, s, pts[:, 0]), np.interp(at, s, pts[:, 1])))
 
 
-def union_mesh(rings, fixed, h: float, tol: float) -> UnionMesh:
-    """Mesh several bodies, given by their contours, with P2 triangles of size about ``h``.
+def union_mesh(rings, fixed, h, tol: float) -> UnionMesh:
+    """Mesh several bodies, given by their contours, with P2 triangles of size about ``h`` (per body).
 
     Parameters
     ----------
@@ -197,8 +197,9 @@ def union_mesh(rings, fixed, h: float, tol: float) -> UnionMesh:
         within ``tol``); their interiors must not overlap.
     fixed : sequence of (j_b,) int64 ndarray
         Per body, contour indices that must be mesh nodes (its A and B).
-    h : float
-        Target edge length, units.
+    h : float or (B,) float64 array_like
+        Target edge length, units, for all bodies or per body. A piece of
+        contour shared by bodies of different sizes takes the smallest.
     tol : float
         Contour points closer than this are one point, units.
 
@@ -220,24 +221,33 @@ def union_mesh(rings, fixed, h: float, tol: float) -> UnionMesh:
     >>> [round(float(_signed_areas(m.nodes, m.cells[m.body == b, :3]).sum()), 9) for b in (0, 1)]
     [2.0, 2.0]
     """
-    if not (h > 0 and math.isfinite(h)):
-        raise MeshError(f"assembly: the element size {h!r} is not a positive finite length; check the bodies' scale")
     rings = [np.asarray(r, dtype=np.float64) for r in rings]
+    sizes = np.broadcast_to(np.asarray(h, dtype=np.float64), (len(rings),))
+    if not (np.all(sizes > 0) and np.all(np.isfinite(sizes))):
+        raise MeshError(f"assembly: the element sizes {sizes.tolist()!r} are not positive finite lengths; check the bodies' scale")
+    h = float(sizes.min())
     polys = [shapely.Polygon(r) for r in rings]
     with np.errstate(all="ignore"):
-        estimate = sum(float(p.length) / h + abs(float(p.area)) / (h * h * math.sqrt(3.0) / 2.0) for p in polys)
+        estimate = sum(float(p.length) / hb + abs(float(p.area)) / (hb * hb * math.sqrt(3.0) / 2.0) for p, hb in zip(polys, sizes))
     bounded(estimate, MAX_FE_VERTICES, "mesh vertices",
             "lower options.elements_through_thickness, or simplify the bodies' small features", MeshError)
     points, ids = _merge(rings, tol)
     fixed_v = np.concatenate([ids[b][np.asarray(f, dtype=np.int64)] for b, f in enumerate(fixed)])
     paths, corners = _chains(points, ids, fixed_v)
+    edge_size = {}  # graph edge -> the smallest size of the bodies it bounds
+    for b, ring in enumerate(ids):
+        for u, w in zip(ring, np.roll(ring, -1)):
+            key = (min(int(u), int(w)), max(int(u), int(w)))
+            edge_size[key] = min(edge_size.get(key, math.inf), float(sizes[b]))
     geo = []
     for path in paths:
         p = points[path]
         s = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(p, axis=0).T))))
-        n = _steps(p, h)
-        geo.append((np.asarray(path), s, s[-1] * np.arange(n + 1) / n))
-    interior = np.concatenate([_lattice(p, h) for p in polys] + [np.zeros((0, 2))])
+        n = _steps(p, min(edge_size[(min(u, w), max(u, w))] for u, w in zip(path[:-1], path[1:])))
+        ns = s[-1] * np.arange(n + 1) / n
+        ns[-1] = s[-1]  # exactly the chain's end (a ring's outline picks its nodes by arc length)
+        geo.append((np.asarray(path), s, ns))
+    interior = np.concatenate([_lattice(p, float(hb)) for p, hb in zip(polys, sizes)] + [np.zeros((0, 2))])
     corner_index = {v: k for k, v in enumerate(corners)}
     for _ in range(CONFORM_ITERATIONS):
         # Chain nodes: corners first, then each chain's inner nodes in order.

@@ -1,0 +1,85 @@
+"""One mesh of several bodies: shared nodes on shared pieces, each body covered exactly, per-body sizes."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from sectiondeform.errors import MeshError
+from sectiondeform.fem.elements import geometry
+from sectiondeform.fem.union_mesh import union_mesh
+
+
+def _box(x0, y0, x1, y1, n_bottom):
+    """A rectangle, counter-clockwise, with ``n_bottom`` equal segments along its bottom and top."""
+    xs = np.linspace(x0, x1, n_bottom + 1)
+    bottom = np.column_stack((xs, np.full_like(xs, y0)))
+    top = np.column_stack((xs[::-1], np.full_like(xs, y1)))
+    return np.concatenate((bottom, top))
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    width=st.floats(5.0, 60.0),
+    low=st.floats(1.0, 6.0),
+    high=st.floats(1.0, 12.0),
+    n=st.integers(1, 12),
+    through=st.floats(1.0, 3.0),
+)
+def test_two_stacked_boxes_share_the_nodes_of_their_interface(width, low, high, n, through):
+    lower = _box(0.0, 0.0, width, low, n)
+    upper = _box(0.0, low, width, low + high, n)
+    sizes = np.array([low, high]) / through
+    fixed = [np.array([0, n]), np.array([0, n])]
+    mesh = union_mesh([lower, upper], fixed, sizes, 1e-9 * width)
+    g = geometry(mesh.nodes, mesh.cells)
+    assert g.detj_ratio.min() > 0
+    # Each body is covered by its own cells: their areas add up to its rectangle's.
+    for b, area in enumerate((width * low, width * high)):
+        assert g.weight[mesh.body == b].sum() == pytest.approx(area, rel=1e-9)
+    # The nodes of both bodies' cells on the interface are the same nodes, spaced by the finer size.
+    on = [np.unique(mesh.cells[mesh.body == b])[np.abs(mesh.nodes[np.unique(mesh.cells[mesh.body == b]), 1] - low) <= 1e-9 * width]
+          for b in (0, 1)]
+    assert np.array_equal(on[0], on[1])
+    xs = np.sort(mesh.nodes[on[0], 0])
+    assert xs[0] == pytest.approx(0.0, abs=1e-9 * width) and xs[-1] == pytest.approx(width, rel=1e-12)
+    assert np.diff(xs).max() <= 1.01 * sizes.min() + 1e-9
+    # Every contour point (graph vertex) is found again from the undeformed nodes.
+    assert np.abs(mesh.vertex_weights @ mesh.nodes - mesh.points).max() <= 1e-9 * width
+    # The two rings meet in the interface's vertices only.
+    assert len(np.intersect1d(mesh.rings[0], mesh.rings[1])) == n + 1
+
+
+@settings(max_examples=20, deadline=None)
+@given(
+    a=st.floats(0.0, 0.45),
+    b=st.floats(0.55, 1.0),
+    low=st.floats(1.0, 6.0),
+    high=st.floats(1.0, 12.0),
+    through=st.floats(1.0, 3.0),
+)
+def test_a_narrower_body_on_part_of_another(a, b, low, high, through):
+    # The upper body rests on the piece [a, b] of the lower one's top (30 mm wide); the lower ring
+    # carries the upper one's corners as points of its top, as an assembly's preparation gives it.
+    width = 30.0
+    xa, xb = a * width, b * width
+    top = [[width, low], [xb, low], [xa, low], [0.0, low]]
+    lower = np.array([[0.0, 0.0], [width, 0.0]] + top)
+    upper = np.array([[xa, low], [xb, low], [xb, low + high], [xa, low + high]])
+    keep = np.concatenate(([True], np.hypot(*np.diff(lower, axis=0).T) > 1e-9))  # a = 0 or b = 1: one corner
+    lower = lower[keep]
+    mesh = union_mesh([lower, upper], [np.array([0, 1]), np.array([0, 1])], np.array([low, high]) / through, 1e-9)
+    g = geometry(mesh.nodes, mesh.cells)
+    assert g.detj_ratio.min() > 0
+    for body, area in enumerate((width * low, (xb - xa) * high)):
+        assert g.weight[mesh.body == body].sum() == pytest.approx(area, rel=1e-9)
+    shared = np.intersect1d(np.unique(mesh.cells[mesh.body == 0]), np.unique(mesh.cells[mesh.body == 1]))
+    assert np.allclose(mesh.nodes[shared, 1], low, atol=1e-9)
+    assert mesh.nodes[shared, 0].min() == pytest.approx(xa, abs=1e-9) and mesh.nodes[shared, 0].max() == pytest.approx(xb, abs=1e-9)
+    assert np.abs(mesh.vertex_weights @ mesh.nodes - mesh.points).max() <= 1e-9 * width
+
+
+def test_a_non_positive_size_is_refused_with_one_line():
+    box = _box(0.0, 0.0, 1.0, 1.0, 1)
+    with pytest.raises(MeshError, match=r"^assembly: the element sizes \[1\.0, 0\.0\] are not positive finite lengths"):
+        union_mesh([box, box + [0.0, 1.0]], [np.array([0, 1])] * 2, [1.0, 0.0], 1e-9)
