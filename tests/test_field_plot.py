@@ -46,6 +46,14 @@ def test_the_hyperelastic_model_draws_mechanical_fields_with_its_out_of_plane_st
     assert kind == "mechanical"
     assert np.all(top >= 1 / RATIO - 1e-12)  # lambda_z = 1/r is one of the three stretches
     assert "geometric" not in draw_field(result, "J").axes[-1].get_ylabel()
+    kind, (vm,) = field_values(result, "von_mises_stress")
+    assert np.all(vm > 0)  # lambda_z = 1.25 out of the plane: never a pure pressure
+
+
+def test_the_paper_model_has_no_stress_to_draw():
+    result = Deformer(case_from_dict(stretch_case())).deform()
+    with pytest.raises(CaseError, match=r"^--plot-field: von_mises_stress is a stress and the paper model has no material"):
+        field_values(result, "von_mises_stress")
 
 
 def test_the_cli_draws_the_field_of_an_assembly_of_revolution(tmp_path):

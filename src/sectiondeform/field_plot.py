@@ -21,6 +21,7 @@ PLOT_FIELDS = {
     "J": ("J", None, "J = det F, local volume ratio"),
     "max_principal_stretch": ("principal_stretches", 0, "largest principal stretch λ₁"),
     "min_principal_stretch": ("principal_stretches", 2, "smallest principal stretch λ₃"),
+    "von_mises_stress": ("von_mises_stress", None, "von Mises stress / shear modulus"),
 }
 
 
@@ -59,6 +60,9 @@ def field_values(result, name: str) -> tuple[str, list[np.ndarray]]:
     for initial, final, _contour, info in _pieces(result):
         kind, fields = result_fields(initial, final, result.model, getattr(info, "out_of_plane_stretch", 1.0), axis)
         values = fields.get(key if kind == "mechanical" else f"geometric_{key}")
+        if values is None and kind == "geometric" and key == "von_mises_stress":
+            raise CaseError("--plot-field", "von_mises_stress is a stress and the paper model has no material; "
+                            "use --model hyperelastic or a strain field")
         if values is None:
             raise CaseError("--plot-field", f"no {name} for this result's {final.kind} mesh")
         out.append(values if column is None else values[:, column])

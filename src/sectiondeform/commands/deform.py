@@ -32,7 +32,7 @@ def add_args(parser) -> None:
                              "Green-Lagrange strain (hyperelastic model); the paper model's geometric ones")
     parser.add_argument("--plot-field", metavar="FIELD",
                         help="draw the --plot figure as a colour map of FIELD on the deformed mesh: max_principal_strain, J, "
-                             "max_principal_stretch or min_principal_stretch (geometric for the paper model)")
+                             "max_principal_stretch, min_principal_stretch (geometric for the paper model) or von_mises_stress")
     add_model_args(parser)
     add_input_args(parser)
     add_output_args(parser)
