@@ -82,3 +82,14 @@ def test_field_values_refuse_an_unknown_name():
     result = Deformer(case_from_dict(stretch_case())).deform()
     with pytest.raises(CaseError, match=r"^--plot-field: unknown field"):
         field_values(result, "von_mises")
+
+
+def test_fields_with_no_output_to_carry_them_are_refused_before_any_work(tmp_path, capsys):
+    case = tmp_path / "case.json"
+    case.write_text(json.dumps(stretch_case()))
+    out = tmp_path / "r.svg"
+    assert main(["deform", str(case), "-o", str(out), "--fields"]) == 2
+    assert "--fields: no output carries them" in capsys.readouterr().err and not out.exists()
+    vtu = tmp_path / "m.vtu"
+    assert main(["deform", str(case), "-o", str(out), "--fields", "--mesh-out", str(vtu)]) == 0
+    assert out.exists() and vtu.exists()

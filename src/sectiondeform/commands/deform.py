@@ -38,6 +38,19 @@ def add_args(parser) -> None:
     add_output_args(parser)
 
 
+FIELD_FORMATS = (".json", ".vtu", ".vtk", ".msh")
+
+
+def check_fields_args(args) -> None:
+    """Refuse ``--fields`` when no output written can carry them (DXF, SVG, Abaqus INP), before any work."""
+    if not getattr(args, "fields", False):
+        return
+    paths = [args.output, *(getattr(args, "mesh_out", None) or []), *(getattr(args, "initial_mesh_out", None) or [])]
+    if not any(p.suffix.lower() in FIELD_FORMATS for p in paths):
+        raise CaseError("--fields", f"no output carries them; write the result as .json or a mesh as "
+                        f"{', '.join(FIELD_FORMATS[1:])} (-o or --mesh-out)")
+
+
 def check_plot_field_args(args) -> None:
     """Refuse a ``--plot-field`` without ``--plot``, or naming an unknown field, before any work."""
     if getattr(args, "plot_field", None) is None:
@@ -64,6 +77,7 @@ def save_plot(args, result) -> None:
 def run(args) -> int:
     check_outputs(args)
     check_plot_field_args(args)
+    check_fields_args(args)
     report: list[str] = []
     case = read_input_case(args.case, args, report)
     if isinstance(case, Assembly):
@@ -71,7 +85,7 @@ def run(args) -> int:
     case = apply_overrides(case, args)
     result = Deformer(case, element_size=args.element_size).deform()
     options = {"meshes": False} if args.no_meshes and args.output.suffix.lower() == ".json" else output_options(args, args.output)
-    if args.fields and args.output.suffix.lower() in (".json", ".vtu", ".vtk", ".msh"):
+    if args.fields and args.output.suffix.lower() in FIELD_FORMATS:
         options["fields"] = True
     write_result(args.output, result, **options)
     meshes = write_meshes(args, result)
