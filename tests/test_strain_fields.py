@@ -76,6 +76,11 @@ def test_an_affine_map_of_the_hyperelastic_mesh_gives_its_stretches_and_j_in_vtu
     green = np.diag([(a * a - 1) / 2, (b * b - 1) / 2, (lz * lz - 1) / 2]).ravel()  # Q drops out of F^T F
     np.testing.assert_allclose(cell(mesh, "green_lagrange_strain"), np.tile(green, (m, 1)), atol=1e-10)
     np.testing.assert_allclose(cell(mesh, "max_principal_strain"), max(a, b, lz) - 1, rtol=1e-10)
+    # neo-Hookean, shear modulus 1: deviatoric Cauchy stress J^(-5/3) dev(B), B with eigenvalues a^2, b^2, lz^2
+    squares = np.array([a * a, b * b, lz * lz])
+    dev = squares - squares.mean()
+    vm = (a * b * lz) ** (-5 / 3) * math.sqrt(1.5 * np.sum(dev**2))
+    np.testing.assert_allclose(cell(mesh, "von_mises_stress"), vm, rtol=1e-9)
 
 
 def test_the_hyperelastic_solution_is_nearly_incompressible_and_labelled_mechanical(tmp_path):

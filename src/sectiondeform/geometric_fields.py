@@ -76,7 +76,8 @@ def geometric_fields(initial: MeshData, final: MeshData) -> dict[str, np.ndarray
     }
 
 
-MECHANICAL_NOTE = "strains of the hyperelastic model's solution"
+MECHANICAL_NOTE = ("strains of the hyperelastic model's solution; von_mises_stress in units of the shear modulus "
+                   "(the model's modulus is relative)")
 
 
 def fields_to_json(fields: dict[str, np.ndarray], kind: str = "geometric") -> dict:

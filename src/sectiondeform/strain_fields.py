@@ -18,6 +18,13 @@ data, in element order):
     VTK and ParaView read nine components).
 ``max_principal_strain`` ``(M,)``
     λ₁ − 1 (nominal, the rubber-testing convention).
+``von_mises_stress`` ``(M,)``
+    Hyperelastic model only: √(3/2 s:s) of the Cauchy stress of its
+    neo-Hookean rubber at F, in units of the shear modulus (the model's
+    modulus is relative: a one-body case's shape does not depend on it).
+    The von Mises stress needs only the stress deviator, which F gives
+    exactly; the pressure, set by the solution's independent pressure
+    field, is not written.
 
 For the hyperelastic model these are the solution's strains. The paper
 model has no material: the same measures of its constructed mesh are
@@ -30,8 +37,8 @@ from __future__ import annotations
 import numpy as np
 
 from .fem.elements import p2_gradients
-from .materials.measures import max_principal_strain, principal_stretches
-from .materials.models import gradient_3d
+from .materials.measures import max_principal_strain, principal_stretches, von_mises
+from .materials.models import NeoHookean, gradient_3d
 from .models.base import MeshData
 from .pappus import signed_distance
 
@@ -86,7 +93,8 @@ def element_centres(mesh: MeshData) -> np.ndarray:
     return mesh.points[cells].mean(axis=1)
 
 
-def strain_fields(initial: MeshData, final: MeshData, out_of_plane: float = 1.0, axis=None) -> dict[str, np.ndarray]:
+def strain_fields(initial: MeshData, final: MeshData, out_of_plane: float = 1.0, axis=None,
+                  material=None) -> dict[str, np.ndarray]:
     """The strain fields of the module docstring, one row per element.
 
     Parameters
@@ -98,6 +106,9 @@ def strain_fields(initial: MeshData, final: MeshData, out_of_plane: float = 1.0,
     axis : ((float, float), (float, float)), optional
         Revolution axis: the out-of-plane stretch is then each element's hoop
         stretch, its centre's final over initial distance from the axis.
+    material : optional
+        A rubber of :mod:`sectiondeform.materials` (``cauchy(F)``): adds
+        ``von_mises_stress`` in the units of its moduli.
 
     Returns
     -------
@@ -113,12 +124,15 @@ def strain_fields(initial: MeshData, final: MeshData, out_of_plane: float = 1.0,
         stretch_z = float(out_of_plane)
     F = gradient_3d(F2, stretch_z)
     C = np.swapaxes(F, -1, -2) @ F
-    return {
+    out = {
         "principal_stretches": principal_stretches(F),
         "J": np.linalg.det(F),
         "green_lagrange_strain": (0.5 * (C - np.eye(3))).reshape(len(F), 9),
         "max_principal_strain": max_principal_strain(F),
     }
+    if material is not None:
+        out["von_mises_stress"] = von_mises(material.cauchy(F))
+    return out
 
 
 def result_fields(initial: MeshData, final: MeshData, model: str, out_of_plane: float = 1.0,
@@ -140,13 +154,14 @@ def result_fields(initial: MeshData, final: MeshData, model: str, out_of_plane: 
     kind : str
         ``"mechanical"`` for the hyperelastic model, ``"geometric"`` otherwise.
     fields : dict of str to ndarray
-        The hyperelastic model's strain fields; for the paper model its
+        The hyperelastic model's strain fields and von Mises stress
+        (relative to its shear modulus); for the paper model its
         geometric fields (:mod:`sectiondeform.geometric_fields`) and the
         strain fields of its mesh (out-of-plane stretch 1, or the hoop
         stretch), prefixed ``geometric_``.
     """
-    if model == "hyperelastic":
-        return "mechanical", strain_fields(initial, final, out_of_plane, axis)
+    if model == "hyperelastic":  # its rubber: neo-Hookean, shear modulus 1 (relative)
+        return "mechanical", strain_fields(initial, final, out_of_plane, axis, NeoHookean(1.0))
     from .geometric_fields import geometric_fields
 
     strains = strain_fields(initial, final, 1.0, axis)

@@ -49,9 +49,9 @@ def run_assembly(args, assembly: Assembly, report: list) -> int:
     result = AssemblyDeformer(assembly, element_size=args.element_size).deform()
     write_result(args.output, result, meshes=not args.no_meshes, fields=getattr(args, "fields", False))
     if args.plot:
-        from ..plot import save_figure
+        from .deform import save_plot
 
-        save_figure(result, args.plot)
+        save_plot(args, result)
     for line in report:
         print(f"  {line}")
     print(assembly_summary(result))

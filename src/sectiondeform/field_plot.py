@@ -1,0 +1,109 @@
+"""A strain field drawn as a colour map on the deformed mesh (matplotlib, extra ``[plot]``).
+
+One panel: each element of the final mesh (every body's, for an assembly)
+filled with the colour of one scalar field of :mod:`sectiondeform.strain_fields`,
+clipped to the deformed section, its outline drawn over it, with a colour
+bar naming the field and its kind. For the paper model the field is the
+geometric one of that name (``geometric_J`` for ``J``), and says so.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import CaseError
+from .strain_fields import result_fields
+
+__all__ = ["PLOT_FIELDS", "check_plot_field", "draw_field", "save_field_figure"]
+
+PLOT_FIELDS = {
+    "max_principal_strain": ("max_principal_strain", None, "largest principal strain λ₁ − 1"),
+    "J": ("J", None, "J = det F, local volume ratio"),
+    "max_principal_stretch": ("principal_stretches", 0, "largest principal stretch λ₁"),
+    "min_principal_stretch": ("principal_stretches", 2, "smallest principal stretch λ₃"),
+    "von_mises_stress": ("von_mises_stress", None, "von Mises stress / shear modulus"),
+}
+
+
+def check_plot_field(name: str) -> str:
+    """``name`` if it is one of :data:`PLOT_FIELDS`; a one-line :class:`CaseError` otherwise."""
+    if name not in PLOT_FIELDS:
+        raise CaseError("--plot-field", f"unknown field {name!r}; use one of {', '.join(PLOT_FIELDS)}")
+    return name
+
+
+def _pieces(result):
+    """(initial mesh, final mesh, deformed contour, info) of each body of a result or an assembly's result."""
+    if hasattr(result, "bodies"):
+        return [(b.initial_mesh, b.final_mesh, b.contour, b.info) for b in result.bodies]
+    return [(result.initial_mesh, result.final_mesh, result.contour, result.info)]
+
+
+def field_values(result, name: str) -> tuple[str, list[np.ndarray]]:
+    """The scalar field ``name`` per element of each body, and its kind (``mechanical`` or ``geometric``).
+
+    Parameters
+    ----------
+    result : Result or AssemblyResult
+    name : str
+        One of :data:`PLOT_FIELDS`.
+
+    Returns
+    -------
+    kind : str
+    values : list of (M_b,) float64 ndarray
+        One array per body, one value per element of its final mesh.
+    """
+    key, column, _ = PLOT_FIELDS[check_plot_field(name)]
+    axis = getattr(result, "axis", None)
+    kind, out = "geometric", []
+    for initial, final, _contour, info in _pieces(result):
+        kind, fields = result_fields(initial, final, result.model, getattr(info, "out_of_plane_stretch", 1.0), axis)
+        values = fields.get(key if kind == "mechanical" else f"geometric_{key}")
+        if values is None and kind == "geometric" and key == "von_mises_stress":
+            raise CaseError("--plot-field", "von_mises_stress is a stress and the paper model has no material; "
+                            "use --model hyperelastic or a strain field")
+        if values is None:
+            raise CaseError("--plot-field", f"no {name} for this result's {final.kind} mesh")
+        out.append(values if column is None else values[:, column])
+    return kind, out
+
+
+def draw_field(result, name: str, fig=None):
+    """Draw the field ``name`` (one of :data:`PLOT_FIELDS`) on the deformed mesh; returns the figure."""
+    from matplotlib.collections import PolyCollection
+    from matplotlib.colors import Normalize
+    from matplotlib.patches import Polygon
+
+    from .plot import new_figure
+
+    if fig is None:
+        fig = new_figure(figsize=(11, 5), layout="constrained")
+    ax = fig.subplots()
+    kind, values = field_values(result, name)
+    both = np.concatenate(values)
+    norm = Normalize(float(both.min()), float(both.max()) if both.max() > both.min() else float(both.min()) + 1e-12)
+    collection = None
+    for (_initial, final, contour, _info), v in zip(_pieces(result), values):
+        corners = {"quad": 4, "triangle": 3, "triangle6": 3}[final.kind]
+        collection = PolyCollection(final.points[final.cells[:, :corners]], array=v, cmap="viridis", norm=norm,
+                                    edgecolors="face", linewidths=0.2)
+        ax.add_collection(collection)
+        outline = Polygon(contour, closed=True, facecolor="none", edgecolor="k", lw=0.8)
+        ax.add_patch(outline)
+        collection.set_clip_path(outline)  # the paper model's mesh may reach beyond the body
+    label = PLOT_FIELDS[name][2] + ("\n(geometric: the paper model's mesh, not a material)" if kind == "geometric" else "")
+    fig.colorbar(collection, ax=ax, label=label, shrink=0.8)
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    ax.grid(True, lw=0.3, alpha=0.5)
+    ax.set_title(f"{result.name}: {name} on the deformed mesh ({result.model} model), "
+                 f"{both.min():.4g} to {both.max():.4g}")
+    return fig
+
+
+def save_field_figure(result, name: str, path):
+    """Draw :func:`draw_field` and write it to ``path`` (.png, .svg or .pdf), atomically."""
+    from .plot import write_figure
+
+    return write_figure(draw_field(result, name), path)
