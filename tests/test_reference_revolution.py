@@ -181,3 +181,24 @@ def test_refusals_name_the_field():
         solve_reference(case, law=SimpleNamespace(key="volume_ratio", ratio=1.0))
     with pytest.raises(sd.CaseError, match=r"law\.volume_ratio: must be between"):
         solve_reference(case, law=1000.0, axis=AXIS)
+
+
+def test_p2_moments_of_an_affinely_moved_mesh_are_its_polygon_moment():
+    from sectiondeform.reference.revolution import p2_first_moments
+
+    ref = solve_reference(ring(2 * T), law=1.0, axis=AXIS, mesh_size=0.5)
+    M = np.array([[1.1, 0.3], [-0.2, 0.9]])
+    moved = ref.initial_mesh.points @ M.T + [1.0, 20.0]
+    ax = axis_from_points(AXIS, moved)
+    contour = np.array([[0, A], [2 * T, A], [2 * T, A + T], [0, A + T]]) @ M.T + [1.0, 20.0]
+    total = p2_first_moments(ref.initial_mesh.points, moved, ref.initial_mesh.cells, ax).sum()
+    assert total == pytest.approx(polygon_first_moment(contour, ax), rel=1e-12)
+
+
+def test_the_ring_study_figures():
+    from sectiondeform.reference.ring import AXIS as RING_AXIS
+    from sectiondeform.reference.ring import ring_case, ring_figures
+
+    ref = solve_reference(ring_case(), law=0.9, axis=RING_AXIS, mesh_size=0.8, bulk_to_shear=1e5)
+    f = ring_figures(ref, 0.9)
+    assert f["analytic"] < 1e-4 and f["strips"] < 2e-4
