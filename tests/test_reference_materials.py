@@ -113,3 +113,14 @@ def test_an_assembly_of_several_bodies_is_refused_in_one_line():
     with pytest.raises(sd.CaseError, match=r"^bodies: the finite-element reference solves one body; this assembly has 2") as err:
         solve_reference(asm)
     assert "\n" not in str(err.value)
+
+
+def test_the_closed_form_neo_hookean_and_the_general_path_agree():
+    """The default rubber runs the first version's closed form; Mooney–Rivlin with c01 = 0 is the same rubber, run generally."""
+    arc = {"arc": {"center": [5.0, 9.0], "radius": 10.0, "start_deg": -120.0, "end_deg": -60.0}}
+    case = block(target=arc)
+    a = solve_reference(case, law=0.9, material=NeoHookean(1.4, bulk_to_shear=500.0), mesh_size=0.4)
+    b = solve_reference(case, law=0.9, material=MooneyRivlin(0.7, 0.0, bulk_to_shear=500.0), mesh_size=0.4)
+    np.testing.assert_allclose(a.upper, b.upper, atol=1e-10 * 3.0)
+    np.testing.assert_allclose(a.cauchy, b.cauchy, atol=1e-9)
+    assert a.iterations == b.iterations

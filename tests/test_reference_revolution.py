@@ -183,3 +183,73 @@ def test_refusals_name_the_field():
         solve_reference(case, law=SimpleNamespace(key="volume_ratio", ratio=1.0))
     with pytest.raises(sd.CaseError, match=r"law\.volume_ratio: must be between"):
         solve_reference(case, law=1000.0, axis=AXIS)
+
+
+def test_p2_moments_of_an_affinely_moved_mesh_are_its_polygon_moment():
+    from sectiondeform.reference.revolution import p2_first_moments
+
+    ref = solve_reference(ring(2 * T), law=1.0, axis=AXIS, mesh_size=0.5)
+    M = np.array([[1.1, 0.3], [-0.2, 0.9]])
+    moved = ref.initial_mesh.points @ M.T + [1.0, 20.0]
+    ax = axis_from_points(AXIS, moved)
+    contour = np.array([[0, A], [2 * T, A], [2 * T, A + T], [0, A + T]]) @ M.T + [1.0, 20.0]
+    total = p2_first_moments(ref.initial_mesh.points, moved, ref.initial_mesh.cells, ax).sum()
+    assert total == pytest.approx(polygon_first_moment(contour, ax), rel=1e-12)
+
+
+def test_the_ring_study_figures():
+    from sectiondeform.reference.ring import AXIS as RING_AXIS
+    from sectiondeform.reference.ring import ring_case, ring_figures
+
+    ref = solve_reference(ring_case(), law=0.9, axis=RING_AXIS, mesh_size=0.8, bulk_to_shear=1e5)
+    f = ring_figures(ref, 0.9)
+    assert f["analytic"] < 1e-4 and f["strips"] < 2e-4
+
+
+def tread_on_crown():
+    """The public example's tread alone, laid on the drum and shaped to the crown arc (one body of revolution)."""
+    import json
+
+    from conftest import CASES_DIR
+
+    data = json.loads((CASES_DIR / "v2" / "tread-on-drum.json").read_text())
+    tread = data["bodies"][1]
+
+    def down(c):  # the tread rests at y = 3 on the undertread: lay it on y = 0
+        if "polyline" in c:
+            return {"polyline": [[x, y - 3.0] for x, y in c["polyline"]]}
+        if "arc" in c:
+            return {"arc": {**c["arc"], "center": [c["arc"]["center"][0], c["arc"]["center"][1] - 3.0]}}
+        return {"chain": [down(p) for p in c["chain"]]}
+
+    arc = data["target"]["arc"]
+    a0, a1 = arc["start_deg"], arc["end_deg"]
+    crown = {"arc": {"center": arc["center"], "radius": arc["radius"],  # the support's stretch of x from 10 to 140
+                     "start_deg": a0 + 10 / 150 * (a1 - a0), "end_deg": a0 + 140 / 150 * (a1 - a0)}}
+    case = sd.case_from_dict({"format": "section-case/1", "name": "tread-on-crown", "lower": down(tread["lower"]),
+                              "upper": down(tread["upper"]), "target": crown, "law": {"area_ratio": 1.0}})
+    return case, tread["law"]["volume_ratio"], data["revolution"]["axis"]
+
+
+def test_a_tread_shaped_off_its_axis_keeps_area_times_centroid_radius():
+    """Pappus on the deformed polygon: A1 r1 = v A0 r0, the area falling as the centroid moves out (to 1e-3)."""
+    case, v, axis = tread_on_crown()
+    ref = solve_reference(case, law=v, axis=axis, mesh_size=0.4)
+    ax = ref.axis
+    assert abs(ref.relative_volume_error) < 5e-4
+    centre = np.asarray(case.target.to_json()["arc"]["center"])
+    np.testing.assert_allclose(np.hypot(*(ref.lower - centre).T), 200.0, rtol=1e-9)
+
+    before = sd.build_section(case).contour
+    after = np.concatenate((ref.lower, ref.upper[1:-1]))
+    m0, m1 = polygon_first_moment(before, ax), polygon_first_moment(after, ax)
+    assert abs(m1 / m0 / v - 1.0) < 1e-3
+    a0, a1 = abs(_area(before)), abs(_area(after))
+    r0, r1 = m0 / a0, m1 / a1
+    assert r1 > r0 + 20.0  # moved about 25 mm out
+    assert a1 / a0 == pytest.approx(v * r0 / r1, rel=1e-3)
+
+
+def _area(poly):
+    x, y = np.asarray(poly).T
+    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))

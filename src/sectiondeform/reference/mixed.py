@@ -30,7 +30,8 @@ import numpy as np
 __all__ = ["mixed_state"]
 
 
-def mixed_state(material, F: np.ndarray, p: np.ndarray, growth: float = 1.0, tangent: bool = True) -> dict:
+def mixed_state(material, F: np.ndarray, p: np.ndarray, growth: float = 1.0, tangent: bool = True,
+                components: np.ndarray | None = None, extras: bool = True) -> dict:
     """Stress, tangent and energy of the mixed form at each point.
 
     Parameters
@@ -46,6 +47,12 @@ def mixed_state(material, F: np.ndarray, p: np.ndarray, growth: float = 1.0, tan
         Volume ratio of the isotropic growth, ``v`` > 0 (1: none).
     tangent : bool
         Also compute the tangents.
+    components : (c, 2) int ndarray, optional
+        Only these components (i, J) of F vary (the in-plane block and the
+        out-of-plane stretch of a plane or axisymmetric code): ``A`` is then
+        (..., c, c), ``A[..., m, n] = ∂P_m/∂F_n``.
+    extras : bool
+        Also compute ``psi`` and ``cauchy`` (not needed by Newton).
 
     Returns
     -------
@@ -54,8 +61,9 @@ def mixed_state(material, F: np.ndarray, p: np.ndarray, growth: float = 1.0, tan
         volume; ``A`` (..., 3, 3, 3, 3) ∂P/∂F at fixed p (if ``tangent``),
         ``A[..., i, J, k, L] = ∂P_iJ/∂F_kL``; ``dPdp`` (..., 3, 3);
         ``constraint`` (...) ∂ψ/∂p; ``Je`` (...) elastic volume ratio
-        det F / v; ``psi`` (...) ψ; ``cauchy`` (..., 3, 3) the Cauchy
-        stress (∂ψ/∂F) Fᵀ / det F; ``kpp`` the scalar ∂²ψ/∂p² = −g³ / κ.
+        det F / v; ``kpp`` the scalar ∂²ψ/∂p² = −g³ / κ; with ``extras``,
+        ``psi`` (...) ψ and ``cauchy`` (..., 3, 3) the Cauchy stress
+        (∂ψ/∂F) Fᵀ / det F.
 
     Examples
     --------
@@ -77,12 +85,22 @@ def mixed_state(material, F: np.ndarray, p: np.ndarray, growth: float = 1.0, tan
         "dPdp": g * g * Je[..., None, None] * Fit,
         "constraint": g**3 * (Je - 1.0 - p / kappa),
         "Je": Je,
-        "psi": g**3 * (material.energy(Fe, volumetric=False) + p * (Je - 1.0) - p * p / (2.0 * kappa)),
-        "cauchy": P @ np.swapaxes(F, -1, -2) / (g**3 * Je)[..., None, None],
         "kpp": -(g**3) / kappa,
     }
+    if extras:
+        out["psi"] = g**3 * (material.energy(Fe, volumetric=False) + p * (Je - 1.0) - p * p / (2.0 * kappa))
+        out["cauchy"] = P @ np.swapaxes(F, -1, -2) / (g**3 * Je)[..., None, None]
     if tangent:
-        FiFi = np.einsum("...ij,...kl->...ijkl", Fit, Fit)
-        T = np.einsum("...il,...kj->...ijkl", Fit, Fit)
-        out["A"] = g * (material.tangent(Fe, volumetric=False) + pJ[..., None, None] * (FiFi - T))
+        A = material.tangent(Fe, volumetric=False)
+        if components is None:
+            FiFi = np.einsum("...ij,...kl->...ijkl", Fit, Fit)
+            T = np.einsum("...il,...kj->...ijkl", Fit, Fit)
+        else:
+            i, j = np.asarray(components).T
+            im, jm, kn, ln = i[:, None], j[:, None], i[None, :], j[None, :]
+            A = A[..., im, jm, kn, ln]
+            FiFi = Fit[..., im, jm] * Fit[..., kn, ln]
+            T = Fit[..., im, ln] * Fit[..., kn, jm]
+        scale = pJ if components is not None else pJ[..., None, None]
+        out["A"] = g * (A + scale * (FiFi - T))
     return out

@@ -60,6 +60,9 @@ from .mesh import SectionMesh
 from .mixed import mixed_state
 from .revolution import Axis
 
+#: The components (i, J) of F that vary: the in-plane block, then the out-of-plane (hoop) stretch.
+COMPONENTS = np.array([[0, 0], [0, 1], [1, 0], [1, 1], [2, 2]])
+
 __all__ = ["MixedProblem", "NewtonReport", "neo_hookean", "kabsch", "solve_mixed"]
 
 
@@ -238,6 +241,8 @@ class MixedProblem:
         self.mu = float(material.shear_modulus)
         self.kappa = float(material.kappa)
         self.axis = axis
+        # The first version's closed form, same model, for the default rubber in plane strain.
+        self._closed_form = axis is None and type(material) is NeoHookean
         m = skfem.MeshTri(np.ascontiguousarray(mesh.points.T), np.ascontiguousarray(mesh.triangles.T))
         self.skmesh = m
         self.ubasis = skfem.Basis(m, skfem.ElementVector(skfem.ElementTriP2()), intorder=4)
@@ -324,7 +329,7 @@ class MixedProblem:
         """Volume ratio of the isotropic growth at ``load`` (1 in plane strain)."""
         return float(load) if self.revolution else 1.0
 
-    def material(self, x: np.ndarray, load: float, tangent: bool = True) -> dict:
+    def material(self, x: np.ndarray, load: float, tangent: bool = True, extras: bool = True) -> dict:
         """The mixed rubber (:func:`~sectiondeform.reference.mixed.mixed_state`) at every quadrature point.
 
         Parameters
@@ -335,6 +340,9 @@ class MixedProblem:
             λz (generalised plane strain) or the growth volume ratio (body
             of revolution).
         tangent : bool
+            Also the tangent ``A5``.
+        extras : bool
+            Also ``psi`` and ``cauchy`` (not needed by Newton).
 
         Returns
         -------
@@ -343,7 +351,7 @@ class MixedProblem:
             ``det2`` and ``stretch3``); ``P5`` (nel, nq, 5) the stress
             components conjugate to the five strain components, ``A5``
             (nel, nq, 5, 5), ``D5`` (nel, nq, 5) their derivative by p,
-            ``constraint``, ``kpp``, ``Je``, ``psi``, ``cauchy`` (nel, nq, 3, 3),
+            ``constraint``, ``kpp``, ``Je``, (with ``extras``) ``psi`` and ``cauchy`` (nel, nq, 3, 3),
             ``det2`` det F2D and ``stretch3`` F₃₃ (nel, nq).
         """
         F = self.gradient(x, load)
@@ -351,14 +359,32 @@ class MixedProblem:
         out = {"det2": det2, "stretch3": F[..., 2, 2], "valid": bool(np.all(det2 > 0) and np.all(F[..., 2, 2] > 0))}
         if not out["valid"]:
             return out
-        s = mixed_state(self.rubber, F, self.pressure(x[self.n_u:]), self.growth(load), tangent)
+        if self._closed_form and not extras:
+            return self._neo_hookean(x, load, tangent, out)
+        s = mixed_state(self.rubber, F, self.pressure(x[self.n_u:]), self.growth(load), tangent,
+                        components=COMPONENTS, extras=extras)
         out.update(s)
-        out["P5"] = np.concatenate((s["P"][..., :2, :2].reshape(self.dx.shape + (4,)), s["P"][..., 2:, 2]), axis=-1)
-        out["D5"] = np.concatenate((s["dPdp"][..., :2, :2].reshape(self.dx.shape + (4,)), s["dPdp"][..., 2:, 2]), axis=-1)
+        i, j = COMPONENTS.T
+        out["P5"] = s["P"][..., i, j]
+        out["D5"] = s["dPdp"][..., i, j]
         if tangent:
-            A = s["A"]
-            idx = np.array([[0, 0], [0, 1], [1, 0], [1, 1], [2, 2]])
-            out["A5"] = A[..., idx[:, 0][:, None], idx[:, 1][:, None], idx[:, 0][None, :], idx[:, 1][None, :]]
+            out["A5"] = s["A"]
+        out["valid"] = bool(np.all(np.isfinite(out["P5"])))
+        return out
+
+    def _neo_hookean(self, x: np.ndarray, load: float, tangent: bool, out: dict) -> dict:
+        """:meth:`material` of a neo-Hookean rubber in plane strain through the closed form :func:`neo_hookean` (faster)."""
+        s = neo_hookean(self.grad_u(x[: self.n_u]), load, self.pressure(x[self.n_u:]), self.mu, self.kappa, tangent)
+        shape = self.dx.shape
+        out["P5"] = np.concatenate((np.moveaxis(s["P"], (0, 1), (2, 3)).reshape(shape + (4,)), np.zeros(shape + (1,))), axis=-1)
+        out["D5"] = np.concatenate((np.moveaxis(s["dPdp"], (0, 1), (2, 3)).reshape(shape + (4,)), np.zeros(shape + (1,))), axis=-1)
+        if tangent:
+            A5 = np.zeros(shape + (5, 5))
+            A5[..., :4, :4] = np.moveaxis(s["A"], (0, 1, 2, 3), (2, 3, 4, 5)).reshape(shape + (4, 4))
+            out["A5"] = A5
+        out["Je"] = s["J"]
+        out["constraint"] = s["J"] - 1.0 - self.pressure(x[self.n_u:]) / self.kappa
+        out["kpp"] = -1.0 / self.kappa
         out["valid"] = bool(np.all(np.isfinite(out["P5"])))
         return out
 
@@ -524,7 +550,7 @@ def _newton(pr: MixedProblem, x, load, lift, free, length_scale, tol, max_iterat
     from scipy.sparse.linalg import spsolve
 
     n_u = pr.n_u
-    mat = pr.material(x, load)
+    mat = pr.material(x, load, extras=False)
     if not mat["valid"]:
         return False, 0, math.inf, x
     r = pr.residual(x, load, mat)
@@ -551,7 +577,7 @@ def _newton(pr: MixedProblem, x, load, lift, free, length_scale, tol, max_iterat
         for _ in range(6):
             cand = x + alpha * dx
             with np.errstate(all="ignore"):
-                mat_c = pr.material(cand, load)
+                mat_c = pr.material(cand, load, extras=False)
             if mat_c["valid"]:
                 r_c = pr.residual(cand, load, mat_c)
                 norm_c = float(np.linalg.norm(r_c[free]))

@@ -24,7 +24,7 @@ import numpy as np
 from ..case import Case
 from ..compare import CurveComparison, compare_curves, point_to_curve_distance, section_height
 from ..deform import Deformer
-from ..errors import require
+from ..errors import CaseError, require
 from ..io import check_figure_path
 from ..result import Result
 from ..section import polygon_area
@@ -109,7 +109,8 @@ class Validation:
                 "upper": f.upper.tolist(),
             },
             "reference": {
-                "model": "finite elements: neo-Hookean, generalised plane strain, P2/P1 Taylor-Hood",
+                "model": f"finite elements: {r.material.model if r.material is not None else 'neo-hookean'}, "
+                         f"{'body of revolution' if r.revolution else 'generalised plane strain'}, P2/P1 Taylor-Hood",
                 "area_final": self.area_reference,
                 "area_relative_error": (self.area_reference - target) / target,
                 "area_polygon": self.area_reference_polygon,
@@ -166,7 +167,10 @@ def validate_case(
 
     Parameters
     ----------
-    case : Case
+    case : Case or Assembly
+        A version-1 case, or a version-2 case of one body (the reference
+        then uses its ``material`` and ``revolution``; the fast model its
+        body's case). Several bodies are refused.
     model : str, optional
         The fast model to check, ``"paper"`` or ``"hyperelastic"``; by
         default the case's ``options.model``.
@@ -190,6 +194,15 @@ def validate_case(
     MissingExtraError
         Without the extra ``[fem]``.
     """
+    from ..assembly import Assembly
+
+    source = case
+    if isinstance(case, Assembly):
+        if len(case.bodies) != 1:
+            names = ", ".join(repr(b.name) for b in case.bodies)
+            raise CaseError("bodies", f"validate compares one body; this assembly has {len(case.bodies)} ({names}): "
+                            "give each body its own one-body case")
+        case = case.body_case(0)
     require("skfem", "fem", "the finite-element reference")
     require("triangle", "fem", "the finite-element reference")
     check_parameters(mesh_size, case.options.for_model("hyperelastic").bulk_to_shear if bulk_to_shear is None else bulk_to_shear)
@@ -197,7 +210,7 @@ def validate_case(
     if progress is not None:
         progress(f"validate: {fast.model} model done in {1e3 * fast_s:.1f} ms; solving the reference")
     t0 = time.perf_counter()
-    ref = solve_reference(case, mesh_size=mesh_size, bulk_to_shear=bulk_to_shear, progress=progress)
+    ref = solve_reference(source, mesh_size=mesh_size, bulk_to_shear=bulk_to_shear, progress=progress)
     ref_s = time.perf_counter() - t0
     mean_thickness = fast.area_initial / case.lower.length
     shape = compare_curves(fast.upper, ref.upper, scale=mean_thickness)
