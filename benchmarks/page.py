@@ -93,7 +93,7 @@ def p95(values: list[float]) -> float:
     return statistics.quantiles(values, n=20, method="inclusive")[-1]
 
 
-def run(moves: int, chromium: str, images: Path | None) -> list[dict]:
+def run(moves: int, chromium: str, images: Path | None, models=("paper", "hyperelastic"), meshes: bool = True) -> list[dict]:
     from playwright.sync_api import sync_playwright
 
     proc, url = start_server()
@@ -106,7 +106,9 @@ def run(moves: int, chromium: str, images: Path | None) -> list[dict]:
             page.wait_for_selector("#view[data-final='1']")
             if images:
                 write_images(page, images)
-            for model in ("paper", "hyperelastic"):
+            if not meshes:
+                page.uncheck("#show-mesh")
+            for model in models:
                 page.select_option("#model", model)
                 page.wait_for_function(f"document.getElementById('view').dataset.model === '{model}'")
                 settle(page)
@@ -190,8 +192,10 @@ def main(argv=None) -> int:
     parser.add_argument("--out", type=Path, help="write the Markdown report here")
     parser.add_argument("--images", type=Path, help="write page.png and page-drag.gif in this folder")
     parser.add_argument("--chromium", default=shutil.which("chromium") or "/usr/bin/chromium")
+    parser.add_argument("--models", default="paper,hyperelastic", help="comma-separated models to drag with")
+    parser.add_argument("--no-meshes", action="store_true", help="drag with the meshes hidden (to measure their cost)")
     args = parser.parse_args(argv)
-    rows = run(args.moves, args.chromium, args.images)
+    rows = run(args.moves, args.chromium, args.images, tuple(args.models.split(",")), not args.no_meshes)
     text = report(rows, "python benchmarks/page.py " + " ".join(argv if argv is not None else sys.argv[1:]))
     print(text)
     if args.out:
