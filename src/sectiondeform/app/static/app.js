@@ -554,6 +554,7 @@ function load(data, refit = true) {
   const bodies = isAssembly() ? state.case.bodies : [];
   $("body").replaceChildren(...bodies.map((b, i) => new Option(b.name || `body ${i}`, i)));
   $("body-label").hidden = !bodies.length;
+  $("assembly-hint").hidden = !bodies.length;
   svg.classList.remove("refused");
   if (bodies.length) { showRatio(); quantityLabels(Boolean(state.case.revolution)); }
   else {
