@@ -107,9 +107,12 @@ class DeformerCache:
         return deformer, True
 
     def ready(self, case_json, model) -> bool:
-        """True if the section of ``case_json`` is already prepared for ``model`` (a preview is then fast)."""
+        """True if the section of ``case_json`` is already prepared for ``model`` (a preview is then fast).
+
+        Never for an assembly: each of its answers is a full placement of every body.
+        """
         try:
-            return isinstance(case_json, dict) and section_key(case_json, model) in self._items
+            return isinstance(case_json, dict) and not is_assembly(case_json) and section_key(case_json, model) in self._items
         except (TypeError, ValueError):
             return False
 

@@ -182,27 +182,41 @@ function handleList() {
   return list;
 }
 
+// The handles' circles (and labels) are made once per set of handles, then only moved: a drag redraws them at
+// every pointer move, and moving is much cheaper than rebuilding.
 function drawHandles() {
   const g = $("handles");
-  g.replaceChildren();
-  if (!state.case) return;
-  for (const h of handleList()) {
+  if (!state.case) { g.replaceChildren(); delete g.dataset.keys; return; }
+  const list = handleList();
+  const keys = list.map((h) => `${h.curve || "target"}:${h.whole || h.index}`).join(",");
+  if (g.dataset.keys !== keys) {
+    g.replaceChildren();
+    for (const h of list) {
+      const c = document.createElementNS(NS, "circle");
+      c.setAttribute("r", h.whole ? 8 : 6);
+      c.dataset.curve = h.curve || "target";
+      if (h.whole) c.dataset.whole = h.whole; else c.dataset.index = h.index;
+      g.appendChild(c);
+      if (h.label) {
+        const t = document.createElementNS(NS, "text");
+        t.setAttribute("class", "handle-label");
+        t.textContent = h.label;
+        c.label = t;
+        g.appendChild(t);
+      }
+    }
+    g.dataset.keys = keys;
+  }
+  const circles = g.getElementsByTagName("circle");
+  list.forEach((h, i) => {
+    const c = circles[i];
     const [x, y] = h.screen || toScreen(h.p);
-    const c = document.createElementNS(NS, "circle");
-    c.setAttribute("cx", x); c.setAttribute("cy", y); c.setAttribute("r", h.whole ? 8 : 6);
+    c.setAttribute("cx", x); c.setAttribute("cy", y);
     const sel = state.selected && !h.whole && state.selected.curve === h.curve && state.selected.index === h.index;
     c.setAttribute("class", "handle" + (h.curve === "upper" ? " upper" : "") + (h.whole ? " whole" : "") + (sel ? " selected" : ""));
-    c.dataset.curve = h.curve || "target";
-    if (h.whole) c.dataset.whole = h.whole; else c.dataset.index = h.index;
     c.handle = h;
-    g.appendChild(c);
-    if (h.label) {
-      const t = document.createElementNS(NS, "text");
-      t.setAttribute("x", x + 10); t.setAttribute("y", y + 4); t.setAttribute("class", "handle-label");
-      t.textContent = h.label;
-      g.appendChild(t);
-    }
-  }
+    if (c.label) { c.label.setAttribute("x", x + 10); c.label.setAttribute("y", y + 4); }
+  });
 }
 
 // ---- readouts ----------------------------------------------------------
@@ -540,6 +554,7 @@ function load(data, refit = true) {
   const bodies = isAssembly() ? state.case.bodies : [];
   $("body").replaceChildren(...bodies.map((b, i) => new Option(b.name || `body ${i}`, i)));
   $("body-label").hidden = !bodies.length;
+  $("assembly-hint").hidden = !bodies.length;
   svg.classList.remove("refused");
   if (bodies.length) { showRatio(); quantityLabels(Boolean(state.case.revolution)); }
   else {
