@@ -599,6 +599,12 @@ def to_markdown(report: dict, changes: str = "") -> str:
         f"Python {m['python']}, numpy {m['numpy']}, scipy {m['scipy']}, shapely {m['shapely']}, "
         f"sectiondeform {m['sectiondeform']}.",
         "",
+        "Other benchmarks, each with its own command: parametric studies (rows per second, "
+        "1 → 2 workers, Dask, a 10⁵-row study) in [studies.md](studies.md#benchmark); the interactive "
+        "page (pointer move to redrawn section) in [benchmarks-page.md](benchmarks-page.md); the "
+        "hyperelastic model's levels in [hyperelastic.md](hyperelastic.md); assemblies in "
+        "[benchmarks-assemblies.md](benchmarks-assemblies.md).",
+        "",
         "## Targets",
         "",
         "| figure | measured | target | |",
