@@ -526,6 +526,10 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
     elif keywords:
         raise CaseError(next(iter(keywords)), "give the options either as DrawingOptions or as keywords, not both")
     o = options
+    from .assembly import assembly_from_drawing, is_assembly_drawing
+
+    if is_assembly_drawing(drawing):
+        return assembly_from_drawing(drawing, o, report)
     meta = dict(drawing.meta or {})
     roles = {"lower": "LOWER", "upper": "UPPER", "target": "TARGET", "contour": "CONTOUR", **(o.layers or {})}
     pieces = list(drawing.pieces)
