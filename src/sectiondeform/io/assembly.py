@@ -53,9 +53,11 @@ body the layers (SVG group ids) ``INITIAL-<name>-LOWER``,
 and ``SUPPORT`` and ``TARGET`` when the case is given. :func:`write_mesh`:
 one mesh of every body, cell data ``body`` = the body's tag (its index in
 the case's ``bodies`` plus 1) and ``element`` (the element's number in its
-body's mesh); field data ``{name: [tag, 2]}``, which Gmsh reads as named
-physical groups; each body keeps its own nodes (a node on a shared piece is
-written once per body).
+body's mesh); field data ``{name: [tag, 2]}``, which Gmsh files keep as
+named physical groups (VTU and VTK files keep no field data: tag t is
+``bodies[t - 1]`` of the case and of the result JSON); Abaqus files get one
+element set per body, named after it. Each body keeps its own nodes (a node
+on a shared piece is written once per body).
 """
 
 from __future__ import annotations
@@ -213,7 +215,11 @@ def _split_part(part: Curve, point: np.ndarray, chord: float, report, where: str
         dd = np.einsum("ij,ij->i", seg, seg)
         t = np.clip(np.einsum("ij,ij->i", point - v[:-1], seg) / np.where(dd > 0, dd, 1.0), 0.0, 1.0)
         i = int(np.argmin(np.hypot(*(v[:-1] + t[:, None] * seg - point).T)))
-        return [Polyline(np.vstack((v[: i + 1], point))), Polyline(np.vstack((point, v[i + 1:])))]
+        tiny = 1e-12 * (1.0 + float(np.abs(point).max()))
+        left = np.array(v[: i + 1]) if np.hypot(*(v[i] - point)) <= tiny else np.vstack((v[: i + 1], point))
+        right = np.array(v[i + 1:]) if np.hypot(*(v[i + 1] - point)) <= tiny else np.vstack((point, v[i + 1:]))
+        left[-1], right[0] = point, point
+        return [Polyline(left), Polyline(right)]
     if isinstance(part, Arc):
         a0, a1 = float(part.start_deg), float(part.end_deg)
         am = math.degrees(math.atan2(point[1] - part.center[1], point[0] - part.center[0]))
@@ -335,9 +341,12 @@ def assembly_from_drawing(drawing: Drawing, options, report=None) -> Assembly:
         rest = tag[len(BODY):] if tag.startswith(BODY) else None
         if rest and "-" in rest:
             stem, suffix = rest.rsplit("-", 1)
+            missing = [r.upper() for r in ("lower", "upper") if r not in found.get(stem, {})] or ["LOWER", "UPPER"]
             close = difflib.get_close_matches(suffix, ["LOWER", "UPPER"], n=1, cutoff=0.6)
             if close and suffix not in ("LOWER", "UPPER") and stem in found and rest not in known:
-                raise CaseError(label(tag), f"matches no layer of the convention; did you mean {BODY}{stem}-{close[0]}?")
+                text = drawing.labels.get(tag, tag)
+                raise CaseError(label(tag), f"matches no layer of the convention; did you mean "
+                                            f"{text[: len(text) - len(suffix)]}{missing[0] if len(missing) == 1 else close[0]}?")
     for upper_name in [n for n in known if n not in found]:
         raise CaseError(str(drawing.path), f"body {known[upper_name]!r} of the stored case has no {what} "
                         f"BODY-{known[upper_name]}-LOWER/-UPPER nor BODY-{known[upper_name]}; draw it or remove it")
@@ -767,6 +776,8 @@ def write_mesh(path, result, which: str = "final") -> None:
     if fmt == "gmsh":
         mesh.cell_data["gmsh:physical"] = [t.astype(np.int32) for t in mesh.cell_data["body"]]
         mesh.cell_data["gmsh:geometrical"] = [t.astype(np.int32) for t in mesh.cell_data["body"]]
+        counts = [len(b.final_mesh.points if which == "final" else b.initial_mesh.points) for b in result.bodies]
+        mesh.point_data["gmsh:dim_tags"] = np.column_stack((np.full(sum(counts), 2), np.repeat(np.arange(1, len(counts) + 1), counts)))
     if fmt == "abaqus":
         sets = {}
         for i, b in enumerate(result.bodies):
