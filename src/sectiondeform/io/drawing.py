@@ -591,10 +591,16 @@ def _plain_case(path: Path, options: DrawingOptions, given, report) -> Case:
     if drawing_only:
         raise CaseError(drawing_only[0], f"applies to drawings (DXF, SVG) only, and {path.name} is a case JSON without one")
     case = read_plain(path)
-    if not isinstance(case, Case):  # an assembly (section-case/2): one law per body, its own units
-        for key, what in (("law", "set each body's law in the case"), ("units", "convert it as a whole later")):
-            if key in given:
-                raise CaseError(key, f"an assembly case does not take this option; {what}")
+    if not isinstance(case, Case):  # an assembly (section-case/2): one law per body
+        from .assembly import convert_assembly_units
+
+        if "law" in given:
+            raise CaseError("law", "an assembly case does not take this option; set each body's law in the case")
+        if options.name is not None:
+            case = case.replace(name=options.name)
+        if options.chordal_error:
+            case = case.replace(options=case.options.replace(chordal_error=options.chordal_error))
+        return convert_assembly_units(case, options.units, report) if options.units else case
     if options.law is not None:
         case = replace(case, law=options.law)
     if options.name is not None:
