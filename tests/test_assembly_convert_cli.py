@@ -69,3 +69,18 @@ def test_convert_keeps_stored_laws_unless_told(tmp_path):
     assert main(["convert", str(STRIP), str(tmp_path / "a.dxf")]) == 0
     assert main(["convert", str(tmp_path / "a.dxf"), str(tmp_path / "b.json"), "--area-ratio", "1.0"]) == 0
     assert [b.law for b in load_case(tmp_path / "b.json").bodies] == [AreaRatio(1.0)] * 2
+
+
+def test_deform_an_assembly_to_dxf_svg_and_meshes(tmp_path, capsys):
+    meshio = pytest.importorskip("meshio")
+    out = tmp_path / "r.dxf"
+    argv = ["deform", str(STRIP), "-o", str(out), "--mesh-out", str(tmp_path / "f.vtu"),
+            "--initial-mesh-out", str(tmp_path / "i.msh")]
+    assert main(argv) == 0
+    layers = {layer.dxf.name for layer in ezdxf.readfile(out).layers}
+    assert {"SUPPORT", "TARGET", "DEFORMED-cover-UPPER", "INITIAL-backing-LOWER", "MESH-FINAL-backing"} <= layers
+    assert set(meshio.read(tmp_path / "i.msh").field_data) == {"backing", "cover"}
+    assert main(["deform", str(STRIP), "-o", str(tmp_path / "r.svg")]) == 0
+    assert 'id="DEFORMED-backing-UPPER"' in (tmp_path / "r.svg").read_text()
+    assert main(["deform", str(STRIP), "-o", str(tmp_path / "r.vtu"), "--fields"]) == 2
+    assert "--fields" in capsys.readouterr().err and not (tmp_path / "r.vtu").exists()
