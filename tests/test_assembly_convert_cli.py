@@ -84,3 +84,41 @@ def test_deform_an_assembly_to_dxf_svg_and_meshes(tmp_path, capsys):
     assert 'id="DEFORMED-backing-UPPER"' in (tmp_path / "r.svg").read_text()
     assert main(["deform", str(STRIP), "-o", str(tmp_path / "r.vtu"), "--fields"]) == 2
     assert "--fields" in capsys.readouterr().err and not (tmp_path / "r.vtu").exists()
+
+
+def test_case_json_naming_an_assembly_drawing(tmp_path):
+    """Curves from a CAD contour drawing, laws and materials per body from the JSON."""
+    doc = ezdxf.new("R2010")
+    msp = doc.modelspace()
+    msp.add_line((0, 0), (100, 0), dxfattribs={"layer": "SUPPORT"})
+    msp.add_line((0, -2), (100, -2), dxfattribs={"layer": "TARGET"})
+    msp.add_lwpolyline([(0, 0), (100, 0), (100, 4), (0, 4)], close=True, dxfattribs={"layer": "BODY-backing"})
+    msp.add_lwpolyline([(0, 4), (100, 4), (50, 14)], close=True, dxfattribs={"layer": "BODY-cover"})
+    doc.saveas(tmp_path / "layup.dxf")
+    (tmp_path / "case.json").write_text(json.dumps({
+        "format": "section-case/2", "name": "layup", "drawing": {"file": "layup.dxf"},
+        "bodies": [{"name": "cover", "law": {"area_ratio": 0.9}},
+                   {"name": "backing", "law": {"area_ratio": 0.95}, "material": {"shear_modulus": 3.0}}],
+        "options": {"chordal_error": 0.05},
+    }))
+    from sectiondeform.io import read_case
+
+    case = read_case(tmp_path / "case.json")
+    assert [b.name for b in case.bodies] == ["cover", "backing"]
+    assert [b.law for b in case.bodies] == [AreaRatio(0.9), AreaRatio(0.95)]
+    assert case.bodies[1].material_data == {"shear_modulus": 3.0}
+    assert case.options.chordal_error == 0.05 and case.name == "layup"
+    assert case.bodies[0].lower.to_json() == {"polyline": [[0.0, 4.0], [100.0, 4.0]]}
+    out = tmp_path / "r.json"
+    assert main(["deform", str(tmp_path / "case.json"), "-o", str(out)]) == 0
+    data = json.loads((tmp_path / "case.json").read_text())
+    data["bodies"].append({"name": "tread", "law": {"area_ratio": 1.0}})
+    (tmp_path / "bad.json").write_text(json.dumps(data))
+    with pytest.raises(Exception) as exc:
+        read_case(tmp_path / "bad.json")
+    assert "'tread'" in str(exc.value) and "BODY-tread" in str(exc.value)
+    data["bodies"][2] = {"name": "cover", "lower": {"polyline": [[0, 0], [1, 0]]}}
+    (tmp_path / "bad.json").write_text(json.dumps(data))
+    with pytest.raises(Exception) as exc:
+        read_case(tmp_path / "bad.json")
+    assert str(exc.value).startswith("bodies[2].lower:")

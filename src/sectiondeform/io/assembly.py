@@ -78,7 +78,7 @@ from .chaining import fmt_point
 from .pieces import Drawing, merge_runs
 
 __all__ = [
-    "is_assembly_drawing", "assembly_from_drawing", "convert_assembly_units", "check_layer_names",
+    "is_assembly_drawing", "assembly_from_drawing", "assembly_from_json_and_drawing", "convert_assembly_units", "check_layer_names",
     "write_case_dxf", "write_case_svg", "write_result_dxf", "write_result_svg", "to_meshio", "write_mesh",
     "ASSEMBLY_FORMAT", "SUPPORT", "TARGET", "AXIS", "BODY",
 ]
@@ -348,7 +348,7 @@ def assembly_from_drawing(drawing: Drawing, options, report=None) -> Assembly:
                 raise CaseError(label(tag), f"matches no layer of the convention; did you mean "
                                             f"{text[: len(text) - len(suffix)]}{missing[0] if len(missing) == 1 else close[0]}?")
     for upper_name in [n for n in known if n not in found]:
-        raise CaseError(str(drawing.path), f"body {known[upper_name]!r} of the stored case has no {what} "
+        raise CaseError(str(drawing.path), f"body {known[upper_name]!r} of the case has no {what} "
                         f"BODY-{known[upper_name]}-LOWER/-UPPER nor BODY-{known[upper_name]}; draw it or remove it")
     first_piece = {n: min(pieces.index(p) for ps in found[n].values() for p in ps) for n in found}
     order = [n for n in known if n in found] + sorted((n for n in found if n not in known), key=first_piece.get)
@@ -456,6 +456,70 @@ def assembly_from_drawing(drawing: Drawing, options, report=None) -> Assembly:
     _say(report, f"assembly: {len(bodies)} bodies ({', '.join(b.name for b in bodies)}), resting order "
                  f"{' < '.join(bodies[k].name for k in assembly.layout.order)}")
     return convert_assembly_units(assembly, o.units, report) if o.units else assembly
+
+
+JSON_BODY_KEYS = ("name", "law", "material", "note")
+JSON_KEYS = ("format", "name", "units", "target", "revolution", "bodies", "options", "drawing", "note")
+
+
+def assembly_from_json_and_drawing(path, data: dict, opts: dict, report=None) -> Assembly:
+    """An assembly whose curves are a drawing's and whose laws and materials a case JSON gives.
+
+    ``{"format": "section-case/2", "drawing": {"file": "layup.dxf", ...},
+    "bodies": [{"name": "tread", "law": {...}, "material": {...}}, ...]}``:
+    the bodies are the drawing's, matched by name (without regard to case),
+    in the JSON's order; ``target``, ``revolution``, ``options``, ``name``
+    and ``units`` (a relabelling, as for one body) of the JSON take
+    precedence over the drawing's.
+
+    Raises
+    ------
+    CaseError
+        A key this form does not take (curves of a body: draw them), a body
+        of the JSON with no layer, or the errors of :func:`assembly_from_drawing`.
+    """
+    from ..case import unknown_key
+    from ..curves import curve_from_json
+    from .drawing import DrawingOptions, read_drawing_file
+
+    for key in data:
+        if key not in JSON_KEYS and not str(key).startswith("x-") and key != "extra":
+            raise unknown_key("", key, JSON_KEYS)
+    bodies = data.get("bodies", [])
+    if not isinstance(bodies, list):
+        raise CaseError("bodies", f"expected a list of {{\"name\", \"law\", \"material\"}}, got {bodies!r}")
+    for i, b in enumerate(bodies):
+        if not isinstance(b, dict) or not isinstance(b.get("name"), str):
+            raise CaseError(f"bodies[{i}]", "expected {\"name\": ..., \"law\": ...}; the curves are the drawing's")
+        for key in b:
+            if key not in JSON_BODY_KEYS and not str(key).startswith("x-"):
+                hint = "; with a drawing, a body's curves are drawn on its layers" if key in ("lower", "upper") else ""
+                raise CaseError(f"bodies[{i}].{key}", f"not taken here{hint}; use {', '.join(JSON_BODY_KEYS)}")
+    revolution = revolution_from_json(data["revolution"]) if "revolution" in data else None
+    axis = revolution.axis if revolution is not None else None
+    if "target" in data:
+        opts["target"] = curve_from_json(data["target"], "target")
+    chordal = (data.get("options") or {}).get("chordal_error")
+    drawing = read_drawing_file(path.parent / data["drawing"]["file"], opts.get("chordal_error") or chordal)
+    meta = dict(drawing.meta or {})
+    stored = {b["name"].upper(): b for b in meta.get("bodies") or [] if isinstance(b, dict) and isinstance(b.get("name"), str)}
+    merged = []
+    for i, b in enumerate(bodies):
+        entry = {**stored.pop(b["name"].upper(), {}), **{k: v for k, v in b.items() if k in ("name", "law", "material")}}
+        if "law" in b:
+            law_from_json(b["law"], f"bodies[{i}].law", axis)  # checked here, to name the JSON's field
+        merged.append(entry)
+    meta["bodies"] = merged + list(stored.values())
+    meta["format"] = ASSEMBLY_FORMAT
+    meta["options"] = {**(meta.get("options") or {}), **(data.get("options") or {})}
+    if revolution is not None:
+        meta["revolution"] = revolution.to_json()
+    if "name" in data:
+        meta["name"] = data["name"]
+    assembly = assembly_from_drawing(replace(drawing, meta=meta), DrawingOptions.from_mapping(opts), report)
+    if "units" in data and "units" not in opts:
+        assembly = assembly.replace(units=data["units"])
+    return assembly
 
 
 def _checked(pieces, where: str):

@@ -635,6 +635,10 @@ def read_json_case(path, *, report=None, **options) -> Case:
     opts = {k: v for k, v in d.items() if k != "file"}
     DrawingOptions.from_mapping(opts, "drawing", allowed=JSON_KEYS)
     opts.update(given)
+    if data.get("format") == "section-case/2":
+        from .assembly import assembly_from_json_and_drawing
+
+        return assembly_from_json_and_drawing(path, data, opts, report)
     if "law" in data and overrides.law is None:
         opts["law"] = law_from_json(data["law"])
     if "target" in data:
