@@ -122,3 +122,19 @@ def test_case_json_naming_an_assembly_drawing(tmp_path):
     with pytest.raises(Exception) as exc:
         read_case(tmp_path / "bad.json")
     assert str(exc.value).startswith("bodies[2].lower:")
+
+
+def test_deform_a_law_less_assembly_drawing_with_area_ratio(tmp_path):
+    doc = ezdxf.new("R2010")
+    msp = doc.modelspace()
+    msp.add_line((0, 0), (100, 0), dxfattribs={"layer": "SUPPORT"})
+    msp.add_line((0, -2), (100, -2), dxfattribs={"layer": "TARGET"})
+    msp.add_lwpolyline([(0, 0), (100, 0), (100, 4), (0, 4)], close=True, dxfattribs={"layer": "BODY-backing"})
+    msp.add_lwpolyline([(0, 4), (100, 4), (50, 14)], close=True, dxfattribs={"layer": "BODY-cover"})
+    doc.saveas(tmp_path / "layup.dxf")
+    out = tmp_path / "r.json"
+    assert main(["deform", str(tmp_path / "layup.dxf"), "--area-ratio", "0.9", "-o", str(out)]) == 0
+    for body in json.loads(out.read_text())["bodies"]:
+        assert body["area"]["final"] == pytest.approx(0.9 * body["area"]["initial"], rel=1e-9)
+    assert main(["deform", str(tmp_path / "layup.dxf"), "-o", str(tmp_path / "s.json")]) == 2  # no law anywhere
+    assert not (tmp_path / "s.json").exists()

@@ -378,3 +378,71 @@ def test_mesh_inp_element_sets(tmp_path, strip_result):
     assert "ELSET=backing" in text.replace(" ", "") or "ELSET=BACKING" in text.upper().replace(" ", "")
     m = meshio.read(tmp_path / "r.inp")
     assert len(m.points) == sum(len(b.initial_mesh.points) for b in result.bodies)
+
+
+# ---------------------------------------------------------------- property: stacks of boxes
+
+
+def test_stacked_boxes_any_drawing_order_any_start_any_direction():
+    """Nested boxes stacked on a support, drawn as closed contours in any order, from any corner, either way:
+    each body's lower curve is exactly its bottom edge, left to right, and it rests on the box below.
+    """
+    import tempfile
+    from pathlib import Path
+
+    from hypothesis import given, settings
+    from hypothesis import strategies as st
+
+    @settings(max_examples=8, deadline=None)
+    @given(st.lists(st.tuples(st.integers(0, 3), st.integers(0, 3), st.integers(1, 4)), min_size=1, max_size=4),
+           st.randoms(use_true_random=False))
+    def check(layers, rnd):
+        boxes, x0, x1, y = [], 0, 40, 0
+        for left, right, height in layers:
+            x0, x1 = x0 + left, x1 - right
+            boxes.append((x0, x1, y, y + height))
+            y += height
+        doc, msp = new_doc()
+        msp.add_line((-5, 0), (45, 0), dxfattribs={"layer": "SUPPORT"})
+        msp.add_line((-5, -1), (45, -1), dxfattribs={"layer": "TARGET"})
+        order = list(range(len(boxes)))
+        rnd.shuffle(order)
+        for i in order:
+            a, b, lo, hi = boxes[i]
+            corners = [(a, lo), (b, lo), (b, hi), (a, hi)]
+            k = rnd.randrange(4)
+            corners = corners[k:] + corners[:k]
+            if rnd.random() < 0.5:
+                corners = corners[::-1]
+            msp.add_lwpolyline(corners, close=True, dxfattribs={"layer": f"BODY-b{i}"})
+        with tempfile.TemporaryDirectory() as tmp:
+            doc.saveas(Path(tmp) / "s.dxf")
+            case = read_case(Path(tmp) / "s.dxf", law=AreaRatio(0.9))
+        assert [b.name for b in case.bodies] == [f"b{i}" for i in order]
+        for body in case.bodies:
+            i = int(body.name[1:])
+            a, b, lo, hi = boxes[i]
+            assert body.lower.to_json() == {"polyline": [[float(a), float(lo)], [float(b), float(lo)]]}
+            assert body.upper.to_json() == {"polyline": [[float(b), float(lo)], [float(b), float(hi)],
+                                                         [float(a), float(hi)], [float(a), float(lo)]]}
+            found = case.layout.foundations[case.bodies.index(body)]
+            assert [case.bodies[j].name for j in found] == ([] if i == 0 else [f"b{i - 1}"])
+
+    check()
+
+
+def test_contact_ending_inside_a_segment(tmp_path):
+    """A block overhanging the end of the support: its lower curve stops where the support does (to the sampling
+    step, 1/1024 of the drawing's diagonal), the overhang is free.
+    """
+    doc, msp = new_doc()
+    msp.add_line((-2, 0), (6, 0), dxfattribs={"layer": "SUPPORT"})
+    msp.add_line((-2, -1), (6, -1), dxfattribs={"layer": "TARGET"})
+    msp.add_lwpolyline([(10, 2), (0, 2), (0, 0), (10, 0)], close=True, dxfattribs={"layer": "BODY-block"})
+    doc.saveas(tmp_path / "c.dxf")
+    (b,) = read_case(tmp_path / "c.dxf", law=AreaRatio(0.9)).bodies
+    lower = b.lower.vertices
+    step = np.hypot(12, 2) / 1024
+    assert lower.shape == (2, 2) and lower[0].tolist() == [0.0, 0.0]
+    assert lower[1, 1] == 0.0 and 6 - step <= lower[1, 0] <= 6
+    assert np.array_equal(b.upper.vertices[0], lower[1]) and b.upper.vertices[1].tolist() == [10.0, 0.0]

@@ -13,7 +13,8 @@ __all__ = ["run_assembly", "assembly_summary"]
 
 def _refuse_unsupported(args) -> None:
     """Refuse, before any work, what an assembly cannot do yet (one law, spline DXF, fields in meshes)."""
-    if getattr(args, "area_ratio", None) is not None:
+    drawing = getattr(args, "case", None) is not None and args.case.suffix.lower() in (".dxf", ".svg")
+    if getattr(args, "area_ratio", None) is not None and not drawing:  # a drawing's reader gives it to every body
         raise CaseError("--area-ratio", "an assembly has one law per body; set each body's law in the case")
     if getattr(args, "dxf_spline", False):
         raise CaseError("--dxf-spline", "not available for assemblies; their DXF curves are polylines")

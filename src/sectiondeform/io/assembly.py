@@ -26,9 +26,12 @@ within the contact tolerance (``options.contact_tolerance``, default 1e-6
 of the drawing's diagonal) of the support or of a found body's upper curve
 is found next, its lower curve being that stretch. Of two bodies side by
 side on the support the first found rests on the support only, the other
-one's lower curve runs up their shared side. A stretch ending inside an arc
-or a polyline segment splits it there, exactly; one ending inside a spline
-splits that spline's polyline within the chordal error (reported). Every
+one's lower curve runs up their shared side. A stretch ends at a contour vertex
+or piece end when the contact does; where the contact ends inside a segment
+or an arc (a body overhanging its foundation), it ends at the last sample
+in contact (samples at most 1/1024 of the drawing's diagonal apart), and
+that piece is cut there (an arc into two arcs; a spline becomes a polyline
+within the chordal error, reported). Every
 body is oriented so that it lies on the left of its lower curve (its
 contour counter-clockwise), the support so that the bodies lie on its left,
 the target the same general way as the support (a file written here stores
@@ -115,8 +118,8 @@ def is_assembly_drawing(drawing: Drawing) -> bool:
 # Reading
 
 
-def _body_tags(pieces, known: dict) -> tuple[dict, list]:
-    """Body name (upper-cased) -> role -> pieces; and the BODY- tags that name no role.
+def _body_tags(pieces, known: dict) -> dict:
+    """Body name (upper-cased) -> role (``lower``, ``upper``, ``contour``) -> pieces.
 
     ``known`` maps the upper-cased names the drawing stores to their spelling;
     a tag is first matched against those, then read as ``BODY-<name>-LOWER``,
@@ -145,7 +148,7 @@ def _body_tags(pieces, known: dict) -> tuple[dict, list]:
         if chosen:
             name, role = chosen[0]
             found.setdefault(name, {}).setdefault(role, []).append(p)
-    return found, []
+    return found
 
 
 def _hint(name: str, names) -> str:
@@ -167,9 +170,12 @@ def _subdivided(points: np.ndarray, step: float) -> np.ndarray:
     return np.vstack((out, points[-1:]))
 
 
-def _distance(points: np.ndarray, lines: list[np.ndarray]) -> np.ndarray:
+def _distance(points: np.ndarray, lines: list[np.ndarray], each: bool = False) -> np.ndarray:
+    """Distance of each point to the nearest of the polylines, ``(n,)``; with ``each``, of point i to polyline i."""
     import shapely
 
+    if each:
+        return shapely.distance(shapely.points(points), np.array([shapely.LineString(ln) for ln in lines], dtype=object))
     if not lines:
         return np.full(len(points), np.inf)
     geom = shapely.MultiLineString([ln for ln in lines]) if len(lines) > 1 else shapely.LineString(lines[0])
@@ -238,8 +244,8 @@ def _cut_at(parts: list[Curve], point: np.ndarray, scale: float, chord: float, r
     k = int(np.argmin(d))
     if d[k] <= 1e-9 * scale:
         return parts, k
-    dist = [float(np.hypot(*(p.discretise(chord)[0] - point).T).min()) for p in parts]
-    k = int(np.argmin(dist))
+    k = int(np.argmin(_distance(point[None, :].repeat(len(parts), axis=0), [p.discretise(chord)[0] for p in parts],
+                                each=True)))
     end = parts[k].ends[1]
     if np.hypot(*(end - point)) <= 1e-9 * scale:
         return parts, (k + 1) % len(parts)
@@ -333,7 +339,7 @@ def assembly_from_drawing(drawing: Drawing, options, report=None) -> Assembly:
                         f"there (the drawing has: {', '.join(tags) or 'none'})")
     support = ctx.chain(ctx.select(pieces, "support"), ctx.where("support"), False, report)
 
-    found, _ = _body_tags(pieces, known)
+    found = _body_tags(pieces, known)
     if not found:
         raise CaseError(str(drawing.path), f"no body: put each on {what} BODY-<name>-LOWER and BODY-<name>-UPPER, or on "
                         f"BODY-<name> as a closed contour (the drawing has: {', '.join(tags)})")
