@@ -177,8 +177,11 @@ def test_side_by_side_bodies(tmp_path):
     msp.add_line((0, -1), (20, -1), dxfattribs={"layer": "TARGET"})
     msp.add_lwpolyline([(0, 0), (10, 0), (10, 5), (0, 5)], close=True, dxfattribs={"layer": "BODY-left"})
     msp.add_lwpolyline([(10, 0), (20, 0), (20, 5), (10, 5)], close=True, dxfattribs={"layer": "BODY-right"})
+    msp.add_line((0, -9), (20, -9), dxfattribs={"layer": "Dims"})
     doc.saveas(tmp_path / "c.dxf")
-    back = read_case(tmp_path / "c.dxf", law=AreaRatio(0.9))
+    report = []
+    back = read_case(tmp_path / "c.dxf", law=AreaRatio(0.9), report=report)
+    assert any(line.startswith("ignored: the curves on layer Dims") for line in report)
     left, right = back.bodies
     assert left.lower.to_json() == {"polyline": [[0.0, 0.0], [10.0, 0.0]]}
     assert right.lower.to_json() == {"polyline": [[10.0, 5.0], [10.0, 0.0], [20.0, 0.0]]}

@@ -340,6 +340,11 @@ def assembly_from_drawing(drawing: Drawing, options, report=None) -> Assembly:
     support = ctx.chain(ctx.select(pieces, "support"), ctx.where("support"), False, report)
 
     found = _body_tags(pieces, known)
+    used = {SUPPORT, target_name.upper(), AXIS}
+    others = sorted({drawing.labels.get(t, t) for p in curves for t in p.tags}
+                    - {drawing.labels.get(t, t) for p in curves for t in p.tags if t in used or t.startswith(BODY)})
+    if others:
+        _say(report, f"ignored: the curves on {what} {', '.join(others)} (not SUPPORT, TARGET, AXIS nor BODY-...)")
     if not found:
         raise CaseError(str(drawing.path), f"no body: put each on {what} BODY-<name>-LOWER and BODY-<name>-UPPER, or on "
                         f"BODY-<name> as a closed contour (the drawing has: {', '.join(tags)})")
