@@ -6,19 +6,21 @@ from ..assembly import Assembly
 from ..assembly_deform import AssemblyDeformer
 from ..errors import CaseError
 from ..io import write_result
+from ._io_args import write_meshes
 
 __all__ = ["run_assembly", "assembly_summary"]
 
 
 def _refuse_unsupported(args) -> None:
-    """Refuse, before any work, what an assembly cannot do yet (non-JSON output, meshes, one law)."""
-    if getattr(args, "area_ratio", None) is not None:
+    """Refuse, before any work, what an assembly cannot do yet (one law, spline DXF, fields in meshes)."""
+    drawing = getattr(args, "case", None) is not None and args.case.suffix.lower() in (".dxf", ".svg")
+    if getattr(args, "area_ratio", None) is not None and not drawing:  # a drawing's reader gives it to every body
         raise CaseError("--area-ratio", "an assembly has one law per body; set each body's law in the case")
-    if args.output.suffix.lower() != ".json":
-        raise CaseError("--output", f"an assembly's result is written as JSON (section-result/2) so far, not {args.output.suffix!r}")
-    for option in ("mesh_out", "initial_mesh_out"):
-        if getattr(args, option, None):
-            raise CaseError(f"--{option.replace('_', '-')}", "not available for assemblies yet; the meshes are in the result JSON")
+    if getattr(args, "dxf_spline", False):
+        raise CaseError("--dxf-spline", "not available for assemblies; their DXF curves are polylines")
+    meshes = args.output.suffix.lower() != ".json" or getattr(args, "mesh_out", None) or getattr(args, "initial_mesh_out", None)
+    if getattr(args, "fields", False) and meshes:
+        raise CaseError("--fields", "an assembly's geometric fields go to the result JSON only; leave out the other outputs")
     if getattr(args, "element_size", None) is not None and not args.element_size > 0:
         raise CaseError("--element-size", f"must be > 0, got {args.element_size}")
 
@@ -47,7 +49,12 @@ def run_assembly(args, assembly: Assembly, report: list) -> int:
     if getattr(args, "model", None):
         assembly = assembly.replace(options=assembly.options.replace(model=args.model))
     result = AssemblyDeformer(assembly, element_size=args.element_size).deform()
-    write_result(args.output, result, meshes=not args.no_meshes, fields=getattr(args, "fields", False))
+    ext = args.output.suffix.lower()
+    if ext == ".json":
+        write_result(args.output, result, meshes=not args.no_meshes, fields=getattr(args, "fields", False))
+    else:  # DXF and SVG draw the support and target too; mesh formats tag each body (sectiondeform.io.assembly)
+        write_result(args.output, result, **({"case": assembly} if ext in (".dxf", ".svg") else {}))
+    meshes = write_meshes(args, result)
     if args.plot:
         from .deform import save_plot
 
@@ -55,5 +62,5 @@ def run_assembly(args, assembly: Assembly, report: list) -> int:
     for line in report:
         print(f"  {line}")
     print(assembly_summary(result))
-    print(f"  wrote {', '.join(str(p) for p in [args.output, *([args.plot] if args.plot else [])])}")
+    print(f"  wrote {', '.join(str(p) for p in [args.output, *meshes, *([args.plot] if args.plot else [])])}")
     return 0

@@ -526,6 +526,10 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
     elif keywords:
         raise CaseError(next(iter(keywords)), "give the options either as DrawingOptions or as keywords, not both")
     o = options
+    from .assembly import assembly_from_drawing, is_assembly_drawing
+
+    if is_assembly_drawing(drawing):
+        return assembly_from_drawing(drawing, o, report)
     meta = dict(drawing.meta or {})
     roles = {"lower": "LOWER", "upper": "UPPER", "target": "TARGET", "contour": "CONTOUR", **(o.layers or {})}
     pieces = list(drawing.pieces)
@@ -587,10 +591,16 @@ def _plain_case(path: Path, options: DrawingOptions, given, report) -> Case:
     if drawing_only:
         raise CaseError(drawing_only[0], f"applies to drawings (DXF, SVG) only, and {path.name} is a case JSON without one")
     case = read_plain(path)
-    if not isinstance(case, Case):  # an assembly (section-case/2): one law per body, its own units
-        for key, what in (("law", "set each body's law in the case"), ("units", "convert it as a whole later")):
-            if key in given:
-                raise CaseError(key, f"an assembly case does not take this option; {what}")
+    if not isinstance(case, Case):  # an assembly (section-case/2): one law per body
+        from .assembly import convert_assembly_units
+
+        if "law" in given:
+            raise CaseError("law", "an assembly case does not take this option; set each body's law in the case")
+        if options.name is not None:
+            case = case.replace(name=options.name)
+        if options.chordal_error:
+            case = case.replace(options=case.options.replace(chordal_error=options.chordal_error))
+        return convert_assembly_units(case, options.units, report) if options.units else case
     if options.law is not None:
         case = replace(case, law=options.law)
     if options.name is not None:
@@ -625,6 +635,10 @@ def read_json_case(path, *, report=None, **options) -> Case:
     opts = {k: v for k, v in d.items() if k != "file"}
     DrawingOptions.from_mapping(opts, "drawing", allowed=JSON_KEYS)
     opts.update(given)
+    if data.get("format") == "section-case/2":
+        from .assembly import assembly_from_json_and_drawing
+
+        return assembly_from_json_and_drawing(path, data, opts, report)
     if "law" in data and overrides.law is None:
         opts["law"] = law_from_json(data["law"])
     if "target" in data:

@@ -227,10 +227,11 @@ def read_drawing(path, chordal_error: float | None = None) -> Drawing:
     meta = {}
     if doc.header.custom_vars.has_tag(META_KEY):
         meta = read_meta(doc.header.custom_vars.get(META_KEY), f"{path} (header property {META_KEY})")
-    pieces, ignored = [], []
+    pieces, ignored, labels = [], [], {}
     for i, e in enumerate(msp):
         kind = e.dxftype()
         layer = e.dxf.layer
+        labels.setdefault(layer.upper(), layer)
         source = f"{kind} #{i} (handle {e.dxf.handle}, layer {layer})"
         if kind in IGNORED:
             ignored.append(source)
@@ -247,7 +248,7 @@ def read_drawing(path, chordal_error: float | None = None) -> Drawing:
             if not c.length > 0:
                 raise CaseError(f"layer {layer}", f"zero-length {source} at {fmt_point(c.at_fractions(np.array([0.0]))[0])}; delete it")
             pieces.append(Piece(c, tags, source))
-    return Drawing(pieces, units, mm, meta, path, ignored, unitless=code not in DXF_UNITS)
+    return Drawing(pieces, units, mm, meta, path, ignored, unitless=code not in DXF_UNITS, labels=labels)
 
 
 def read_case(path, **options):
@@ -324,8 +325,15 @@ def write_case(path, case) -> None:
     Parameters
     ----------
     path : str or Path
-    case : Case
+    case : Case or Assembly
+        An assembly is written by :func:`sectiondeform.io.assembly.write_case_dxf`.
     """
+    from ..assembly import Assembly
+
+    if isinstance(case, Assembly):
+        from .assembly import write_case_dxf
+
+        return write_case_dxf(path, case)
     doc = _new_doc(case.units)
     msp = doc.modelspace()
     curves = (("LOWER", 1, case.lower), ("UPPER", 7, case.upper), ("TARGET", 5, case.target))
@@ -397,7 +405,7 @@ def _add_mesh(msp, mesh, layer: str) -> None:
         _add_closed(msp, pts[cell[:corners]], layer)
 
 
-def write_result(path, result, spline: bool = False, chordal_error: float | None = None) -> None:
+def write_result(path, result, spline: bool = False, chordal_error: float | None = None, case=None) -> None:
     """Write a deformed section as a DXF drawing, atomically.
 
     Layers: DEFORMED (the deformed section), INITIAL (the section before),
@@ -413,7 +421,21 @@ def write_result(path, result, spline: bool = False, chordal_error: float | None
         within ``chordal_error`` instead of one closed LWPOLYLINE.
     chordal_error : float, optional
         Units; default 1e-4 of the section's diagonal.
+    case : Assembly, optional
+        For an assembly's result (written by
+        :func:`sectiondeform.io.assembly.write_result_dxf`): the case, whose
+        support and target are drawn too.
     """
+    from ..assembly_result import AssemblyResult
+
+    if isinstance(result, AssemblyResult):
+        if spline:
+            raise CaseError("spline", "not available for an assembly's result; its curves are written as polylines")
+        from .assembly import write_result_dxf
+
+        return write_result_dxf(path, result, case)
+    if case is not None:
+        raise CaseError("case", "only taken with an assembly's result; a one-body result draws its target itself")
     doc = _new_doc(result.units)
     msp = doc.modelspace()
     for name, color in (("INITIAL", 8), ("TARGET", 5), ("MESH_INITIAL", 9), ("MESH_FINAL", 3), ("DEFORMED", 1)):

@@ -61,8 +61,11 @@ def read_case(path) -> Case:
 
 
 def write_case(path, case: Case) -> None:
-    """Write a case JSON file atomically."""
-    atomic_write(path, lambda tmp: _dump(case_to_dict(case), tmp))
+    """Write a case JSON file atomically (an assembly as ``section-case/2``)."""
+    from ..assembly import Assembly, assembly_to_dict
+
+    data = assembly_to_dict(case) if isinstance(case, Assembly) else case_to_dict(case)
+    atomic_write(path, lambda tmp: _dump(data, tmp))
 
 
 def write_result(path, result, meshes: bool = True, fields: bool = False) -> None:

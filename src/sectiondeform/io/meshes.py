@@ -131,6 +131,12 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
     CaseError
         For an unknown extension.
     """
+    from ..assembly_result import AssemblyResult
+
+    if isinstance(result, AssemblyResult):  # one mesh of every body, tagged (sectiondeform.io.assembly)
+        from .assembly import write_mesh as write_assembly_mesh
+
+        return write_assembly_mesh(path, result, which)
     meshio = require("meshio", "cad", "writing meshes")
     path = Path(path)
     ext = path.suffix.lower()

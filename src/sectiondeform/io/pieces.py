@@ -10,7 +10,7 @@ transform, ends) is the curves' own; the functions here only join curves.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -60,6 +60,9 @@ class Drawing:
         Entities skipped (annotation).
     unitless : bool
         True when the file declares no units and ``units`` is the default.
+    labels : dict
+        Upper-cased tag -> its spelling in the file (first seen), so that a
+        name read from a layer, id or class keeps its case.
     """
 
     pieces: tuple
@@ -69,6 +72,7 @@ class Drawing:
     path: Path
     ignored: tuple = ()
     unitless: bool = False
+    labels: dict = field(default_factory=dict)
 
     def __post_init__(self):
         object.__setattr__(self, "pieces", tuple(self.pieces))

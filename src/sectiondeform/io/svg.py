@@ -206,6 +206,7 @@ def read_drawing(path, chordal_error: float | None = None):
     size = math.hypot(vb[2], vb[3]) * sx * k if len(vb) == 4 else 100.0
     tol = chordal_error or DEFAULT_CHORDAL_FRACTION * size
     pieces: list[Piece] = []
+    labels: dict[str, str] = {}
     count = 0
 
     def visit(el, matrix, tags):
@@ -214,9 +215,10 @@ def read_drawing(path, chordal_error: float | None = None):
         if name in SKIP:
             return
         own = set(tags)
-        if el.get("id"):
-            own.add(el.get("id").upper())
-        own.update(c.upper() for c in (el.get("class") or "").split())
+        names = ([el.get("id")] if el.get("id") else []) + (el.get("class") or "").split()
+        for n in names:
+            labels.setdefault(n.upper(), n)
+        own.update(n.upper() for n in names)
         if el.get("transform"):
             matrix = svgelements.Matrix(el.get("transform")) * matrix
         if name in CONTAINERS:
@@ -242,7 +244,7 @@ def read_drawing(path, chordal_error: float | None = None):
 
     for child in root:
         visit(child, svgelements.Matrix(), frozenset())
-    return Drawing(pieces, units, 1.0 / k, meta, path)
+    return Drawing(pieces, units, 1.0 / k, meta, path, labels=labels)
 
 
 def read_case(path, **options):
@@ -343,8 +345,15 @@ def write_case(path, case) -> None:
     Parameters
     ----------
     path : str or Path
-    case : Case
+    case : Case or Assembly
+        An assembly is written by :func:`sectiondeform.io.assembly.write_case_svg`.
     """
+    from ..assembly import Assembly
+
+    if isinstance(case, Assembly):
+        from .assembly import write_case_svg
+
+        return write_case_svg(path, case)
     pts = []
     body = []
     size = 0.0
@@ -366,14 +375,25 @@ def _poly_d(points: np.ndarray, close: bool) -> str:
     return "M" + " L".join(_pt(p) for p in points) + (" Z" if close else "")
 
 
-def write_result(path, result) -> None:
+def write_result(path, result, case=None) -> None:
     """Write a deformed section as SVG: groups initial, mesh-initial, target, mesh-final, deformed.
 
     Parameters
     ----------
     path : str or Path
-    result : Result
+    result : Result or AssemblyResult
+        An assembly's is written by :func:`sectiondeform.io.assembly.write_result_svg`.
+    case : Assembly, optional
+        For an assembly's result: the case, whose support and target are drawn too.
     """
+    from ..assembly_result import AssemblyResult
+
+    if isinstance(result, AssemblyResult):
+        from .assembly import write_result_svg
+
+        return write_result_svg(path, result, case)
+    if case is not None:
+        raise CaseError("case", "only taken with an assembly's result; a one-body result draws its target itself")
     def mesh_d(mesh):
         corners = {"quad": 4, "triangle": 3, "triangle6": 3}[mesh.kind]
         return " ".join(_poly_d(mesh.points[c[:corners]], True) for c in mesh.cells)
