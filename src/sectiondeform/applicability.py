@@ -13,6 +13,11 @@ against the finite-element reference, ``docs/validation.md``) when
   (:func:`bend_change`, for a straight lower curve the height over the
   target's radius of curvature).
 
+* the law **changes the heights** by more than :data:`HEIGHT_CHANGE_LIMIT`:
+  the paper model puts the law's whole area change into the heights (its
+  height scale ``k``), where the material also spreads it sideways at free
+  walls and grooves and out of plane (the grooved tread).
+
 And its answer means little whatever the material when the height scale
 ``k``, the stretch of the elements along the layers or their final aspect
 ratio leave the ranges of ``docs/method.md`` (:func:`stretch_range`,
@@ -39,6 +44,7 @@ __all__ = [
     "OVERHANG_LIMIT",
     "BEND_LIMIT",
     "HEIGHT_SCALE_LIMITS",
+    "HEIGHT_CHANGE_LIMIT",
     "STRETCH_LIMITS",
     "ASPECT_LIMIT",
 ]
@@ -49,6 +55,11 @@ OVERHANG_LIMIT = 0.25
 BEND_LIMIT = 0.45
 #: Height scale ``k`` outside this range: the section is squeezed or stretched beyond the model's meaning.
 HEIGHT_SCALE_LIMITS = (0.5, 2.0)
+#: Largest change of the heights, |1 - k|, that the paper model carries without a warning: it puts the
+#: law's whole area change into the heights, where the material also spreads it sideways (free walls,
+#: grooves) and out of plane. Calibrated in docs/reliability.md: the grooved tread (k 0.85, 13 % of its
+#: height from the reference) is flagged, the paper example (k 0.95, 5 %) is not.
+HEIGHT_CHANGE_LIMIT = 0.1
 #: Final over initial element edge length along the layers, outside this range.
 STRETCH_LIMITS = (0.5, 2.0)
 #: Largest change of an element's aspect ratio (along over across the layers), either way.
@@ -266,6 +277,11 @@ def extent_warnings(height_scale: float, stretch: tuple[float, float], aspect: f
             f"result: height scale k = {height_scale:.3g}, outside [{lo:g}, {hi:g}]: the layers are "
             f"{'stretched' if height_scale > hi else 'squeezed'} beyond what the model can mean; "
             "check the target's length against the lower curve's"
+        )
+    elif abs(height_scale - 1.0) > HEIGHT_CHANGE_LIMIT:
+        out.append(
+            f"result: the heights change by {100.0 * (height_scale - 1.0):+.3g} % (k = {height_scale:.3g}, limit "
+            f"{100.0 * HEIGHT_CHANGE_LIMIT:g} %): the paper model puts the law's whole area change into the heights; {HINT}"
         )
     lo, hi = STRETCH_LIMITS
     if stretch[0] < lo or stretch[1] > hi:

@@ -1,0 +1,419 @@
+"""Generated cases for the fuzz tests and the fuzz benchmark, and the classification of their outcomes.
+
+:func:`cases` is a hypothesis strategy of case dictionaries: sections of
+many sizes and places (box, roof, dome and B-spline uppers over a straight,
+wavy or arched lower curve), targets that stretch, shrink, bend, turn over
+or collapse, laws and options of both models, and, for part of the
+examples, one damage (a coordinate written as a string, an integer too
+large for a float, NaN, a key missing or misspelt, an empty curve, a value
+of the wrong type).
+
+:func:`outcome_api` and :func:`outcome_cli` run one case and say what
+happened: ``ok`` (a result that passes :func:`sectiondeform.verify.check_result`),
+``refused:<ErrorClass>`` (one clean line) or ``failure:<what>`` (the
+promise is broken: a crash, a multi-line message, a check that fails, a
+NaN, a numpy warning, an exit status other than 0 and 2, output left
+behind by a refusal, no answer in time).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import shapely
+from hypothesis import strategies as st
+
+import sectiondeform as sd
+from sectiondeform.verify import area_of, check_result
+
+__all__ = ["Outcome", "cases", "outcome_api", "outcome_cli", "outcome_cli_file", "TIME_LIMIT_S"]
+
+TIME_LIMIT_S = 20.0
+"""CPU seconds one case may take; the stages' size and work bounds keep every case far below it.
+
+CPU time, not wall time: a hang is work without end, and CPU time measures
+work whatever the load of the machine (the test suite runs beside others).
+"""
+
+WALL_FACTOR = 6.0
+"""The command line's process is also killed after this many times the limit in wall time (a process
+that waits without working)."""
+
+# -- geometry ----------------------------------------------------------------
+
+
+def _arc_through(a, b, bulge):
+    """An arc case-curve from ``a`` to ``b`` whose midpoint sits ``bulge`` x chord to the left of a->b."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    chord = b - a
+    c = float(np.hypot(*chord))
+    s = abs(bulge) * c  # sagitta
+    r = (c * c / 4 + s * s) / (2 * s)
+    left = np.array([-chord[1], chord[0]]) / c
+    # Centre on the side away from the bulge.
+    side = 1.0 if bulge > 0 else -1.0
+    center = (a + b) / 2 - side * left * (r - s)
+    a0 = math.degrees(math.atan2(*(a - center)[::-1]))
+    a1 = math.degrees(math.atan2(*(b - center)[::-1]))
+    if bulge > 0:  # clockwise from a to b: the arc passes to the left of a->b
+        while a1 > a0:
+            a1 -= 360.0
+    else:
+        while a1 < a0:
+            a1 += 360.0
+    arc = {"arc": {"center": center.tolist(), "radius": r, "start_deg": a0, "end_deg": a1}}
+    end = center + r * np.array([math.cos(math.radians(a1)), math.sin(math.radians(a1))])
+    return arc, end
+
+
+@st.composite
+def _section(draw):
+    """Lower curve A->B and upper curve B->A of a closed section, A, B ((2,) arrays) and its size."""
+    scale = draw(st.sampled_from([1.0, 10.0, 100.0, 0.1, 1e-3, 1e4])) * draw(st.floats(0.5, 2.0))
+    width = scale
+    height = scale * draw(st.sampled_from([0.5, 0.2, 1.0, 3.0, 0.02]))
+    origin = np.array(draw(st.sampled_from([(0.0, 0.0), (1e3, -50.0), (-1e5, 2e5)]))) * (scale if draw(st.booleans()) else 1.0)
+    a = origin
+    lower_kind = draw(st.sampled_from(["line", "wavy", "arch", "sag"]))
+    if lower_kind == "line":
+        b = origin + [width, 0.0]
+        lower = {"polyline": [a.tolist(), b.tolist()]}
+    elif lower_kind == "wavy":
+        n = draw(st.integers(3, 40))
+        amp = height * draw(st.sampled_from([0.01, 0.1, 0.4]))
+        x = np.linspace(0.0, width, n)
+        pts = origin + np.column_stack((x, amp * np.sin(x / width * 2 * math.pi * draw(st.integers(1, 4)))))
+        pts[-1, 1] = origin[1]
+        lower = {"polyline": pts.tolist()}
+        b = pts[-1]
+    else:  # an arc bulging up (arch) or down (sag), within the section's height
+        bulge = draw(st.sampled_from([0.02, 0.1, 0.3])) * (1 if lower_kind == "arch" else -1)
+        lower, b = _arc_through(a, origin + [width, 0.0], bulge)
+    upper_kind = draw(st.sampled_from(["box", "roof", "dome", "bspline"]))
+    top = max(height, 1e-12)
+    if upper_kind == "box":
+        upper = {"polyline": [b.tolist(), (b + [0, top]).tolist(), (a + [0, top]).tolist(), a.tolist()]}
+    elif upper_kind == "roof":
+        k = draw(st.integers(1, 12))
+        xs = np.sort(draw(st.lists(st.floats(0.0, 1.0), min_size=k, max_size=k)))[::-1]
+        if _rarely(draw):  # wild: the roof's vertices in any order (may cross)
+            xs = np.array(draw(st.permutations(list(xs))))
+        ys = np.array(draw(st.lists(st.floats(0.05, 1.0), min_size=k, max_size=k)))
+        roof = np.column_stack((a[0] + xs * (b[0] - a[0]), a[1] + ys * top + 0.5 * (b[1] - a[1])))
+        upper = {"polyline": [b.tolist(), *roof.tolist(), a.tolist()]}
+    elif upper_kind == "dome":
+        # Negative bulge: to the right of B->A, above the lower curve.
+        upper = _arc_through(b, a, -draw(st.sampled_from([0.1, 0.3, 0.5, 0.8])))[0]
+    else:
+        m = draw(st.integers(2, 8))
+        inner = [[b[0] + (a[0] - b[0]) * (i + 0.5) / m, b[1] + top * draw(st.floats(0.1, 1.5))] for i in range(m)]
+        upper = {"bspline": {"degree": draw(st.sampled_from([2, 3])), "control_points": [b.tolist(), *inner, a.tolist()]}}
+    return lower, upper, a, b, scale
+
+
+@st.composite
+def _target(draw, a, b, scale):
+    """A target curve A'->B' of some length and shape."""
+    chord = float(np.hypot(*(b - a)))
+    length = chord * draw(st.sampled_from([1.0, 0.9, 1.3, 0.6, 0.1, 3.0]))
+    turn = math.radians(draw(st.sampled_from([0.0, 0.0, 15.0, -40.0, 90.0, 180.0])))
+    start = a + np.array(draw(st.sampled_from([(0.0, 0.0), (0.3, -0.2), (-5.0, 3.0)]))) * scale
+    d = np.array([math.cos(turn), math.sin(turn)])
+    end = start + length * d
+    kind = draw(st.sampled_from(["line", "arc", "wave", "reversed"]))
+    if _rarely(draw, 20):
+        kind = "point"
+    if kind == "line":
+        return {"polyline": [start.tolist(), end.tolist()]}
+    if kind == "arc":
+        return _arc_through(start, end, draw(st.sampled_from([0.05, 0.2, 0.45, -0.1, -0.4])))[0]
+    if kind == "wave":
+        n = draw(st.integers(3, 30))
+        t = np.linspace(0.0, 1.0, n)
+        amp = length * draw(st.sampled_from([0.02, 0.1, 0.3]))
+        normal = np.array([-d[1], d[0]])
+        pts = start + np.outer(t * length, d) + np.outer(amp * np.sin(t * math.pi * draw(st.integers(1, 5))), normal)
+        return {"polyline": pts.tolist()}
+    if kind == "point":  # collapsed: both ends the same point
+        return {"polyline": [start.tolist(), start.tolist()]}
+    return {"polyline": [end.tolist(), start.tolist()]}
+
+
+_BAD_NUMBERS = ["0.8", 0, -1.0, 10**400, float("nan"), float("inf"), True, None, [1.0], 1e300]
+
+
+def _rarely(draw, one_in: int = 10) -> bool:
+    """True for about one example in ``one_in`` (shrinks to False)."""
+    # A middle value: hypothesis draws the ends of a range far more often than 1 / one_in.
+    return draw(st.integers(0, one_in - 1)) == one_in // 2
+
+
+@st.composite
+def _law_and_options(draw, scale):
+    if _rarely(draw):
+        ratio = draw(st.sampled_from(_BAD_NUMBERS))
+    else:
+        ratio = draw(st.one_of(st.sampled_from([0.8, 0.5, 0.95, 1.0, 1.2]), st.floats(0.3, 1.5)))
+    law = {"area_ratio": ratio}
+    model = draw(st.sampled_from(["paper", "hyperelastic"]))
+    if _rarely(draw, 20):
+        model = draw(st.sampled_from(["hyperelastc", "Paper", 3, None]))
+    options = {"model": model}
+    if draw(st.booleans()):
+        good = st.sampled_from([1e-3, 1e-4, 1e-2, 0.1]).map(lambda f: f * scale)
+        options["chordal_error"] = draw(st.sampled_from(_BAD_NUMBERS) if _rarely(draw) else good)
+    if model == "hyperelastic" and draw(st.booleans()):
+        bad = _rarely(draw)
+        options["elements_through_thickness"] = draw(st.sampled_from([0, -2, 100, "4"] if bad else [2, 3, 4, 6, 8]))
+    if model == "hyperelastic" and _rarely(draw, 4):
+        bad = _rarely(draw, 3)
+        options["bulk_to_shear"] = draw(st.sampled_from([0.0, -5.0, 1e12] if bad else [100.0, 10.0, 1e4]))
+    if _rarely(draw, 6):
+        options["refine"] = draw(st.sampled_from([2.0, 1.0, 0.5, 65.0]))
+    extra = None
+    if _rarely(draw, 5):
+        extra = draw(st.sampled_from(["x-mine", "extra", "chordal_eror", "through_thickness", "modle"]))
+    if extra == "extra":
+        options["extra"] = {"anything": [1, 2]}
+    elif extra is not None:
+        options[extra] = 1.0
+    return law, options
+
+
+_DAMAGES = ["string-coordinate", "huge-int", "nan", "drop-key", "unknown-key", "empty-curve",
+            "one-point-curve", "wrong-type", "units", "format"]
+
+
+def _coordinate_paths(d, path=()):
+    """Paths to every number inside a point list of the case dict."""
+    if isinstance(d, dict):
+        for k, v in d.items():
+            yield from _coordinate_paths(v, (*path, k))
+    elif isinstance(d, list):
+        if len(d) == 2 and all(isinstance(x, float) for x in d):
+            yield (*path, 0)
+            yield (*path, 1)
+        else:
+            for i, v in enumerate(d):
+                yield from _coordinate_paths(v, (*path, i))
+
+
+def _set(d, path, value):
+    for k in path[:-1]:
+        d = d[k]
+    d[path[-1]] = value
+
+
+@st.composite
+def _damaged(draw, case):
+    kind = draw(st.sampled_from(_DAMAGES))
+    case = json.loads(json.dumps(case))  # a deep copy, as JSON gives it
+    if kind in ("string-coordinate", "huge-int", "nan"):
+        paths = list(_coordinate_paths({k: case[k] for k in ("lower", "upper", "target")}))
+        path = draw(st.sampled_from(paths))
+        old = case
+        for k in path:
+            old = old[k]
+        value = {"string-coordinate": str(old), "huge-int": 10**400, "nan": float("nan")}[kind]
+        _set(case, path, value)
+    elif kind == "drop-key":
+        del case[draw(st.sampled_from(["lower", "upper", "target", "law"]))]
+    elif kind == "unknown-key":
+        case[draw(st.sampled_from(["traget", "Law", "option"]))] = {}
+    elif kind == "empty-curve":
+        case[draw(st.sampled_from(["lower", "upper", "target"]))] = {"polyline": []}
+    elif kind == "one-point-curve":
+        case[draw(st.sampled_from(["lower", "target"]))] = {"polyline": [[0.0, 0.0]]}
+    elif kind == "wrong-type":
+        case[draw(st.sampled_from(["lower", "law", "options"]))] = draw(st.sampled_from([[], "x", 3, None]))
+    elif kind == "units":
+        case["units"] = draw(st.sampled_from(["milimeter", "", 5]))
+    else:
+        case["format"] = draw(st.sampled_from(["section-case/9", None, "case"]))
+    return case
+
+
+@st.composite
+def cases(draw, damage: float = 0.25, models: tuple[str, ...] | None = None):
+    """A case dictionary, as a JSON file would give it.
+
+    Parameters
+    ----------
+    damage : float
+        Share of the examples that get one damage (about; drawn per example).
+    models : tuple of str, optional
+        Force ``options.model`` to one of these (a valid model name).
+    """
+    lower, upper, a, b, scale = draw(_section())
+    target = draw(_target(a, b, scale))
+    law, options = draw(_law_and_options(scale))
+    if models is not None:
+        options["model"] = draw(st.sampled_from(models))
+    case = {"format": "section-case/1", "name": "fuzz", "units": "mm", "lower": lower, "upper": upper,
+            "target": target, "law": law, "options": options}
+    if draw(st.integers(1, 1000)) in range(1 + round(1000 * (1.0 - damage) / 2), 1 + round(1000 * (1.0 + damage) / 2)):
+        case = draw(_damaged(case))
+    return case
+
+
+# -- outcomes ------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What one case gave: ``kind`` is ``ok``, ``refused:<ErrorClass>`` or ``failure:<what>``; CPU ``seconds``."""
+
+    kind: str
+    detail: str = ""
+    seconds: float = 0.0
+
+    @property
+    def failed(self) -> bool:
+        return self.kind.startswith("failure")
+
+
+class _TimeLimit(BaseException):
+    """Raised by the alarm; a BaseException so that no ``except Exception`` of the library eats it."""
+
+
+def _alarm(signum, frame):
+    raise _TimeLimit()
+
+
+def _children_cpu() -> float:
+    """CPU seconds used by this process's finished children (one child at a time here)."""
+    import resource
+
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def _limit_cpu(seconds: float):
+    """For ``preexec_fn``: the kernel stops the process (SIGXCPU) after ``seconds`` of CPU time."""
+    import resource
+
+    def set_limit():
+        soft = max(1, math.ceil(seconds))
+        resource.setrlimit(resource.RLIMIT_CPU, (soft, soft + 5))
+
+    return set_limit
+
+
+def outcome_api(case: dict | Path, limit_s: float = TIME_LIMIT_S) -> Outcome:
+    """Run ``case`` (a dict, or a case file) through ``case_from_dict`` (``load_case``) and ``deform``; classify.
+
+    ``ok`` needs a result that passes every check of
+    :func:`~sectiondeform.verify.check_result` and no ``RuntimeWarning``
+    (numpy's overflow, invalid value...) on the way.
+
+    The time limit is on the process's CPU time (``ITIMER_PROF``, main
+    thread only; it repeats every second in case the first signal lands
+    where an exception is swallowed): it interrupts Python code between
+    bytecodes, so a stage that loops in Python is caught; compiled code
+    runs on to its end, which the command-line runs (:func:`outcome_cli`)
+    cover: the kernel stops those processes.
+    """
+    t0 = time.process_time()
+    old = signal.signal(signal.SIGPROF, _alarm)
+    signal.setitimer(signal.ITIMER_PROF, limit_s, 1.0)
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            try:
+                if isinstance(case, Path):
+                    parsed = sd.load_case(case)
+                else:  # as a JSON file would give it: a fresh copy, tuples as lists
+                    parsed = sd.case_from_dict(json.loads(json.dumps(case)))
+                result = sd.deform(parsed)
+                fails = check_result(result, parsed)
+            except sd.SectionDeformError as exc:
+                message = str(exc)
+                if not message or "\n" in message:
+                    return Outcome("failure:message", repr(message), time.process_time() - t0)
+                return Outcome(f"refused:{type(exc).__name__}", message, time.process_time() - t0)
+            except _TimeLimit:
+                return Outcome("failure:slow", f"no answer within {limit_s} s of CPU time", time.process_time() - t0)
+            except Exception as exc:  # the promise is broken: report, do not hide
+                return Outcome(f"failure:crash:{type(exc).__name__}", str(exc)[:300], time.process_time() - t0)
+    finally:
+        signal.setitimer(signal.ITIMER_PROF, 0)
+        signal.signal(signal.SIGPROF, old)
+    seconds = time.process_time() - t0
+    numeric = [w for w in caught if issubclass(w.category, RuntimeWarning)]
+    if numeric:
+        return Outcome("failure:warning", str(numeric[0].message), seconds)
+    if fails:
+        return Outcome("failure:wrong", "; ".join(fails), seconds)
+    return Outcome("ok", "", seconds)
+
+
+def outcome_cli(case: dict, folder: Path, limit_s: float = TIME_LIMIT_S) -> Outcome:
+    """Write ``case`` to ``folder`` and run it through the command line (:func:`outcome_cli_file`)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / "case.json"
+    path.write_text(json.dumps(case), encoding="utf-8")
+    return outcome_cli_file(path, folder / "out.json", limit_s)
+
+
+def outcome_cli_file(path: Path, out: Path, limit_s: float = TIME_LIMIT_S, extra: tuple[str, ...] = ()) -> Outcome:
+    """Run ``sectiondeform deform PATH -o OUT [EXTRA...]`` in a new process, killed after ``limit_s``, and classify.
+
+    Exit 0: the result file exists and its contour is finite, meets the law
+    and is simple; stderr holds no traceback and no warning of Python's.
+    Exit 2: exactly one line on stderr, no result file. Anything else
+    (another exit status, a kill at the time limit) is a failure.
+    """
+    out.unlink(missing_ok=True)
+    env = {**os.environ, "PYTHONWARNINGS": "default"}  # show every warning, as a user's shell may
+    t0 = _children_cpu()
+    try:
+        run = subprocess.run([sys.executable, "-m", "sectiondeform", "deform", str(path), "-o", str(out), *extra],
+                             capture_output=True, text=True, timeout=WALL_FACTOR * limit_s, env=env,
+                             preexec_fn=_limit_cpu(limit_s))
+    except subprocess.TimeoutExpired:
+        return Outcome("failure:slow", f"killed after {WALL_FACTOR * limit_s:g} s wall time", _children_cpu() - t0)
+    seconds = _children_cpu() - t0
+    if run.returncode in (-signal.SIGXCPU, -signal.SIGKILL):
+        return Outcome("failure:slow", f"stopped after {limit_s:g} s of CPU time", seconds)
+    err = run.stderr
+    if "Traceback" in err or "Warning:" in err:
+        return Outcome("failure:stderr", err[-600:], seconds)
+    if run.returncode == 2:
+        lines = [line for line in err.splitlines() if line.strip()]
+        if len(lines) != 1:
+            return Outcome("failure:message", err[-600:], seconds)
+        if out.exists():
+            return Outcome("failure:output-left", lines[0], seconds)
+        return Outcome("refused:exit-2", lines[0], seconds)
+    if run.returncode != 0:
+        return Outcome(f"failure:exit-{run.returncode}", err[-600:], seconds)
+    if not out.exists():
+        return Outcome("failure:no-output", run.stdout[-300:], seconds)
+    return _checked_output(out, seconds)
+
+
+def _checked_output(out: Path, seconds: float) -> Outcome:
+    """The promise on a written result file: finite contour, law met, simple (recomputed here)."""
+    data = json.loads(out.read_text(encoding="utf-8"))
+    contour = np.asarray(data["contour"], dtype=np.float64)
+    target = float(data["area"]["target"])
+    fails = []
+    if not np.isfinite(contour).all():
+        fails.append("finite")
+    elif abs(area_of(contour) - target) > 1e-8 * target:
+        fails.append(f"area_law: {area_of(contour)!r} vs {target!r}")
+    elif not shapely.is_simple(shapely.linearrings(contour)):
+        fails.append("simple")
+    if fails:
+        return Outcome("failure:wrong", "; ".join(fails), seconds)
+    return Outcome("ok", "", seconds)
