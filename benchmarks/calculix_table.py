@@ -27,6 +27,9 @@ from sectiondeform.compare import compare_curves, section_height
 from sectiondeform.errors import SectionDeformError
 from sectiondeform.laws import AreaRatio
 
+TIMEOUT = 420.0
+"""Seconds after which a ccx run counts as failed."""
+
 
 def _timed(fn, runs=1):
     times, out = [], None
@@ -50,7 +53,7 @@ def row_v1(path: Path, mesh_size: float) -> str:
     section = sd.build_section(case)
     height = section_height(np.asarray(section.lower), np.asarray(section.upper))
     try:
-        ccx = solve_calculix(case, mesh_size=mesh_size)
+        ccx = solve_calculix(case, mesh_size=mesh_size, timeout=TIMEOUT)
     except SectionDeformError as exc:
         return f"| {case.name} | {height:.2f} | mesh {mesh_size:g}: fails: {str(exc)[:80]} | — | — | — |"
     info = ccx.info
@@ -77,7 +80,7 @@ def row_v2(path: Path, mesh_size: float) -> str:
     uppers = np.concatenate([np.asarray(sd.build_section(a.body_case(i)).upper) for i in range(len(a.bodies))])
     height = section_height(a.layout.fine["support"], uppers)  # of the whole assembly above its support
     try:
-        ccx = solve_calculix_assembly(fe, mesh_size=mesh_size)
+        ccx = solve_calculix_assembly(fe, mesh_size=mesh_size, timeout=TIMEOUT)
     except SectionDeformError as exc:
         return f"| {a.name} (v2) | {height:.2f} | mesh {mesh_size:g}: fails: {str(exc)[:80]} | — | — | — |"
     b0 = ccx.bodies[0].info

@@ -56,7 +56,8 @@ def deck_of(data: dict, **kw):
 
 def test_one_element_set_section_and_material_per_body():
     deck, blocks = deck_of(json.loads(STRIP.read_text()), mesh_size=0.6)
-    nodes = np.array([[float(v) for v in r[1:3]] for r in blocks["*NODE, NSET=ALL_NODES"]])
+    placed = np.array([[float(v) for v in r[1:3]] for r in blocks["*NODE, NSET=ALL_NODES"]])
+    nodes = (placed - deck.translation) @ deck.rotation  # back to the case's coordinates
     sets = {}
     for name in ("BACKING", "COVER"):
         rows = blocks[f"*ELEMENT, TYPE=CPE6, ELSET={name}"]
@@ -78,7 +79,8 @@ def test_one_element_set_section_and_material_per_body():
 
 def test_bonded_bodies_share_their_nodes_on_the_shared_piece():
     deck, blocks = deck_of(json.loads(STRIP.read_text()), mesh_size=0.6)
-    nodes = np.array([[float(v) for v in r[1:3]] for r in blocks["*NODE, NSET=ALL_NODES"]])
+    placed = np.array([[float(v) for v in r[1:3]] for r in blocks["*NODE, NSET=ALL_NODES"]])
+    nodes = (placed - deck.translation) @ deck.rotation
     used = {}
     for name in ("BACKING", "COVER"):
         rows = blocks[f"*ELEMENT, TYPE=CPE6, ELSET={name}"]
@@ -102,7 +104,7 @@ def test_support_nodes_go_onto_the_target_and_laws_are_said():
     x0 = deck.mesh.points[deck.mesh.lower_nodes]
     assert np.allclose(x0[:, 1], 0.0) and np.allclose(deck.mesh.lower_fractions, x0[:, 0] / 100.0)
     on_target = fe.assembly.target.at_fractions(x0[:, 0] / 100.0)
-    assert np.allclose(x0 + deck.support_displacement, on_target, atol=1e-12)
+    assert np.allclose(deck.placed_points[deck.mesh.lower_nodes] + deck.support_displacement, on_target, atol=1e-12)
     head = deck_text(deck).split("*NODE")[0]
     assert "NOT EXPRESSED" in head and "area ratio 0.95" in head and "area ratio 0.9" in head
 
@@ -141,7 +143,8 @@ def test_revolution_deck_is_written_in_r_z_with_counter_clockwise_axisymmetric_e
     deck, blocks = deck_of(data, mesh_size=0.8)
     assert deck.element.name == "CAX6" and deck.axis is not None
     rz = np.array([[float(v) for v in r[1:3]] for r in blocks["*NODE, NSET=ALL_NODES"]])
-    assert np.allclose(rz, deck.mesh.points[:, ::-1] + [250.0, 0.0])  # r = y + 250, z = x
+    assert np.allclose(deck.rotation, np.eye(2)) and deck.translation[1] == 0.0  # may only slide along the axis
+    assert np.allclose(rz, deck.placed_points[:, ::-1] + [250.0, 0.0])  # r = y + 250, z = x
     for name in ("UNDERTREAD", "TREAD"):
         cells = np.array([[int(v) - 1 for v in r[1:]] for r in blocks[f"*ELEMENT, TYPE=CAX6, ELSET={name}"]])
         assert element_areas(rz, cells, 3).min() > 0  # counter-clockwise in (r, z)

@@ -84,3 +84,26 @@ def test_two_bonded_bodies_come_back_as_a_section_result_2(ccx, tmp_path):
     for body in (backing, cover):
         assert abs(body["area"]["final"] / body["area"]["initial"] - 1) < 2e-3
     assert len(data["warnings"]) == 2
+
+
+def test_a_ccx_run_that_does_not_finish_is_stopped(tmp_path, monkeypatch):
+    import time
+
+    from sectiondeform.external.calculix import SolverFailedError, run_ccx
+
+    fake = tmp_path / "ccx"
+    fake.write_text("#!/bin/sh\necho ' increment 1 attempt 1'\nexec sleep 30\n")
+    fake.chmod(0o755)
+    monkeypatch.setenv("SECTIONDEFORM_CCX", str(fake))
+    t0 = time.perf_counter()
+    with pytest.raises(SolverFailedError, match="did not finish in 1 s"):
+        run_ccx("*HEADING\n", timeout=1.0)
+    assert time.perf_counter() - t0 < 20
+
+
+def test_solve_fe_refuses_a_timeout_not_above_zero(tmp_path, capsys):
+    path = tmp_path / "ring.json"
+    path.write_text(json.dumps(ring_case()))
+    assert main(["solve-fe", str(path), "--timeout", "0", "-q"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--timeout" in err[0]

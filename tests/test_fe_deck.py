@@ -74,9 +74,11 @@ def test_support_nodes_go_to_the_target_by_arc_length():
         u.setdefault(int(node), [0.0, 0.0])[int(dof) - 1] = float(value)
     support = sorted(u)
     assert support == sorted(int(v) for r in blocks["*NSET, NSET=SUPPORT"] for v in r)
-    x0 = xy[np.array(support) - 1]
+    placed = xy[np.array(support) - 1]
+    x0 = (placed - deck.translation) @ deck.rotation  # the case's coordinates, before the rigid placement
+    assert np.allclose(deck.rotation @ deck.rotation.T, np.eye(2)) and np.linalg.det(deck.rotation) > 0
     assert np.allclose(x0[:, 1], 0.0)  # the lower curve of the square is y = 0
-    final = x0 + np.array([u[k] for k in support])
+    final = placed + np.array([u[k] for k in support])
     assert np.allclose(final, target_at(x0[:, 0] / 10.0), atol=1e-12)
     # Mid-edge nodes are there too: more support nodes than lower corners.
     assert len(support) % 2 == 1 and len(support) > 3

@@ -28,6 +28,7 @@ def add_args(parser) -> None:
     parser.add_argument("-o", "--output", type=Path, metavar="RESULT", help="write the result (.json)")
     parser.add_argument("--plot", type=Path, metavar="FIG", help="figure of the result (.png, .svg or .pdf)")
     parser.add_argument("--keep", type=Path, metavar="DIR", help="copy the solver's files (.inp, .frd, .sta, .dat) here")
+    parser.add_argument("--timeout", type=float, metavar="S", help="stop ccx after S seconds (a failed run)")
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress on stderr")
     add_fe_args(parser)
 
@@ -40,6 +41,8 @@ def run(args) -> int:
     for path, flag in ((args.output, "--output"), (args.keep, "--keep")):
         if path is not None and not (path if flag == "--keep" else path.parent).is_dir():
             raise CaseError(flag, f"the folder {str(path if flag == '--keep' else path.parent)!r} does not exist")
+    if args.timeout is not None and not args.timeout > 0:
+        raise CaseError("--timeout", f"must be > 0 seconds, got {args.timeout:g}")
     if args.output is not None and args.output.suffix.lower() != ".json":
         raise CaseError("--output", f"a result is a .json file, got {args.output.name!r}")
     if args.plot is not None:
@@ -48,7 +51,7 @@ def run(args) -> int:
     if isinstance(case, FeAssembly):
         return _run_assembly(args, case)
     solution = solve_calculix(case, element=args.element, mesh_size=args.mesh_size,
-                              progress=None if args.quiet else eprint, keep=args.keep)
+                              progress=None if args.quiet else eprint, keep=args.keep, timeout=args.timeout)
     for line in solution.warnings:
         eprint(f"sectiondeform solve-fe: warning: {line}")
     result = solution.to_result()
@@ -76,7 +79,7 @@ def _run_assembly(args, fe) -> int:
     from ..external.solve_assembly import solve_calculix_assembly
 
     result = solve_calculix_assembly(fe, element=args.element, mesh_size=args.mesh_size,
-                                     progress=None if args.quiet else eprint, keep=args.keep)
+                                     progress=None if args.quiet else eprint, keep=args.keep, timeout=args.timeout)
     for line in result.warnings:
         eprint(f"sectiondeform solve-fe: warning: {line}")
     if args.output is not None:

@@ -53,6 +53,7 @@ __all__ = [
     "build_deck",
     "case_option",
     "check_case_format",
+    "rigid_fit",
     "deck_text",
     "default_element",
 ]
@@ -178,6 +179,11 @@ class Deck:
     axis : AxisFrame or None
         For a body of revolution: the map to the solver's (r, z), in which
         the deck writes its nodes and displacements.
+    rotation : (2, 2) float64 ndarray
+    translation : (2,) float64 ndarray
+        The rigid placement of the stress-free body written in the deck:
+        node X is written at ``rotation @ X + translation`` (see
+        :func:`rigid_fit`); the identity by default.
     """
 
     name: str
@@ -190,6 +196,56 @@ class Deck:
     area_initial: float
     area_target: float
     axis: AxisFrame | None = None
+    rotation: np.ndarray = dataclasses.field(default_factory=lambda: np.eye(2))
+    translation: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(2))
+
+    @property
+    def placed_points(self) -> np.ndarray:
+        """Node coordinates as the deck writes them (rigidly placed, in the case's plane), ``(N, 2)``."""
+        return self.mesh.points @ self.rotation.T + self.translation
+
+    @property
+    def increments(self) -> tuple[float, float, float]:
+        """``*STATIC`` initial, minimum and maximum increment (fractions of the step).
+
+        The solver's first iteration moves only the support; so that the
+        elements on it are not turned inside out, the first increment moves
+        the support by at most a quarter of the smallest size of the elements
+        on it (0.05 when that allows it); at most 0.1 of the step.
+        """
+        m = self.mesh
+        touching = np.isin(m.cells, m.lower_nodes).any(axis=1)
+        size = float(np.sqrt(2.0 * element_areas(m.points, m.cells[touching], m.corners).min()))
+        motion = float(np.hypot(*self.support_displacement.T).max()) if len(self.support_displacement) else 0.0
+        cap = 1.0 if motion == 0 else 0.25 * size / motion
+        first, largest = min(INITIAL_INCREMENT, cap), MAX_INCREMENT
+        return first, min(MIN_INCREMENT, 1e-3 * first), largest
+
+
+def rigid_fit(points: np.ndarray, targets: np.ndarray, axis: AxisFrame | None = None):
+    """The rigid motion that best takes ``points`` onto ``targets`` (least squares), ``(R, t)``.
+
+    A rigid motion of a stress-free plane body changes nothing of its
+    mechanics, so the deck places the body there first and the support
+    motion left to the solver is only what deforms it. A body of revolution
+    may only slide along its axis (a radial shift would stretch its hoops).
+
+    Examples
+    --------
+    >>> X = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 2.0]])
+    >>> R, t = rigid_fit(X, X[:, ::-1] * [-1, 1] + [3.0, 1.0])  # turned by 90 degrees, moved
+    >>> (np.round(R, 12) + 0.0).tolist(), (np.round(t, 12) + 0.0).tolist()
+    ([[0.0, -1.0], [1.0, 0.0]], [3.0, 1.0])
+    """
+    X, Y = np.asarray(points, dtype=np.float64), np.asarray(targets, dtype=np.float64)
+    if axis is not None:
+        e = np.asarray(axis.along)
+        return np.eye(2), e * float(np.mean((Y - X) @ e))
+    cx, cy = X.mean(axis=0), Y.mean(axis=0)
+    u, _, vt = np.linalg.svd((X - cx).T @ (Y - cy))
+    d = np.sign(np.linalg.det(vt.T @ u.T)) or 1.0
+    R = vt.T @ np.diag([1.0, d]) @ u.T
+    return R, cy - R @ cx
 
 
 def case_option(case, key: str, default):
@@ -287,7 +343,8 @@ def build_deck(case, element: str | None = None, mesh_size: float = DEFAULT_MESH
     section = build_section(case)
     mesh = fe_mesh(section, case.lower, mesh_size * section.mesh_scale, el.family, el.nodes)
     support = np.asarray(case.target.at_fractions(mesh.lower_fractions), dtype=np.float64)
-    displacement = support - mesh.points[mesh.lower_nodes]
+    R, t = rigid_fit(mesh.points[mesh.lower_nodes], support)
+    displacement = support - (mesh.points[mesh.lower_nodes] @ R.T + t)
     area0 = float(element_areas(mesh.points, mesh.cells, mesh.corners).sum())
     area_target = float(case.law.target_area(area0))
     unexpressed = []
@@ -299,7 +356,7 @@ def build_deck(case, element: str | None = None, mesh_size: float = DEFAULT_MESH
                 f"area ratio {ratio:.6g}")
     return Deck(name=case.name, units=case.units, mesh=mesh, element=el, bodies=(body,),
                 support_displacement=displacement, unexpressed=tuple(unexpressed), area_initial=area0,
-                area_target=area_target)
+                area_target=area_target, rotation=R, translation=t)
 
 
 def _area_note(who: str, ratio: float) -> str:
@@ -342,9 +399,10 @@ def build_assembly_deck(fe: FeAssembly, element: str | None = None, mesh_size: f
     mesh.cells.setflags(write=False)
     body_of = body_of[order]
     support = np.asarray(a.target.at_fractions(mesh.lower_fractions), dtype=np.float64)
-    displacement = support - mesh.points[mesh.lower_nodes]
     areas = element_areas(mesh.points, mesh.cells, mesh.corners)
-    axis = axis_frame(a.revolution.axis if a.revolution else fe.revolution.axis, mesh.points) if axisymmetric else None
+    axis = axis_frame(fe.revolution.axis, mesh.points) if axisymmetric else None
+    R, t = rigid_fit(mesh.points[mesh.lower_nodes], support, axis)
+    displacement = support - (mesh.points[mesh.lower_nodes] @ R.T + t)
     bodies, unexpressed, used, target = [], [], set(), 0.0
     for i, (b, law, material) in enumerate(zip(a.bodies, fe.laws, fe.materials)):
         elements = np.flatnonzero(body_of == i).astype(np.int64)
@@ -360,7 +418,7 @@ def build_assembly_deck(fe: FeAssembly, element: str | None = None, mesh_size: f
     unexpressed += _hybrid_note(el)
     return Deck(name=a.name, units=a.units, mesh=mesh, element=el, bodies=tuple(bodies),
                 support_displacement=displacement, unexpressed=tuple(unexpressed),
-                area_initial=float(areas.sum()), area_target=float(target), axis=axis)
+                area_initial=float(areas.sum()), area_target=float(target), axis=axis, rotation=R, translation=t)
 
 
 def _rows(first: int, table: np.ndarray, fmt: str) -> list[str]:
@@ -381,7 +439,7 @@ def deck_text(deck: Deck) -> str:
     """
     m, el = deck.mesh, deck.element
     n_l = len(m.lower_nodes)
-    points, cells, u = m.points, m.cells, deck.support_displacement
+    points, cells, u = deck.placed_points, m.cells, deck.support_displacement
     if deck.axis is not None:
         points = deck.axis.to_rz(points)
         u = deck.axis.to_rz(u + np.asarray(deck.axis.origin))  # the linear part of the map
@@ -397,6 +455,11 @@ def deck_text(deck: Deck) -> str:
         out.append("** Bodies bonded: on a shared piece of outline the bodies share their nodes.")
     if deck.axis is not None:
         out.append(f"** Body of revolution, {deck.axis.comment()}.")
+    if not (np.allclose(deck.rotation, np.eye(2)) and np.allclose(deck.translation, 0.0)):
+        (r11, r12), (r21, r22) = deck.rotation.tolist()
+        out.append(f"** Nodes rigidly placed first (stress-free): X' = [[{r11:.12g}, {r12:.12g}], [{r21:.12g}, "
+                   f"{r22:.12g}]] X + [{deck.translation[0]:.12g}, {deck.translation[1]:.12g}] (the case's X), the "
+                   "rigid motion that best fits the support onto the target; *BOUNDARY gives the rest.")
     for body in deck.bodies:
         law = f", law {body.law}" if body.law else ""
         out.append(f"** Body {body.name}: {len(body.elements)} elements, {material_summary(body.material)}{law}.")
@@ -423,7 +486,7 @@ def deck_text(deck: Deck) -> str:
     out += [
         "*STEP, NLGEOM, INC=1000",
         "*STATIC",
-        f"{INITIAL_INCREMENT:g}, 1.0, {MIN_INCREMENT:g}, {MAX_INCREMENT:g}",
+        "{:.6g}, 1.0, {:.6g}, {:.6g}".format(*deck.increments),
         "*BOUNDARY",
     ]
     nodes = m.lower_nodes + 1

@@ -110,7 +110,7 @@ def _contour_points(section, resting_lowers, tol: float) -> np.ndarray:
 
 
 def solve_calculix_assembly(fe, *, element: str | None = None, mesh_size: float = DEFAULT_MESH_SIZE,
-                            progress=None, keep=None) -> AssemblyResult:
+                            progress=None, keep=None, timeout=None) -> AssemblyResult:
     """Solve a version-2 case with CalculiX.
 
     Parameters
@@ -123,6 +123,8 @@ def solve_calculix_assembly(fe, *, element: str | None = None, mesh_size: float 
     progress : callable, optional
     keep : Path, optional
         Folder to copy the ccx job files into.
+    timeout : float, optional
+        Seconds after which ccx is stopped (:class:`SolverFailedError`).
 
     Returns
     -------
@@ -142,7 +144,7 @@ def solve_calculix_assembly(fe, *, element: str | None = None, mesh_size: float 
                                 f"{el.name[:3]}8R")
     if progress is not None:
         progress(f"calculix: {len(m.cells)} {el.name} elements in {len(deck.bodies)} bodies, {len(m.points)} nodes")
-    results, info = run_ccx(deck_text(deck), job="assembly", progress=progress, keep=keep)
+    results, info = run_ccx(deck_text(deck), job="assembly", progress=progress, keep=keep, timeout=timeout)
     _, ids, disp = results.last("DISP")
     if ids.min() < 1 or ids.max() > len(m.points):
         raise SolverFailedError("ccx returned displacements of nodes the deck does not have")
@@ -150,7 +152,7 @@ def solve_calculix_assembly(fe, *, element: str | None = None, mesh_size: float 
     u[ids - 1] = disp[:, :2]
     if deck.axis is not None:  # (u_r, u_z) back to the case's plane
         u = deck.axis.from_rz(u) - np.asarray(deck.axis.origin)
-    final = m.points + u
+    final = deck.placed_points + u
     areas0 = element_areas(m.points, m.cells, m.corners)
     areas1 = element_areas(final, m.cells, m.corners)
     if areas1.min() <= 0:
