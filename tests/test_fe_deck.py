@@ -74,9 +74,11 @@ def test_support_nodes_go_to_the_target_by_arc_length():
         u.setdefault(int(node), [0.0, 0.0])[int(dof) - 1] = float(value)
     support = sorted(u)
     assert support == sorted(int(v) for r in blocks["*NSET, NSET=SUPPORT"] for v in r)
-    x0 = xy[np.array(support) - 1]
+    placed = xy[np.array(support) - 1]
+    x0 = (placed - deck.translation) @ deck.rotation  # the case's coordinates, before the rigid placement
+    assert np.allclose(deck.rotation @ deck.rotation.T, np.eye(2)) and np.linalg.det(deck.rotation) > 0
     assert np.allclose(x0[:, 1], 0.0)  # the lower curve of the square is y = 0
-    final = x0 + np.array([u[k] for k in support])
+    final = placed + np.array([u[k] for k in support])
     assert np.allclose(final, target_at(x0[:, 0] / 10.0), atol=1e-12)
     # Mid-edge nodes are there too: more support nodes than lower corners.
     assert len(support) % 2 == 1 and len(support) > 3
@@ -94,12 +96,12 @@ def test_area_ratio_other_than_one_is_said_in_the_deck_and_on_stderr(tmp_path, c
     assert "NOT EXPRESSED" not in out.read_text()
 
 
-def test_v2_cases_and_axisymmetric_elements_are_refused_in_one_line(tmp_path, capsys):
-    v2 = tmp_path / "v2.json"
-    v2.write_text(json.dumps({"format": "section-case/2", "revolution": {"axis": [[0, 0], [1, 0]]}, "bodies": []}))
-    assert main(["export-fe", str(v2), "-o", str(tmp_path / "d.inp")]) == 2
+def test_unknown_formats_and_axisymmetric_elements_on_plane_cases_are_refused_in_one_line(tmp_path, capsys):
+    v3 = tmp_path / "v3.json"
+    v3.write_text(json.dumps({"format": "section-case/3", "bodies": []}))
+    assert main(["export-fe", str(v3), "-o", str(tmp_path / "d.inp")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "section-case/2" in err[0]
+    assert len(err) == 1 and "section-case/3" in err[0]
     assert not (tmp_path / "d.inp").exists()
     with pytest.raises(CaseError, match="axisymmetric"):
         build_deck(sd.load_case(SQUARE), "CAX6")

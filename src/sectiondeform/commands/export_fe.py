@@ -2,18 +2,20 @@
 
 The deck runs as it is in Abaqus/Standard and in CalculiX: plane-strain
 elements (default CPE6, which does not lock for nearly incompressible rubber
-in CalculiX), a neo-Hookean material (C10 = mu/2, D1 = 2/kappa, shear
-modulus 1, bulk_to_shear from the case, default 1000), the lower curve's
-nodes moved onto the target by the arc-length rule, one NLGEOM static step,
-displacements written out. What the deck cannot express (an area ratio
-other than 1 on a plane section) is written at its top and warned about.
+in CalculiX), or axisymmetric ones (default CAX6) for a body of revolution,
+written in (r, z); one element set, section and material per body (a
+section-case/2 case), bonded bodies sharing their nodes; the rubber of each
+body (neo-Hookean by default, C10 = mu/2, D1 = 2/kappa; Mooney-Rivlin, Yeoh);
+the support's nodes moved onto the target by the arc-length rule; one NLGEOM
+static step; displacements written out. What the deck cannot express (an
+area ratio other than 1 on a plane section, a volume ratio other than 1) is
+written at its top and warned about.
 
 Example: sectiondeform export-fe case.json -o deck.inp --element CPE8R
 """
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from ..errors import CaseError
@@ -24,25 +26,31 @@ from ._common import apply_overrides, eprint
 
 def add_fe_args(parser) -> None:
     """``--element``, ``--mesh-size`` and ``--area-ratio`` (shared with solve-fe)."""
-    from ..external.deck import DEFAULT_ELEMENT, DEFAULT_MESH_SIZE
+    from ..external.deck import DEFAULT_AXI_ELEMENT, DEFAULT_ELEMENT, DEFAULT_MESH_SIZE
 
-    parser.add_argument("--element", default=DEFAULT_ELEMENT, metavar="TYPE",
-                        help=f"element type: CPE3, CPE6, CPE4, CPE4R, CPE8, CPE8R, or a hybrid one (H, Abaqus only); "
-                             f"default {DEFAULT_ELEMENT}")
+    parser.add_argument("--element", default=None, metavar="TYPE",
+                        help=f"element type: CPE3, CPE6, CPE4, CPE4R, CPE8, CPE8R (CAX... for a body of revolution), "
+                             f"or a hybrid one (H, Abaqus only); default {DEFAULT_ELEMENT}, {DEFAULT_AXI_ELEMENT} for "
+                             "a body of revolution")
     parser.add_argument("--mesh-size", type=float, default=DEFAULT_MESH_SIZE, metavar="H",
                         help=f"triangle size as a fraction of the mean thickness (default {DEFAULT_MESH_SIZE})")
     parser.add_argument("--area-ratio", type=float, metavar="R", help="override the law: final area = R x initial area")
 
 
 def read_fe_case(path: Path, args):
-    """The case of a command line, refusing in one line what the decks cannot build yet."""
+    """The case of a command line: a version-1 Case, or a version-2 FeAssembly (bodies, revolution)."""
+    from ..case import read_json
     from ..external.deck import check_case_format
+    from ..external.fe_assembly import read_fe_assembly
 
     if Path(path).suffix.lower() == ".json" and Path(path).is_file():
-        try:
-            check_case_format(json.loads(Path(path).read_text(encoding="utf-8")))
-        except json.JSONDecodeError:
-            pass  # read_case says what is wrong
+        data = read_json(path)
+        check_case_format(data)
+        if isinstance(data, dict) and data.get("format") == "section-case/2":
+            if getattr(args, "area_ratio", None) is not None:
+                raise CaseError("--area-ratio", "a section-case/2 case has one law per body; set each body's law in "
+                                "the case")
+            return read_fe_assembly(data)
     return apply_overrides(read_case(path), args)
 
 

@@ -12,6 +12,7 @@ import os
 import shutil
 import subprocess
 import tempfile
+import threading
 import time
 from pathlib import Path
 
@@ -54,7 +55,8 @@ def _last_error(lines: list[str]) -> str:
     return tail[-1] if tail else "no output"
 
 
-def run_ccx(deck: str, job: str = "deck", progress=None, keep: Path | None = None) -> tuple[FrdResults, dict]:
+def run_ccx(deck: str, job: str = "deck", progress=None, keep: Path | None = None,
+            timeout: float | None = None) -> tuple[FrdResults, dict]:
     """Run ``ccx`` on a deck and read its results.
 
     Parameters
@@ -67,6 +69,8 @@ def run_ccx(deck: str, job: str = "deck", progress=None, keep: Path | None = Non
         Called with one line per converged increment.
     keep : Path, optional
         A folder to copy the job's files into (``.inp``, ``.frd``, ``.sta``, ``.dat``).
+    timeout : float, optional
+        Seconds after which ``ccx`` is stopped (a failed run).
 
     Returns
     -------
@@ -90,6 +94,9 @@ def run_ccx(deck: str, job: str = "deck", progress=None, keep: Path | None = Non
         t0 = time.perf_counter()
         proc = subprocess.Popen([exe, "-i", job], cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                 text=True, errors="replace", env=env)
+        timer = threading.Timer(timeout, proc.kill) if timeout else None
+        if timer is not None:
+            timer.start()
         lines = []
         for line in proc.stdout:
             lines.append(line.rstrip("\n"))
@@ -97,6 +104,10 @@ def run_ccx(deck: str, job: str = "deck", progress=None, keep: Path | None = Non
                 progress(f"calculix: {line.strip()}")
         code = proc.wait()
         seconds = time.perf_counter() - t0
+        if timer is not None:
+            timer.cancel()
+            if timeout and seconds >= timeout:
+                raise SolverFailedError(f"ccx did not finish in {timeout:g} s (stopped); last line: {_last_error(lines)}")
         frd = folder / f"{job}.frd"
         if keep is not None:
             for ext in (".inp", ".frd", ".sta", ".dat"):

@@ -25,27 +25,37 @@ so only that is built today.
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..case import Case
 from ..errors import CaseError
+from ..materials.models import NeoHookean
 from ..section import build_section
+from .assembly_mesh import assembly_mesh, body_ring
+from .axis import AxisFrame, axis_frame, reverse_orientation
+from .fe_assembly import FeAssembly
+from .material_cards import hyperelastic_card, material_summary
 from .mesh import FeMesh, element_areas, fe_mesh
 
 __all__ = [
+    "DEFAULT_AXI_ELEMENT",
     "DEFAULT_ELEMENT",
     "DEFAULT_MESH_SIZE",
     "ELEMENTS",
     "Body",
     "Deck",
     "ElementType",
+    "build_assembly_deck",
     "build_deck",
     "case_option",
     "check_case_format",
+    "rigid_fit",
     "deck_text",
+    "default_element",
 ]
 
 DEFAULT_MESH_SIZE = 0.1
@@ -100,11 +110,12 @@ def _element_table() -> dict:
 #: Every element type the writer knows, by Abaqus name.
 ELEMENTS = _element_table()
 DEFAULT_ELEMENT = "CPE6"
+DEFAULT_AXI_ELEMENT = "CAX6"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Body:
-    """One deformable body of the deck: its elements and neo-Hookean material.
+    """One deformable body of the deck: its elements and its rubber.
 
     Attributes
     ----------
@@ -112,26 +123,36 @@ class Body:
         Element set and material name (letters, digits, underscores).
     elements : (k,) int64 ndarray
         Rows of the mesh's cells that belong to it.
-    shear_modulus : float
-        μ, in the case's stress unit (relative by default).
-    bulk_to_shear : float
-        κ / μ.
+    material : NeoHookean or MooneyRivlin or Yeoh
+        Its rubber (:mod:`sectiondeform.materials.models`).
+    law : str
+        The case's law, for the comment block (``"area ratio 0.9"``).
     """
 
     name: str
     elements: np.ndarray
-    shear_modulus: float
-    bulk_to_shear: float
+    material: object
+    law: str = ""
+
+    @property
+    def shear_modulus(self) -> float:
+        """Initial shear modulus μ."""
+        return float(self.material.shear_modulus)
+
+    @property
+    def bulk_to_shear(self) -> float:
+        """κ / μ."""
+        return float(self.material.kappa / self.material.shear_modulus)
 
     @property
     def c10(self) -> float:
-        """Abaqus neo-Hooke C10 = μ / 2."""
-        return 0.5 * self.shear_modulus
+        """Abaqus C10 (μ / 2 for a neo-Hookean rubber)."""
+        return float(self.material.coefficients[0])
 
     @property
     def d1(self) -> float:
-        """Abaqus neo-Hooke D1 = 2 / κ."""
-        return 2.0 / (self.bulk_to_shear * self.shear_modulus)
+        """Abaqus D1 = 2 / κ."""
+        return 2.0 / float(self.material.kappa)
 
 
 @dataclass(frozen=True, eq=False)
@@ -143,16 +164,26 @@ class Deck:
     name : str
     units : str
     mesh : FeMesh
+        In the case's (x, y) coordinates.
     element : ElementType
     bodies : tuple of Body
     support_displacement : (n_l, 2) float64 ndarray
-        Displacement of each of ``mesh.lower_nodes``, units.
+        Displacement of each of ``mesh.lower_nodes``, units, in (x, y).
     unexpressed : tuple of str
         What the case asks for that the deck cannot say (one sentence each).
     area_initial : float
         Mesh area, units².
     area_target : float
-        The case's law applied to it, units².
+        The case's law applied to it, units² (version 1; the sum of the
+        bodies' targets for an assembly).
+    axis : AxisFrame or None
+        For a body of revolution: the map to the solver's (r, z), in which
+        the deck writes its nodes and displacements.
+    rotation : (2, 2) float64 ndarray
+    translation : (2,) float64 ndarray
+        The rigid placement of the stress-free body written in the deck:
+        node X is written at ``rotation @ X + translation`` (see
+        :func:`rigid_fit`); the identity by default.
     """
 
     name: str
@@ -164,55 +195,136 @@ class Deck:
     unexpressed: tuple
     area_initial: float
     area_target: float
+    axis: AxisFrame | None = None
+    rotation: np.ndarray = dataclasses.field(default_factory=lambda: np.eye(2))
+    translation: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(2))
+
+    @property
+    def placed_points(self) -> np.ndarray:
+        """Node coordinates as the deck writes them (rigidly placed, in the case's plane), ``(N, 2)``."""
+        return self.mesh.points @ self.rotation.T + self.translation
+
+    @property
+    def increments(self) -> tuple[float, float, float]:
+        """``*STATIC`` initial, minimum and maximum increment (fractions of the step).
+
+        The solver's first iteration moves only the support; so that the
+        elements on it are not turned inside out, the first increment moves
+        the support by at most a quarter of the smallest size of the elements
+        on it (0.05 when that allows it); at most 0.1 of the step.
+        """
+        m = self.mesh
+        touching = np.isin(m.cells, m.lower_nodes).any(axis=1)
+        size = float(np.sqrt(2.0 * element_areas(m.points, m.cells[touching], m.corners).min()))
+        motion = float(np.hypot(*self.support_displacement.T).max()) if len(self.support_displacement) else 0.0
+        cap = 1.0 if motion == 0 else 0.25 * size / motion
+        first, largest = min(INITIAL_INCREMENT, cap), MAX_INCREMENT
+        return first, min(MIN_INCREMENT, 1e-3 * first), largest
+
+
+def rigid_fit(points: np.ndarray, targets: np.ndarray, axis: AxisFrame | None = None):
+    """The rigid motion that best takes ``points`` onto ``targets`` (least squares), ``(R, t)``.
+
+    A rigid motion of a stress-free plane body changes nothing of its
+    mechanics, so the deck places the body there first and the support
+    motion left to the solver is only what deforms it. A body of revolution
+    may only slide along its axis (a radial shift would stretch its hoops).
+
+    Examples
+    --------
+    >>> X = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 2.0]])
+    >>> R, t = rigid_fit(X, X[:, ::-1] * [-1, 1] + [3.0, 1.0])  # turned by 90 degrees, moved
+    >>> (np.round(R, 12) + 0.0).tolist(), (np.round(t, 12) + 0.0).tolist()
+    ([[0.0, -1.0], [1.0, 0.0]], [3.0, 1.0])
+    """
+    X, Y = np.asarray(points, dtype=np.float64), np.asarray(targets, dtype=np.float64)
+    if axis is not None:
+        e = np.asarray(axis.along)
+        return np.eye(2), e * float(np.mean((Y - X) @ e))
+    cx, cy = X.mean(axis=0), Y.mean(axis=0)
+    u, _, vt = np.linalg.svd((X - cx).T @ (Y - cy))
+    d = np.sign(np.linalg.det(vt.T @ u.T)) or 1.0
+    R = vt.T @ np.diag([1.0, d]) @ u.T
+    return R, cy - R @ cx
 
 
 def case_option(case, key: str, default):
-    """One option of a case, whether ``case.options`` is a dict or a dataclass; ``default`` when unset."""
+    """One option of a case (a common option or a model's, e.g. ``bulk_to_shear``); ``default`` when unset."""
     options = getattr(case, "options", None)
     if options is None:
         return default
-    value = options.get(key) if isinstance(options, dict) else getattr(options, key, None)
+    if isinstance(options, dict):
+        value = options.get(key)
+    else:
+        value = getattr(options, key, None)
+        if value is None:
+            value = dict(getattr(options, "model_values", ())).get(key)
     return default if value is None else value
 
 
 def check_case_format(data: dict) -> None:
-    """Refuse, in one line, the case kinds the deck writer cannot build yet.
+    """Refuse, in one line, a case format the deck writer does not know.
 
     Raises
     ------
     CaseError
-        For a ``section-case/2`` file (several bodies, bodies of revolution).
+        For a ``format`` other than ``section-case/1`` and ``section-case/2``.
     """
-    if isinstance(data, dict) and data.get("format") not in (None, "section-case/1"):
-        what = "a body of revolution" if "revolution" in data else "several bodies"
-        raise CaseError("format", f"{data.get('format')!r} ({what}) is not supported by the solver decks yet; "
-                        "give a section-case/1 case (one plane body)")
+    if isinstance(data, dict) and data.get("format") not in (None, "section-case/1", "section-case/2"):
+        raise CaseError("format", f"{data.get('format')!r} is not a case format the solver decks know; "
+                        "give a section-case/1 or section-case/2 case")
 
 
-def _element(name: str) -> ElementType:
+def default_element(axisymmetric: bool) -> str:
+    """The element that does not lock for nearly incompressible rubber in CalculiX: CPE6, or CAX6 for revolution."""
+    return DEFAULT_AXI_ELEMENT if axisymmetric else DEFAULT_ELEMENT
+
+
+def _element(name: str | None, axisymmetric: bool = False) -> ElementType:
+    if name is None:
+        name = default_element(axisymmetric)
     key = str(name).upper()
     if key not in ELEMENTS:
         raise CaseError("--element", f"unknown element {name!r}; use one of {', '.join(ELEMENTS)}")
     el = ELEMENTS[key]
-    if el.axisymmetric:
+    if el.axisymmetric and not axisymmetric:
         raise CaseError("--element", f"{el.name} is axisymmetric but the case has no revolution axis; "
                         f"use {el.name.replace('CAX', 'CPE')}")
+    if axisymmetric and not el.axisymmetric:
+        raise CaseError("--element", f"{el.name} is plane strain but the case is a body of revolution; "
+                        f"use {el.name.replace('CPE', 'CAX')}")
     return el
 
 
-def build_deck(case: Case, element: str = DEFAULT_ELEMENT, mesh_size: float = DEFAULT_MESH_SIZE,
+def _mesh_size(mesh_size) -> float:
+    if isinstance(mesh_size, bool) or not isinstance(mesh_size, (int, float)) or not math.isfinite(mesh_size) \
+            or mesh_size <= 0:
+        raise CaseError("--mesh-size", f"must be a finite number > 0, got {mesh_size!r}")
+    return float(mesh_size)
+
+
+def _hybrid_note(el: ElementType) -> list[str]:
+    if not el.hybrid:
+        return []
+    plain = el.name[:-1]
+    return [f"{el.name} is a hybrid element: Abaqus runs it, CalculiX 2.20 does not (use {plain[:3]}6 or {plain[:3]}8R)"]
+
+
+def build_deck(case, element: str | None = None, mesh_size: float = DEFAULT_MESH_SIZE,
                shear_modulus: float = 1.0) -> Deck:
-    """The deck of a (version-1, plane) case.
+    """The deck of a case: a version-1 :class:`~sectiondeform.case.Case` or a version-2 :class:`FeAssembly`.
 
     Parameters
     ----------
-    case : Case
-    element : str
-        Abaqus element name (see :data:`ELEMENTS`); plane strain for a plane case.
+    case : Case or FeAssembly
+    element : str, optional
+        Abaqus element name (see :data:`ELEMENTS`): plane strain for a plane
+        case, axisymmetric for a body of revolution; by default
+        :func:`default_element`.
     mesh_size : float
-        Triangle size as a fraction of the section's mesh scale (mean thickness).
+        Triangle size as a fraction of each body's mesh scale (mean thickness).
     shear_modulus : float
-        μ; the shape does not depend on it.
+        μ of a version-1 case (the shape does not depend on it).
 
     Returns
     -------
@@ -221,34 +333,92 @@ def build_deck(case: Case, element: str = DEFAULT_ELEMENT, mesh_size: float = DE
     Raises
     ------
     CaseError
-        For an unknown or axisymmetric element, a mesh size not > 0, a
-        bulk-to-shear ratio not > 0.
+        For an unknown element or one of the wrong family, a mesh size not > 0.
     """
+    if isinstance(case, FeAssembly):
+        return build_assembly_deck(case, element, mesh_size)
     el = _element(element)
-    if isinstance(mesh_size, bool) or not isinstance(mesh_size, (int, float)) or not math.isfinite(mesh_size) \
-            or mesh_size <= 0:
-        raise CaseError("--mesh-size", f"must be a finite number > 0, got {mesh_size!r}")
+    mesh_size = _mesh_size(mesh_size)
     k = float(case_option(case, "bulk_to_shear", DEFAULT_BULK_TO_SHEAR))
     section = build_section(case)
     mesh = fe_mesh(section, case.lower, mesh_size * section.mesh_scale, el.family, el.nodes)
     support = np.asarray(case.target.at_fractions(mesh.lower_fractions), dtype=np.float64)
-    displacement = support - mesh.points[mesh.lower_nodes]
+    R, t = rigid_fit(mesh.points[mesh.lower_nodes], support)
+    displacement = support - (mesh.points[mesh.lower_nodes] @ R.T + t)
     area0 = float(element_areas(mesh.points, mesh.cells, mesh.corners).sum())
     area_target = float(case.law.target_area(area0))
     unexpressed = []
     ratio = area_target / area0
     if abs(ratio - 1.0) > 1e-12:
-        unexpressed.append(
-            f"the law asks for area ratio {ratio:.6g}: generalised plane strain with an out-of-plane stretch "
-            f"1/r = {1.0 / ratio:.6g} has no element in CalculiX; this deck is plain plane strain (area kept up to "
-            "compressibility), so its shape is that of area ratio 1"
-        )
-    if el.hybrid:
-        unexpressed.append(f"{el.name} is a hybrid element: Abaqus runs it, CalculiX 2.20 does not (use CPE6 or CPE8R)")
-    body = Body("BODY", np.arange(len(mesh.cells), dtype=np.int64), float(shear_modulus), k)
+        unexpressed.append(_area_note("the law", ratio))
+    unexpressed += _hybrid_note(el)
+    body = Body("BODY", np.arange(len(mesh.cells), dtype=np.int64), NeoHookean(float(shear_modulus), bulk_to_shear=k),
+                f"area ratio {ratio:.6g}")
     return Deck(name=case.name, units=case.units, mesh=mesh, element=el, bodies=(body,),
                 support_displacement=displacement, unexpressed=tuple(unexpressed), area_initial=area0,
-                area_target=area_target)
+                area_target=area_target, rotation=R, translation=t)
+
+
+def _area_note(who: str, ratio: float) -> str:
+    return (f"{who} asks for area ratio {ratio:.6g}: generalised plane strain with an out-of-plane stretch "
+            f"1/r = {1.0 / ratio:.6g} has no element in CalculiX; this deck is plain plane strain (area kept up to "
+            "compressibility), so its shape is that of area ratio 1")
+
+
+def _set_name(name: str, used: set) -> str:
+    """An element-set name from a body name: letters, digits and underscores, upper case, unique."""
+    base = re.sub(r"[^A-Za-z0-9_]", "_", name).upper() or "BODY"
+    if not base[0].isalpha():
+        base = "B_" + base
+    out, k = base[:70], 2
+    while out in used:
+        out, k = f"{base[:66]}_{k}", k + 1
+    used.add(out)
+    return out
+
+
+def build_assembly_deck(fe: FeAssembly, element: str | None = None, mesh_size: float = DEFAULT_MESH_SIZE) -> Deck:
+    """The deck of a version-2 case: one conforming mesh, one element set, section and material per body.
+
+    Shared pieces are bonded (the bodies share their nodes there); the
+    support's nodes go onto the target by the arc-length rule; a body of
+    revolution is written in the solver's (r, z) (see :mod:`.axis`).
+    What the solver cannot express (an area ratio other than 1 on a plane
+    body, a volume ratio other than 1: growth) is in :attr:`Deck.unexpressed`.
+    """
+    axisymmetric = fe.revolution is not None
+    el = _element(element, axisymmetric)
+    mesh_size = _mesh_size(mesh_size)
+    a = fe.assembly
+    sections = [build_section(a.body_case(i)) for i in range(len(a.bodies))]
+    sizes = [mesh_size * s.mesh_scale for s in sections]
+    rings = [body_ring(s, h) for s, h in zip(sections, sizes)]
+    mesh, body_of = assembly_mesh(rings, sizes, a.layout.fine["support"], a.layout.tolerance, el.family, el.nodes)
+    order = np.argsort(body_of, kind="stable")  # each body's elements in one run of numbers
+    mesh = dataclasses.replace(mesh, cells=mesh.cells[order])
+    mesh.cells.setflags(write=False)
+    body_of = body_of[order]
+    support = np.asarray(a.target.at_fractions(mesh.lower_fractions), dtype=np.float64)
+    areas = element_areas(mesh.points, mesh.cells, mesh.corners)
+    axis = axis_frame(fe.revolution.axis, mesh.points) if axisymmetric else None
+    R, t = rigid_fit(mesh.points[mesh.lower_nodes], support, axis)
+    displacement = support - (mesh.points[mesh.lower_nodes] @ R.T + t)
+    bodies, unexpressed, used, target = [], [], set(), 0.0
+    for i, (b, law, material) in enumerate(zip(a.bodies, fe.laws, fe.materials)):
+        elements = np.flatnonzero(body_of == i).astype(np.int64)
+        bodies.append(Body(_set_name(b.name, used), elements, material, law.text))
+        area = float(areas[elements].sum())
+        target += law.ratio * area if law.key == "area_ratio" else area
+        if abs(law.ratio - 1.0) > 1e-12:
+            if law.key == "area_ratio" and not axisymmetric:
+                unexpressed.append(_area_note(f"{a.label(i)}", law.ratio))
+            else:
+                unexpressed.append(f"{a.label(i)} asks for {law.text}: volumetric growth has no place in a "
+                                   "hyperelastic deck; the rubber keeps its volume up to compressibility")
+    unexpressed += _hybrid_note(el)
+    return Deck(name=a.name, units=a.units, mesh=mesh, element=el, bodies=tuple(bodies),
+                support_displacement=displacement, unexpressed=tuple(unexpressed),
+                area_initial=float(areas.sum()), area_target=float(target), axis=axis, rotation=R, translation=t)
 
 
 def _rows(first: int, table: np.ndarray, fmt: str) -> list[str]:
@@ -269,41 +439,57 @@ def deck_text(deck: Deck) -> str:
     """
     m, el = deck.mesh, deck.element
     n_l = len(m.lower_nodes)
+    points, cells, u = deck.placed_points, m.cells, deck.support_displacement
+    if deck.axis is not None:
+        points = deck.axis.to_rz(points)
+        u = deck.axis.to_rz(u + np.asarray(deck.axis.origin))  # the linear part of the map
+        if deck.axis.mirrored:
+            cells = reverse_orientation(cells, m.kind)
     out = [
         "*HEADING",
         f"{deck.name}: section deformed onto its target (units {deck.units}), written by sectiondeform",
         f"** {len(m.points)} nodes, {len(m.cells)} {el.name} elements, {n_l} support nodes moved onto the target.",
-        "** Support rule: the node at arc-length fraction s of the lower curve goes to the target at fraction s.",
-        "** Material: neo-Hookean, C10 = mu/2, D1 = 2/kappa.",
+        "** Support rule: the node at arc-length fraction s of the support goes to the target at fraction s.",
     ]
+    if len(deck.bodies) > 1:
+        out.append("** Bodies bonded: on a shared piece of outline the bodies share their nodes.")
+    if deck.axis is not None:
+        out.append(f"** Body of revolution, {deck.axis.comment()}.")
+    if not (np.allclose(deck.rotation, np.eye(2)) and np.allclose(deck.translation, 0.0)):
+        (r11, r12), (r21, r22) = deck.rotation.tolist()
+        out.append(f"** Nodes rigidly placed first (stress-free): X' = [[{r11:.12g}, {r12:.12g}], [{r21:.12g}, "
+                   f"{r22:.12g}]] X + [{deck.translation[0]:.12g}, {deck.translation[1]:.12g}] (the case's X), the "
+                   "rigid motion that best fits the support onto the target; *BOUNDARY gives the rest.")
+    for body in deck.bodies:
+        law = f", law {body.law}" if body.law else ""
+        out.append(f"** Body {body.name}: {len(body.elements)} elements, {material_summary(body.material)}{law}.")
+    out.append("** Material: the Abaqus forms, e.g. neo-Hookean C10 = mu/2, D1 = 2/kappa.")
     if deck.unexpressed:
         out.append("** NOT EXPRESSED BY THIS DECK:")
         out += [f"**   - {line}" for line in deck.unexpressed]
     out += ["*NODE, NSET=ALL_NODES"]
-    out += _rows(1, m.points, "{:.15g}")
+    out += _rows(1, points, "{:.15g}")
     for body in deck.bodies:
         out.append(f"*ELEMENT, TYPE={el.name}, ELSET={body.name}")
-        out += _rows(int(body.elements[0]) + 1 if len(body.elements) else 1, m.cells[body.elements] + 1, "{:d}")
+        out += [f"{e + 1}, " + ", ".join(str(int(v)) for v in row)
+                for e, row in zip(body.elements.tolist(), cells[body.elements] + 1)]
     out.append("*NSET, NSET=SUPPORT")
     out += _id_lines(m.lower_nodes + 1)
-    out.append("*NSET, NSET=UPPER")
-    out += _id_lines(np.unique(m.upper_nodes) + 1)
+    if len(m.upper_nodes):
+        out.append("*NSET, NSET=UPPER")
+        out += _id_lines(np.unique(m.upper_nodes) + 1)
     for body in deck.bodies:
-        out += [
-            f"*SOLID SECTION, ELSET={body.name}, MATERIAL=RUBBER_{body.name}",
-            "1.0",
-            f"*MATERIAL, NAME=RUBBER_{body.name}",
-            "*HYPERELASTIC, NEO HOOKE",
-            f"{body.c10:.15g}, {body.d1:.15g}",
-        ]
+        out.append(f"*SOLID SECTION, ELSET={body.name}, MATERIAL=RUBBER_{body.name}")
+        if not el.axisymmetric:
+            out.append("1.0")  # unit thickness: plane strain per unit length
+        out += [f"*MATERIAL, NAME=RUBBER_{body.name}", *hyperelastic_card(body.material)]
     out += [
         "*STEP, NLGEOM, INC=1000",
         "*STATIC",
-        f"{INITIAL_INCREMENT:g}, 1.0, {MIN_INCREMENT:g}, {MAX_INCREMENT:g}",
+        "{:.6g}, 1.0, {:.6g}, {:.6g}".format(*deck.increments),
         "*BOUNDARY",
     ]
     nodes = m.lower_nodes + 1
-    u = deck.support_displacement
     for node, (ux, uy) in zip(nodes.tolist(), u.tolist()):
         out.append(f"{node}, 1, 1, {ux:.15g}")
         out.append(f"{node}, 2, 2, {uy:.15g}")

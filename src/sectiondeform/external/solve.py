@@ -138,7 +138,7 @@ class CalculixInfo(Info):
 
 
 def solve_calculix(case, *, element: str = DEFAULT_ELEMENT, mesh_size: float = DEFAULT_MESH_SIZE,
-                   progress=None, keep=None) -> CalculixSolution:
+                   progress=None, keep=None, timeout=None) -> CalculixSolution:
     """Solve a case with CalculiX.
 
     Parameters
@@ -152,6 +152,8 @@ def solve_calculix(case, *, element: str = DEFAULT_ELEMENT, mesh_size: float = D
         One line per stage and ccx increment.
     keep : Path, optional
         Folder to copy the ccx job files into.
+    timeout : float, optional
+        Seconds after which ccx is stopped (:class:`SolverFailedError`).
 
     Returns
     -------
@@ -171,13 +173,13 @@ def solve_calculix(case, *, element: str = DEFAULT_ELEMENT, mesh_size: float = D
     m = deck.mesh
     if progress is not None:
         progress(f"calculix: {len(m.cells)} {deck.element.name} elements, {len(m.points)} nodes")
-    results, info = run_ccx(deck_text(deck), job="section", progress=progress, keep=keep)
+    results, info = run_ccx(deck_text(deck), job="section", progress=progress, keep=keep, timeout=timeout)
     _, ids, disp = results.last("DISP")
     u = np.zeros((len(m.points), 2))
     if ids.min() < 1 or ids.max() > len(m.points):
         raise SolverFailedError("ccx returned displacements of nodes the deck does not have")
     u[ids - 1] = disp[:, :2]
-    final = m.points + u
+    final = deck.placed_points + u
     section = build_section(case)
     upper0 = np.asarray(section.upper, dtype=np.float64)
     upper = map_points(m.points, final, m.cells, m.kind, upper0)
