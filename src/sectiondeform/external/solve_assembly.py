@@ -15,7 +15,6 @@ element edge, exact for quadratic edges with three Gauss points).
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
 
 import numpy as np
 import shapely
@@ -30,7 +29,7 @@ from .interpolate import map_points
 from .mesh import element_areas
 from .solve import CalculixInfo
 
-__all__ = ["FeBodyResult", "revolved_volumes", "solve_calculix_assembly"]
+__all__ = ["revolved_volumes", "solve_calculix_assembly"]
 
 _GAUSS = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 9.0)
 
@@ -57,35 +56,6 @@ def revolved_volumes(rz: np.ndarray, cells: np.ndarray, corners: int) -> np.ndar
         dx = a * (t - 0.5) - 2 * m * t + b * (t + 0.5)
         total += w * np.sum(0.5 * x[..., 0] ** 2 * dx[..., 1], axis=1)
     return 2.0 * np.pi * total
-
-
-@dataclass(frozen=True, eq=False)
-class FeBodyResult(BodyResult):
-    """A body solved by a finite-element solver, with its volume when it is a body of revolution.
-
-    Attributes
-    ----------
-    volume_initial, volume_target, volume_final : float or None
-        2π ∫ r dA, units³ (bodies of revolution only).
-    area_law : bool
-        The case's law is an area ratio (else a volume ratio).
-    """
-
-    volume_initial: float | None = None
-    volume_target: float | None = None
-    volume_final: float | None = None
-    area_law: bool = True
-
-    def to_json(self, meshes: bool = True) -> dict:
-        """As :meth:`BodyResult.to_json`, with ``volume`` for a body of revolution (carrying target and error)."""
-        out = super().to_json(meshes)
-        if self.volume_initial is not None:
-            out["volume"] = {"initial": self.volume_initial, "final": self.volume_final}
-            if not self.area_law:
-                out["area"] = {"initial": self.area_initial, "final": self.area_final}
-                out["volume"].update(target=self.volume_target,
-                                     relative_error=(self.volume_final - self.volume_target) / self.volume_target)
-        return out
 
 
 def _compact(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -129,7 +99,7 @@ def solve_calculix_assembly(fe, *, element: str | None = None, mesh_size: float 
     Returns
     -------
     AssemblyResult
-        Model ``"calculix"``; bodies are :class:`FeBodyResult`.
+        Model ``"calculix"``; bodies are :class:`~sectiondeform.assembly_result.BodyResult` (with volumes for bodies of revolution).
 
     Raises
     ------
@@ -177,17 +147,18 @@ def solve_calculix_assembly(fe, *, element: str | None = None, mesh_size: float 
             v1 = revolved_volumes(deck.axis.to_rz(p1), c, m.corners)
             sign = -1.0 if deck.axis.mirrored else 1.0
             volumes = {"volume_initial": sign * float(v0.sum()), "volume_final": sign * float(v1.sum())}
-            volumes["volume_target"] = law.ratio * volumes["volume_initial"]
+            if law.key == "volume_ratio":
+                volumes["volume_target"] = law.ratio * volumes["volume_initial"]
         for arr in (*mapped, p1):
             arr.setflags(write=False)
-        bodies.append(FeBodyResult(
+        bodies.append(BodyResult(
             name=a.bodies[i].name, lower=mapped[0], upper=mapped[1], contour=mapped[2],
             initial_lower=lower0, initial_upper=upper0, initial_contour=contour0,
-            area_initial=area0, area_target=law.ratio * area0 if law.key == "area_ratio" else area0,
+            area_initial=area0, area_target=law.ratio * area0 if law.key == "area_ratio" else None,
             area_final=area1, initial_mesh=MeshData(p0, c, m.kind), final_mesh=MeshData(p1, c, m.kind),
             quality=ResultQuality(MeshQuality(elements=len(c), element_size=float(np.sqrt(area0 / max(len(c), 1))))),
             info=CalculixInfo(element_type=el.name, **ccx_info, ccx_seconds=info["seconds"]),
-            area_law=law.key == "area_ratio", **volumes,
+            **volumes,
         ))
     seconds = time.perf_counter() - t0
     return AssemblyResult(name=a.name, units=a.units, model="calculix", bodies=tuple(bodies),
