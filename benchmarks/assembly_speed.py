@@ -13,7 +13,9 @@ For each model (paper, hyperelastic), medians over repeated interleaved runs
   smooth bump of 0.5 % of the thinnest body's thickness, from the result on
   the case's target (the paper model has no path: it ignores ``start``);
 * ``preview``: ``deformer.preview(moved, start=result)`` (the hyperelastic
-  model's one linear step; the paper model's exact answer).
+  model's one linear step; the paper model's exact answer), and its largest
+  distance to the warm result's contour, relative to the thinnest body's
+  thickness T.
 
 Every figure goes through the public calls with a target curve (the
 deformers sample it). Printed as a Markdown table with the assembly's
@@ -67,13 +69,16 @@ def subjects(model: str) -> dict:
     single = Deformer(case, model)
     joint = AssemblyDeformer(assembly, model)
     r1, r2 = single.deform(), joint.deform()
-    t1 = moved(case.target, BUMP * single.section.thickness)
-    t2 = moved(assembly.target, BUMP * min(b.section.thickness for b in joint.bodies))
+    T1, T2 = single.section.thickness, min(b.section.thickness for b in joint.bodies)
+    t1, t2 = moved(case.target, BUMP * T1), moved(assembly.target, BUMP * T2)
+    err1 = float(np.abs(single.preview(t1, start=r1).contour - single.deform(t1, start=r1).contour).max()) / T1
+    err2 = max(float(np.abs(p.contour - w.contour).max())
+               for p, w in zip(joint.preview(t2, start=r2).bodies, joint.deform(t2, start=r2).bodies)) / T2
     return {
-        "single": {"bodies": 1, "unknowns": _unknowns(r1.quality),
+        "single": {"bodies": 1, "unknowns": _unknowns(r1.quality), "preview_error": err1,
                    "prepare": lambda: Deformer(case, model), "deform": single.deform,
                    "warm": lambda: single.deform(t1, start=r1), "preview": lambda: single.preview(t1, start=r1)},
-        "assembly": {"bodies": len(assembly.bodies), "unknowns": _unknowns(r2.bodies[0].quality),
+        "assembly": {"bodies": len(assembly.bodies), "unknowns": _unknowns(r2.bodies[0].quality), "preview_error": err2,
                      "prepare": lambda: AssemblyDeformer(assembly, model), "deform": joint.deform,
                      "warm": lambda: joint.deform(t2, start=r2), "preview": lambda: joint.preview(t2, start=r2)},
     }
@@ -87,7 +92,7 @@ def run(repeats: int) -> dict:
         calls = {(name, key): s[key] for name, s in subj.items() for key in ("deform", "warm", "preview")}
         times = median_times(calls, repeats, warmup=2)
         for name, s in subj.items():
-            row = {"model": model, "subject": name, "bodies": s["bodies"], "unknowns": s["unknowns"],
+            row = {"model": model, "subject": name, "bodies": s["bodies"], "unknowns": s["unknowns"], "preview_error": s["preview_error"],
                    "prepare_s": median_time(s["prepare"], max(3, repeats // 4), warmup=1)}
             row.update({f"{key}_s": times[name, key] for key in ("deform", "warm", "preview")})
             out["rows"].append(row)
@@ -102,22 +107,24 @@ def to_markdown(report: dict) -> str:
     """The table: per model the single body, the assembly, its time per body and its ratio per body to the single body."""
     keys = ("prepare_s", "deform_s", "warm_s", "preview_s")
     lines = [
-        "| model | subject | bodies | unknowns | prepare | deform (cold) | warm re-deform (`start=`) | preview (`start=`) |",
-        "|---|---|---:|---:|---:|---:|---:|---:|",
+        "| model | subject | bodies | unknowns | prepare | deform (cold) | warm re-deform (`start=`) | preview (`start=`) | preview's distance to the warm result / T |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for model in MODELS:
         rows = {r["subject"]: r for r in report["rows"] if r["model"] == model}
         single, joint = rows["single"], rows["assembly"]
         unk = lambda r: str(r["unknowns"]) if r["unknowns"] is not None else "–"  # noqa: E731
-        lines.append(f"| {model} | paper example (one body) | 1 | {unk(single)} | " + " | ".join(_ms(single[k]) for k in keys) + " |")
-        lines.append(f"| {model} | two-layer-strip | {joint['bodies']} | {unk(joint)} | " + " | ".join(_ms(joint[k]) for k in keys) + " |")
+        lines.append(f"| {model} | paper example (one body) | 1 | {unk(single)} | " + " | ".join(_ms(single[k]) for k in keys)
+                     + f" | {single['preview_error']:.2g} |")
+        lines.append(f"| {model} | two-layer-strip | {joint['bodies']} | {unk(joint)} | " + " | ".join(_ms(joint[k]) for k in keys)
+                     + f" | {joint['preview_error']:.2g} |")
         nb = joint["bodies"]
         lines.append(f"| {model} | two-layer-strip, per body / one body | | | "
-                     + " | ".join(f"{joint[k] / nb / single[k]:.2g}×" for k in keys) + " |")
+                     + " | ".join(f"{joint[k] / nb / single[k]:.2g}×" for k in keys) + " | |")
         if single["unknowns"] and joint["unknowns"]:
             per = single["unknowns"] / joint["unknowns"]
             lines.append(f"| {model} | two-layer-strip, per unknown / one body | | | "
-                         + " | ".join(f"{joint[k] * per / single[k]:.2g}×" for k in keys) + " |")
+                         + " | ".join(f"{joint[k] * per / single[k]:.2g}×" for k in keys) + " | |")
     return "\n".join(lines)
 
 
