@@ -20,7 +20,12 @@ Prepare (once, :class:`JointHyperelastic`):
 
 Place (once per target): Newton from the undeformed assembly moved rigidly
 onto the target (:class:`~sectiondeform.fem.newton.NewtonSolver`, the
-stretches following the same path as the target). Every contour point has
+stretches following the same path as the target), or from the state of an
+earlier result solved under the same laws (a warm start, ``start=``; the
+state is carried by the result, never kept here). The drag preview is that
+path's linear predictor alone, with the factorisation at hand. The laws are
+given per call: the mesh, pattern and undeformed tangent serve any laws
+(every cell's stretch is 1 at the undeformed state). Every contour point has
 one image (a point shared by two bodies is one point of the mesh's graph);
 the points on the support go exactly to the target at their fractions.
 
