@@ -127,6 +127,7 @@ class AssemblyDeformer:
                 self.bodies[b].prepared = self.model.prepare(self.bodies[b].section, options)
             except SectionDeformError as exc:
                 raise _renamed(exc, assembly.label(b)) from None
+        self.fixed_parts = tuple(self._fixed_parts(b) for b in range(n))
         self.prepare_seconds = time.perf_counter() - t0
 
     # -- preparing -------------------------------------------------------
@@ -235,24 +236,51 @@ class AssemblyDeformer:
 
     # -- placing ---------------------------------------------------------
 
-    def deform(self, target: Curve | np.ndarray | None = None) -> AssemblyResult:
+    def deform(self, target: Curve | np.ndarray | None = None, *, start: AssemblyResult | None = None) -> AssemblyResult:
         """Deform the assembly: the support onto ``target`` (the case's by default), each body under its law.
 
         Parameters
         ----------
         target : Curve or (k, 2) array_like, optional
             Where the support goes, A' to B', units.
+        start : AssemblyResult, optional
+            An earlier result of this deformer to start the solve from (a
+            warm start; the hyperelastic model only, the paper model has no
+            path to follow and ignores it). The answer depends on ``target``
+            and ``start`` alone, bit for bit; without ``start`` on ``target``
+            alone.
 
         Returns
         -------
         AssemblyResult
+            Its ``state`` is the hyperelastic model's solution, for the next
+            ``start``.
 
         Raises
         ------
         MeshError, LawError, GeometryError
             Naming the body: an inverted element, an unmet law, a crossing
             contour; or two deformed bodies that overlap or come apart.
+        CaseError
+            If ``start`` is not a result of this deformer's assembly.
         """
+        return self._run(target, start, preview=False)
+
+    def preview(self, target: Curve | np.ndarray | None = None, *, start: AssemblyResult | None = None) -> AssemblyResult:
+        """A fast deformation for dragging the target (interactive preview).
+
+        The paper model answers exactly as :meth:`deform`; the hyperelastic
+        model takes one linearised step from ``start`` (a result of this
+        deformer) or from the undeformed assembly, with the factorisation at
+        hand: every body's law is met exactly and the interfaces stay
+        bonded, every check of :meth:`deform` is made, but the shape is
+        first-order in the change of target (each body's ``info.preview`` is
+        True, the result's ``state`` is ``start``'s): call :meth:`deform`
+        when the drag ends. Arguments as :meth:`deform`.
+        """
+        return self._run(target, start, preview=self.joint is not None)
+
+    def _run(self, target, start, preview: bool) -> AssemblyResult:
         t0 = time.perf_counter()
         a = self.assembly
         if target is None:
@@ -261,10 +289,15 @@ class AssemblyDeformer:
             curve = target
         else:
             curve = Polyline(as_points(target, "target", min_count=2))
+        if start is not None and not isinstance(start, AssemblyResult):
+            raise CaseError("start", f"give an earlier AssemblyResult of this deformer, not {type(start).__name__}")
         n = len(self.bodies)
         lowers, images, placements = [None] * n, [None] * n, [None] * n
+        state = None
         if self.joint is not None:
-            lowers, images, placements = self.joint.place(curve)
+            place = self.joint.preview if preview else self.joint.place
+            laws = tuple(body.law for body in a.bodies)
+            lowers, images, placements, state = place(curve, laws, start.state if start is not None else None)
         for b in self.layout.order if self.joint is None else ():
             body = self.bodies[b]
             nodes = np.empty((len(body.source), 2))
@@ -285,40 +318,59 @@ class AssemblyDeformer:
         warnings = tuple(f"{a.label(b)}: {w}" for b in range(n) for w in placements[b].warnings)
         return AssemblyResult(name=a.name, units=a.units, model=self.model_name, bodies=results,
                               timings={"prepare_s": self.prepare_seconds, "place_s": seconds}, warnings=warnings,
-                              axis=a.revolution.axis if a.revolution is not None else None)
+                              axis=a.revolution.axis if a.revolution is not None else None, state=state)
+
+    def _fixed_parts(self, b: int) -> dict:
+        """What body ``b``'s results share whatever the target: its initial curves, contour, initial volume, points taken out."""
+        a = self.assembly
+        body = self.bodies[b]
+        sec = body.section
+        initial_upper = np.array(sec.upper)
+        if body.contour_order is not None:
+            initial_taken = body.original_upper[[k for k, *_ in body.taken]].reshape(-1, 2)
+            initial_upper = np.concatenate((initial_upper, initial_taken))[body.contour_order]
+        taken = np.array([row for row in body.taken], dtype=np.float64).reshape(-1, 4)
+        return {
+            "initial_lower": np.array(sec.lower),
+            "initial_contour": np.concatenate((sec.lower, initial_upper[1:-1])),
+            "volume_initial": volume(sec.contour, a.revolution.axis) if a.revolution is not None else None,
+            "taken_k": taken[:, 0].astype(np.int64), "taken_r": taken[:, 1].astype(np.int64),
+            "taken_i": taken[:, 2].astype(np.int64), "taken_t": taken[:, 3:],
+        }
 
     def _upper_images(self, b: int, lowers, images) -> tuple[np.ndarray, np.ndarray]:
         """Images of the case's upper points of body ``b``, and of the points taken out of it."""
         body = self.bodies[b]
+        fixed = self.fixed_parts[b]
         up = np.empty_like(body.original_upper)
         kept = body.kept >= 0
         up[kept] = images[b][body.kept[kept]]
         taken = np.empty((len(body.taken), 2))
-        for row, (k, r, i, t) in enumerate(body.taken):
-            taken[row] = (1.0 - t) * lowers[r][i] + t * lowers[r][i + 1]
-            up[k] = taken[row]
+        rs, i, t = fixed["taken_r"], fixed["taken_i"], fixed["taken_t"]
+        for r in np.unique(rs):
+            on = rs == r
+            low = lowers[r]
+            taken[on] = (1.0 - t[on]) * low[i[on]] + t[on] * low[i[on] + 1]
+        up[fixed["taken_k"]] = taken
         return up, taken
 
     def _body_result(self, b: int, lowers, images, placement) -> BodyResult:
         a = self.assembly
         body = self.bodies[b]
         sec = body.section
+        fixed = self.fixed_parts[b]
         up, taken = self._upper_images(b, lowers, images)
         contour_upper = images[b]
-        initial_upper = np.array(sec.upper)
         if body.contour_order is not None:
             contour_upper = np.concatenate((images[b], taken))[body.contour_order]
-            initial_taken = body.original_upper[[k for k, *_ in body.taken]].reshape(-1, 2)
-            initial_upper = np.concatenate((initial_upper, initial_taken))[body.contour_order]
         final_polygon = np.concatenate((lowers[b], images[b][1:-1]))
         final = abs(polygon_area(final_polygon))
         law = a.bodies[b].law
         wanted = law.target_area(sec.area) if law.measure == "area" else None
         volumes = {}
         if a.revolution is not None:
-            axis = a.revolution.axis
-            v0 = volume(sec.contour, axis)
-            volumes = {"volume_initial": v0, "volume_final": volume(final_polygon, axis)}
+            v0 = fixed["volume_initial"]
+            volumes = {"volume_initial": v0, "volume_final": volume(final_polygon, a.revolution.axis)}
             if law.measure == "volume":
                 volumes["volume_target"] = abs(law.target(v0))
         prepared = body.prepared
@@ -327,9 +379,9 @@ class AssemblyDeformer:
             lower=lowers[b],
             upper=up,
             contour=np.concatenate((lowers[b], contour_upper[1:-1])),
-            initial_lower=np.array(sec.lower),
+            initial_lower=fixed["initial_lower"],
             initial_upper=body.original_upper,
-            initial_contour=np.concatenate((sec.lower, initial_upper[1:-1])),
+            initial_contour=fixed["initial_contour"],
             area_initial=sec.area,
             area_target=wanted,
             area_final=final,

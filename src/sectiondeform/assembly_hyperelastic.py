@@ -20,7 +20,12 @@ Prepare (once, :class:`JointHyperelastic`):
 
 Place (once per target): Newton from the undeformed assembly moved rigidly
 onto the target (:class:`~sectiondeform.fem.newton.NewtonSolver`, the
-stretches following the same path as the target). Every contour point has
+stretches following the same path as the target), or from the state of an
+earlier result solved under the same laws (a warm start, ``start=``; the
+state is carried by the result, never kept here). The drag preview is that
+path's linear predictor alone, with the factorisation at hand. The laws are
+given per call: the mesh, pattern and undeformed tangent serve any laws
+(every cell's stretch is 1 at the undeformed state). Every contour point has
 one image (a point shared by two bodies is one point of the mesh's graph);
 the points on the support go exactly to the target at their fractions.
 
@@ -37,8 +42,8 @@ own upper points. A body covered all over by others still meets its law.
 
 from __future__ import annotations
 
+import copy
 import math
-import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -51,7 +56,7 @@ from .fem.newton import NewtonSolver, State
 from .fem.union_mesh import union_mesh
 from .materials import NeoHookean, material_from_json
 from .models.base import FinalQuality, MeshData, MeshQuality, Placement
-from .models.hyperelastic import CORRECTION_WARNING, HyperelasticInfo, HyperelasticOptions
+from .models.hyperelastic import CORRECTION_WARNING, HyperelasticInfo, HyperelasticOptions, PreviewInfo
 
 __all__ = ["JointHyperelastic", "offset_to_area"]
 
@@ -142,6 +147,14 @@ class _BodyMesh:
     elements: np.ndarray  # (e_b,) global cell indices
 
 
+@dataclass(frozen=True, eq=False)
+class JointState:
+    """A solved state of the whole assembly and the out-of-plane stretches (one per body) it was solved for."""
+
+    state: State
+    stretches: tuple
+
+
 class JointHyperelastic:
     """An assembly meshed as one and factorised for the hyperelastic model.
 
@@ -211,17 +224,14 @@ class JointHyperelastic:
         geom = geometry(mesh.nodes, cells)
         mu = np.array([m.shear_modulus for m in materials])[mesh.body]
         kappa = np.array([m.kappa for m in materials])[mesh.body]
-        self.stretches = np.array([body.law.out_of_plane_stretch(s.area) for body, s in zip(a.bodies, self.sections)])
+        self.stretches = self.stretches_of(tuple(body.law for body in a.bodies))
         self.physics = _Stretches(cells, len(mesh.nodes), geom, kappa, mu, np.log(self.stretches)[mesh.body])
         n = len(mesh.nodes)
         fixed = (2 * ids[:, None] + np.arange(2)).ravel()
         pattern = Pattern(self.physics.edofs, 2 * n + mesh.n_vertices, fixed)
-        self.solver = NewtonSolver(self.physics, pattern, thickness, options.newton_tolerance)
-        # d R / d ln s at J = 1: each cell's pressure rows times its body's ln lz.
-        wm = (self.physics._wM * self.physics.ln_stretch[:, :, None]).sum(axis=1)
-        full = np.zeros(pattern.n_dofs)
-        full[2 * n :] = np.bincount(cells[:, :3].ravel(), weights=wm.ravel(), minlength=mesh.n_vertices)
-        self.solver.dres_dlnlz = full[pattern.free]
+        # A minimum-degree order of K + K^T: less fill and faster factorisations than COLAMD on these meshes.
+        self.solver = NewtonSolver(self.physics, pattern, thickness, options.newton_tolerance, permc_spec="MMD_AT_PLUS_A")
+        self.solver.dres_dlnlz = self._dres_dlns(self.physics)
         z_ref = np.concatenate((mesh.nodes.ravel(), np.zeros(mesh.n_vertices)))
         self.reference = State(z_ref, 1.0, self.solver.tangent(self.physics.fields(z_ref, 1.0)))
         self.body_meshes = tuple(self._body_mesh(b, geom, len(pattern.free), options.elements_through_thickness)
@@ -237,8 +247,65 @@ class JointHyperelastic:
                               jacobian_ratio_min=float(geom.detj_ratio[elements].min()))
         return _BodyMesh(MeshData(mesh.nodes[used], cells, "triangle6"), quality, cells, used, elements)
 
-    def place(self, curve) -> tuple[list, list, list]:
+    def stretches_of(self, laws) -> tuple:
+        """Each body's out-of-plane stretch ``lz`` under ``laws`` (one :class:`~sectiondeform.laws.Law` per body)."""
+        return tuple(float(law.out_of_plane_stretch(sec.area)) for law, sec in zip(laws, self.sections))
+
+    def _problem(self, stretches: tuple) -> tuple[_Stretches, NewtonSolver]:
+        """The physics and solver for other stretches than the prepared ones (same mesh, pattern, reference tangent).
+
+        At the undeformed state (path parameter 1) every cell's stretch is 1
+        whatever the laws, so the prepared reference tangent serves all.
+        """
+        if stretches == self.stretches:
+            return self.physics, self.solver
+        physics = copy.copy(self.physics)
+        physics.ln_stretch = np.log(np.asarray(stretches))[self.mesh.body][:, None]
+        solver = copy.copy(self.solver)
+        solver.physics = physics
+        solver.dres_dlnlz = self._dres_dlns(physics)
+        return physics, solver
+
+    def _dres_dlns(self, physics: _Stretches) -> np.ndarray:
+        """The derivative d R_free / d ln s at J = 1: each cell's pressure rows times its body's ln lz."""
+        mesh, pattern = self.mesh, self.solver.pattern
+        wm = (physics._wM * physics.ln_stretch[:, :, None]).sum(axis=1)
+        full = np.zeros(pattern.n_dofs)
+        full[2 * len(mesh.nodes) :] = np.bincount(mesh.cells[:, :3].ravel(), weights=wm.ravel(), minlength=mesh.n_vertices)
+        return full[pattern.free]
+
+    def _base(self, xd: np.ndarray, start: JointState | None, stretches: tuple) -> State:
+        """The state a solve or a preview starts from.
+
+        ``start``'s, if it was solved under the same stretches; else (no
+        start, or other laws: no path to follow) the undeformed assembly
+        moved rigidly onto ``xd``.
+        """
+        if start is not None:
+            if not isinstance(start, JointState) or start.state.z.shape != self.reference.z.shape:
+                raise CaseError("start", "give an earlier result of this assembly's deformer (its state is of another assembly or model)")
+            if start.stretches == stretches:
+                return start.state
+        mesh = self.mesh
+        q, t = rigid_fit(mesh.nodes[self.fixed_ids], xd)
+        z0 = np.concatenate(((mesh.nodes @ q.T + t).ravel(), np.zeros(mesh.n_vertices)))
+        return State(z0, 1.0, self.reference.tangent.rotated(q))
+
+    def place(self, curve, laws: tuple, start: JointState | None = None) -> tuple[list, list, list, JointState]:
         """Solve the assembly on the target ``curve``; per body its lower nodes, upper points and placement.
+
+        Parameters
+        ----------
+        curve : Curve
+            The target, A' to B', units.
+        laws : tuple of Law
+            Each body's law (the prepared mesh and tangent serve any laws).
+        start : JointState, optional
+            The solved state of an earlier result of this assembly (its
+            ``AssemblyResult.state``) to follow the path from (a warm start);
+            None, or a state solved under other laws, starts from the
+            undeformed assembly moved rigidly onto the target. The answer
+            depends on the arguments alone.
 
         Returns
         -------
@@ -248,6 +315,8 @@ class JointHyperelastic:
             Each body's deformed upper points (its section's, with the
             resting nodes), B' to A', units.
         placements : list of Placement
+        state : JointState
+            The solution, for the next warm start.
 
         Raises
         ------
@@ -257,17 +326,54 @@ class JointHyperelastic:
             Naming the body whose area cannot be corrected.
         MeshError
             Naming the body with an inverted element.
+        CaseError
+            If ``start`` is not a state of this assembly.
         """
-        t0 = time.perf_counter()
-        mesh = self.mesh
         xd = curve.at_fractions(self.fixed_fractions)
-        q, t = rigid_fit(mesh.nodes[self.fixed_ids], xd)
-        z0 = np.concatenate(((mesh.nodes @ q.T + t).ravel(), np.zeros(mesh.n_vertices)))
-        start = State(z0, 1.0, self.reference.tangent.rotated(q))
-        a0, f0 = self.solver.assemblies, self.solver.factorisations
-        state = self.solver.solve(start, xd.ravel(), math.e)
+        stretches = self.stretches_of(laws)
+        physics, solver = self._problem(stretches)
+        base = self._base(xd, start, stretches)
+        a0, f0 = solver.assemblies, solver.factorisations
+        state = solver.solve(base, xd.ravel(), math.e)
+        f = state.fields if state.fields is not None else physics.fields(state.z, state.lz)
+
+        def info(b, correction):
+            return HyperelasticInfo(
+                newton_full=int(state.iterations[0]), newton_modified=int(state.iterations[1]),
+                load_steps=int(state.iterations[2]), factorisations=int(solver.factorisations - f0),
+                assemblies=int(solver.assemblies - a0), warm_start=start is not None and base is start.state,
+                area_correction=float(correction), out_of_plane_stretch=float(stretches[b]),
+            )
+
+        return (*self._finish(curve, laws, state.z, f, info), JointState(state, stretches))
+
+    def preview(self, curve, laws: tuple, start: JointState | None = None) -> tuple[list, list, list, JointState | None]:
+        """Drag preview: one linear step from ``start`` (or the undeformed assembly), no new factorisation.
+
+        The step is the Newton predictor: one back-substitution with the
+        factorisation ``start`` carries, for the change of the support's
+        nodes (and, from the undeformed assembly, of the out-of-plane
+        stretches). Every body's law is then met exactly and the interfaces
+        stay bonded (the same correction as :meth:`place`); the shape is
+        first-order in the change of target: call :meth:`place` when the
+        drag ends. Arguments and returns as :meth:`place` (the state
+        returned is ``start``).
+        """
+        xd = curve.at_fractions(self.fixed_fractions)
+        stretches = self.stretches_of(laws)
+        physics, solver = self._problem(stretches)
+        z = solver.predict(self._base(xd, start, stretches), xd.ravel(), math.e)
+        f = physics.fields(z, math.e)
+        if f is None:
+            raise MeshError("preview: an element is inverted in the linear step; the target moved too far from the "
+                            "start for a preview (deform the assembly instead)")
+        return (*self._finish(curve, laws, z, f, lambda b, correction: PreviewInfo(area_correction=float(correction))), start)
+
+    def _finish(self, curve, laws: tuple, z: np.ndarray, f, info) -> tuple[list, list, list]:
+        """Per body its lower nodes, upper points (each law made exact) and placement, from the solved ``z``."""
+        mesh = self.mesh
         n = len(mesh.nodes)
-        x = state.z[: 2 * n].reshape(n, 2)
+        x = z[: 2 * n].reshape(n, 2)
         img = self.mesh.vertex_weights @ x
         img[self.support_vertices] = curve.at_fractions(self.support_fractions)
         fixed = np.zeros(len(img), bool)
@@ -279,7 +385,7 @@ class JointHyperelastic:
             n_low = len(sec.lower)
             movable = np.zeros(len(ring), bool)
             movable[n_low:] = ~fixed[ring[n_low:]]
-            wanted = sec.orientation * self.assembly.bodies[b].law.target_area(sec.area)
+            wanted = sec.orientation * laws[b].target_area(sec.area)
             try:
                 new, k = offset_to_area(img[ring], movable, wanted)
             except LawError as exc:
@@ -287,8 +393,6 @@ class JointHyperelastic:
             img[ring[movable]] = new[movable]
             fixed[ring] = True
             corrections[b] = abs(k) / sec.thickness
-        solve_s = time.perf_counter() - t0
-        f = state.fields if state.fields is not None else self.physics.fields(state.z, state.lz)
         lowers, images, placements = [], [], []
         for b, bm in enumerate(self.body_meshes):
             lowers.append(img[self.lower_ids[b]])
@@ -297,18 +401,11 @@ class JointHyperelastic:
             if not det.min() > 0:
                 raise MeshError(f"{self.assembly.label(b)}: an element is inverted after deformation (area stretch "
                                 f"{det.min():.3g}); the target or the laws are too severe for this assembly")
-            info = HyperelasticInfo(
-                newton_full=int(state.iterations[0]), newton_modified=int(state.iterations[1]),
-                load_steps=int(state.iterations[2]), factorisations=int(self.solver.factorisations - f0),
-                assemblies=int(self.solver.assemblies - a0), warm_start=False,
-                area_correction=float(corrections[b]), out_of_plane_stretch=float(self.stretches[b]),
-            )
             warnings = ()
             if corrections[b] > CORRECTION_WARNING:
                 warnings = (f"hyperelastic: the area correction moved the upper curve by {corrections[b]:.3g} T; the coarse "
                             "mesh misses this deformation's physics (refine with options.elements_through_thickness)",)
             final = MeshData(x[bm.used].copy(), bm.cells, "triangle6")
             quality = FinalQuality(area_stretch_min=float(det.min()), area_stretch_max=float(det.max()))
-            placements.append(Placement(images[-1], final, quality, info, warnings, None))
-        self.last_solve_s = solve_s
+            placements.append(Placement(images[-1], final, quality, info(b, corrections[b]), warnings, None))
         return lowers, images, placements

@@ -133,6 +133,9 @@ class AssemblyResult:
     axis : ((float, float), (float, float)) or None
         The revolution axis of an assembly of revolution (two of its points,
         units); None for extruded sections.
+    state : object, optional
+        The hyperelastic model's solved state of the whole assembly, for
+        ``AssemblyDeformer.deform(..., start=result)``; not written to JSON.
     """
 
     name: str
@@ -142,6 +145,7 @@ class AssemblyResult:
     timings: dict = field(default_factory=dict)
     warnings: tuple = ()
     axis: tuple | None = None
+    state: object = field(default=None, repr=False)
 
     def body(self, name: str) -> BodyResult:
         """The result of the body called ``name``."""

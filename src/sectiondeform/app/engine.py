@@ -243,10 +243,12 @@ def with_laws(deformer: AssemblyDeformer, laws: tuple) -> AssemblyDeformer:
 
 
 def assembly_answer(cache: DeformerCache, case_json: dict, model: str, final: bool, meshes: bool, t0: float) -> dict:
-    """:func:`answer` for an assembly: every body placed under its own law (full deformation each time)."""
+    """:func:`answer` for an assembly: every body placed under its own law (a full deformation, warm-started from the last final one)."""
     deformer, prepared = cache.get(case_json, model)
     target = curve_from_json(case_json.get("target"), "target")
-    result = with_laws(deformer, laws_of(case_json)).deform(target)
+    result = with_laws(deformer, laws_of(case_json)).deform(target, start=cache.start(deformer))
+    if final:
+        cache.remember(deformer, result)
     whole = final or prepared
     axis = deformer.assembly.revolution.axis if deformer.assembly.revolution is not None else None
     bodies = []
