@@ -143,3 +143,11 @@ def test_a_plane_one_body_case_goes_through_the_assembly_path_with_both_models()
         assert v.fast.area_target == pytest.approx(target, rel=1e-12)
         assert shapely.Polygon(v.fast.contour).area == pytest.approx(target, rel=1e-9)
         assert abs(v.to_json()["reference"]["area_relative_error"]) < 2e-3
+
+
+def test_calculix_is_refused_for_a_version_two_case_before_any_work(tmp_path, capsys):
+    out = tmp_path / "report.json"
+    assert main(["validate", str(COVER), "--reference", "calculix", "-q", "-o", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "--reference: CalculiX validates version-1 cases only" in err
+    assert not out.exists()
