@@ -9,8 +9,8 @@ T), the largest gap between corresponding upper points, both times and
 their ratio. Progress of the reference goes to stderr.
 
 A version-2 case of one body (section-case/2) is deformed as an assembly,
-so a body of revolution (``revolution``, volume law) is checked with its
-volumes; the reference uses the body's ``material``. Several bodies, and
+so a body of revolution (its axis and volume law) is checked with its
+volumes; the reference uses the body's material. Several bodies, and
 a model that refuses the case, exit 2 with one line.
 
 Example: sectiondeform validate case.json --plot check.png -o report.json
