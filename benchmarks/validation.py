@@ -5,6 +5,11 @@ markers) from scratch:
 
     .venv/bin/python benchmarks/validation.py tests/data/cases/*.json --write docs/validation.md
 
+and, given version-2 cases too (``tests/data/cases/v2/*.json``), the tables
+of its sections "Bodies of revolution: fast models against the reference"
+and "Assemblies" (blocks ``validation:revolution`` and
+``validation:assemblies``); the version-1 tables are the same either way:
+
 1. Validation: for every case, ``sectiondeform.reference.validation.validate_case``
    with each fast model (``paper``, and ``hyperelastic`` if given with
    ``--models``): shape distance (Hausdorff and largest pointwise, absolute,
@@ -13,6 +18,12 @@ markers) from scratch:
 2. Refinement study of the reference: mesh sizes 0.4 T ... 0.025 T; largest
    move of an upper point between successive meshes and against the finest,
    over T; area error; time.
+3. Version-2 cases of one body (a body of revolution, or a plane one for
+   comparison), through the fast models' assembly path, with the body's law
+   (volume for revolution, area in plane) and its errors; what a model or
+   the reference refuses is a row with the one-line refusal.
+4. Version-2 cases of several bodies: per-body figures when the reference
+   solves assemblies, the refusal until then.
 
 Needs the extra ``[fem]``; takes a few minutes on 2 cores (the finest
 meshes of the study dominate). ``--quick`` skips the two finest meshes.
@@ -29,6 +40,8 @@ from pathlib import Path
 import numpy as np
 
 import sectiondeform as sd
+from sectiondeform.assembly import Assembly
+from sectiondeform.errors import SectionDeformError
 from sectiondeform.io.json import atomic_write
 from sectiondeform.reference import DEFAULT_MESH_SIZE, solve_reference
 from sectiondeform.reference.validation import save_validation_figure, validate_case
@@ -63,6 +76,56 @@ def validation_table(cases, models, figures: Path | None) -> str:
                 f"| {f.area_final:.1f} ({f.relative_error:+.0e}) | {v.area_reference:.1f} ({ref_err:+.1e}) "
                 f"| {1e3 * v.fast_seconds:.1f} ms | {v.reference_seconds:.2f} s | {v.speed_ratio:,.0f} |"
             )
+    return "\n".join(rows)
+
+
+V2_HEADER = [
+    "| case | body | fast model | kinematics | law | T (mm) | height (mm) | Hausdorff (mm) | Hausdorff / T "
+    "| Hausdorff / height | max pointwise (mm) | max pointwise / T | max pointwise / height "
+    "| law's measure fast (rel. err.) | reference (rel. err.) | time fast | time reference | speed ratio |",
+    "|---|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+]
+
+
+def _law(body) -> str:
+    law = body.law
+    return f"{law.key} {law.ratio:g}" if hasattr(law, "ratio") else law.key
+
+
+def v2_row(case: Assembly, model: str, figures: Path | None) -> str:
+    """One row of a version-2 table: the body's figures, or the one-line refusal."""
+    names = ", ".join(b.name for b in case.bodies)
+    kinematics = "revolution" if case.revolution is not None else "plane"
+    laws = ", ".join(_law(b) for b in case.bodies)
+    try:
+        v = validate_case(case, model=model, progress=eprint)
+    except SectionDeformError as exc:
+        eprint(f"   refused: {exc}")
+        return f"| {case.name} | {names} | {model} | {kinematics} | {laws} | refused: {exc} |" + " |" * 12
+    if figures is not None:
+        save_validation_figure(v, figures / f"validation-{case.name}-{model}.png")
+    f, s, r = v.fast, v.shape, v.reference
+    if v.revolution:
+        fast_err, ref_err = v.volume_relative_errors
+        measure = (f"volume {f.volume_final:.6g} mm³ ({fast_err:+.0e}) | {r.volume_final:.6g} mm³ ({ref_err:+.1e})")
+    else:
+        ref_err = (v.area_reference - f.area_target) / f.area_target
+        measure = f"area {f.area_final:.1f} mm² ({f.relative_error:+.0e}) | {v.area_reference:.1f} mm² ({ref_err:+.1e})"
+    return (
+        f"| {case.name} | {names} | {model} | {kinematics} | {laws} | {v.thickness:.2f} | {v.height:.2f} "
+        f"| {s.hausdorff:.3f} | {s.hausdorff / v.thickness:.1%} | {s.hausdorff / v.height:.1%} "
+        f"| {s.max_pointwise:.3f} | {s.max_pointwise / v.thickness:.1%} | {s.max_pointwise / v.height:.1%} "
+        f"| {measure} | {1e3 * v.fast_seconds:.1f} ms | {v.reference_seconds:.2f} s | {v.speed_ratio:,.0f} |"
+    )
+
+
+def v2_table(cases, models, figures: Path | None) -> str:
+    """The table of version-2 cases (already loaded), each with each model."""
+    rows = list(V2_HEADER)
+    for case in cases:
+        for model in models:
+            eprint(f"== {case.name}, {model} model")
+            rows.append(v2_row(case, model, figures))
     return "\n".join(rows)
 
 
@@ -110,15 +173,27 @@ def main(argv=None) -> int:
     parser.add_argument("--figures", type=Path, metavar="DIR", help="also write one overlay figure per case and model")
     parser.add_argument("--quick", action="store_true", help="study down to 0.1 T only")
     args = parser.parse_args(argv)
-    cases = sorted(args.cases)
+    loaded = {path: sd.load_case(path) for path in sorted(args.cases)}
+    cases = [path for path, case in loaded.items() if not isinstance(case, Assembly)]
+    v2 = [case for case in loaded.values() if isinstance(case, Assembly)]
+    one_body = [case for case in v2 if len(case.bodies) == 1]
+    # Bodies of revolution first, then the plane one-body cases for comparison.
+    one_body.sort(key=lambda case: (case.revolution is None, case.name))
+    several = [case for case in v2 if len(case.bodies) > 1]
     sizes = STUDY[:3] if args.quick else STUDY
-    table = validation_table(cases, args.models, args.figures)
-    study = study_table(cases, sizes)
-    print(table, study, sep="\n\n")
+    blocks = {}
+    if cases:
+        blocks["table"] = validation_table(cases, args.models, args.figures)
+        blocks["study"] = study_table(cases, sizes)
+    if one_body:
+        blocks["revolution"] = v2_table(one_body, args.models, args.figures)
+    if several:
+        blocks["assemblies"] = v2_table(several, args.models, args.figures)
+    print(*blocks.values(), sep="\n\n")
     if args.write:
         text = args.write.read_text(encoding="utf-8")
-        text = replace_block(text, "table", table)
-        text = replace_block(text, "study", study)
+        for name, body in blocks.items():
+            text = replace_block(text, name, body)
         atomic_write(args.write, lambda tmp: tmp.write_text(text, encoding="utf-8"))
         eprint(f"wrote {args.write}")
     return 0

@@ -8,6 +8,11 @@ between the two deformed upper curves (absolute and over the mean thickness
 T), the largest gap between corresponding upper points, both times and
 their ratio. Progress of the reference goes to stderr.
 
+A version-2 case of one body (section-case/2) is deformed as an assembly,
+so a body of revolution (its axis and volume law) is checked with its
+volumes; the reference uses the body's material. Several bodies, and
+a model that refuses the case, exit 2 with one line.
+
 Example: sectiondeform validate case.json --plot check.png -o report.json
 """
 
@@ -17,6 +22,7 @@ import dataclasses
 import json
 from pathlib import Path
 
+from ..case import Case
 from ..errors import CaseError
 from ..io import read_case
 from ..io.json import atomic_write
@@ -55,6 +61,9 @@ def run(args) -> int:
     if args.plot is not None:
         check_figure_path(args.plot, "--plot")
     mesh_size = DEFAULT_MESH_SIZE if args.mesh_size is None else args.mesh_size
+    if args.reference == "calculix" and not isinstance(case, Case):
+        raise CaseError("--reference", "CalculiX validates version-1 cases only; check a section-case/2 case "
+                        "against the project's own finite elements (--reference fem)")
     if args.reference == "calculix":
         from ..external.validation import validate_with_calculix
 

@@ -2,7 +2,11 @@
 
 :func:`validate_case` runs both on the same case and measures the distance
 between the two deformed upper curves (:mod:`sectiondeform.compare`), their
-areas and their times; :func:`save_validation_figure` overlays the two
+areas (volumes, for a body of revolution) and their times. A version-2 case
+of one body goes through the assembly path of the fast models
+(:class:`~sectiondeform.assembly_deform.AssemblyDeformer`, which takes a
+body of revolution and its volume law), the reference through its one-body
+assembly solve; :func:`save_validation_figure` overlays the two
 deformed sections. ``sectiondeform validate`` and ``benchmarks/validation.py``
 are thin layers over these.
 
@@ -21,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..assembly_result import AssemblyResult
 from ..case import Case
 from ..compare import CurveComparison, compare_curves, point_to_curve_distance, section_height
 from ..deform import Deformer
@@ -43,8 +48,9 @@ class Validation:
     Attributes
     ----------
     case : Case
-    fast : Result
-        The fast model's result (``fast.model`` says which).
+    fast : Result or BodyResult
+        The fast model's result: of the version-1 case, or of the one body
+        of a version-2 case (then ``assembly`` holds the whole result).
     reference : ReferenceSolution
     shape : CurveComparison
         Fast upper curve against the reference's, relative figures over the
@@ -65,6 +71,9 @@ class Validation:
         bends the straight upper segments between characteristic points.
     fast_seconds, reference_seconds : float
         Wall times, case to deformed shape.
+    assembly : AssemblyResult or None
+        The fast model's whole result of a version-2 case; None for a
+        version-1 case.
     """
 
     case: Case
@@ -77,6 +86,25 @@ class Validation:
     area_reference_polygon: float
     fast_seconds: float
     reference_seconds: float
+    assembly: AssemblyResult | None = None
+
+    @property
+    def model(self) -> str:
+        """The fast model checked, ``"paper"`` or ``"hyperelastic"``."""
+        return self.assembly.model if self.assembly is not None else self.fast.model
+
+    @property
+    def revolution(self) -> bool:
+        """True for a body of revolution (the law and the figures are volumes)."""
+        return self.reference.revolution
+
+    @property
+    def volume_relative_errors(self) -> tuple[float, float] | None:
+        """(fast, reference) relative volume errors against the law's target; None in plane."""
+        if not self.revolution:
+            return None
+        f, r = self.fast, self.reference
+        return (f.volume_final - f.volume_target) / f.volume_target, r.relative_volume_error
 
     @property
     def speed_ratio(self) -> float:
@@ -88,11 +116,20 @@ class Validation:
         """Distance between corresponding upper points, ``(m,)``, units."""
         return np.hypot(*(self.fast.upper - self.reference.upper).T)
 
+    def _area_error(self, area: float) -> float | None:
+        target = self.fast.area_target
+        return None if target is None else (area - target) / target
+
     def to_json(self) -> dict:
-        """The ``section-validation/1`` report."""
+        """The ``section-validation/1`` report.
+
+        A body of revolution has no area target (its law sets the volume):
+        the area errors are None and a ``volume`` object gives the volumes
+        of revolution (Pappus, units³) of both models and their errors
+        against the law's target, with the axis under ``revolution``.
+        """
         f, r = self.fast, self.reference
-        target = f.area_target
-        return {
+        out = {
             "format": VALIDATION_FORMAT,
             "name": self.case.name,
             "units": self.case.units,
@@ -100,11 +137,11 @@ class Validation:
             "height": self.height,
             "hausdorff_over_height": self.shape.hausdorff / self.height,
             "max_pointwise_over_height": self.shape.max_pointwise / self.height,
-            "area": {"initial": f.area_initial, "target": target},
+            "area": {"initial": f.area_initial, "target": f.area_target},
             "fast": {
-                "model": f.model,
+                "model": self.model,
                 "area_final": f.area_final,
-                "area_relative_error": f.relative_error,
+                "area_relative_error": self._area_error(f.area_final),
                 "seconds": self.fast_seconds,
                 "upper": f.upper.tolist(),
             },
@@ -112,7 +149,7 @@ class Validation:
                 "model": f"finite elements: {r.material.model if r.material is not None else 'neo-hookean'}, "
                          f"{'body of revolution' if r.revolution else 'generalised plane strain'}, P2/P1 Taylor-Hood",
                 "area_final": self.area_reference,
-                "area_relative_error": (self.area_reference - target) / target,
+                "area_relative_error": self._area_error(self.area_reference),
                 "area_polygon": self.area_reference_polygon,
                 "seconds": self.reference_seconds,
                 "solver": r.summary(),
@@ -122,34 +159,63 @@ class Validation:
             "pointwise_distance": self.pointwise_distance.tolist(),
             "speed_ratio": self.speed_ratio,
         }
+        if self.revolution:
+            fast_err, ref_err = self.volume_relative_errors
+            out["revolution"] = {"axis": [list(map(float, p)) for p in self.assembly.axis]}
+            out["volume"] = {"initial": f.volume_initial, "target": f.volume_target}
+            out["fast"].update(volume_final=f.volume_final, volume_relative_error=fast_err)
+            out["reference"].update(volume_final=r.volume_final, volume_relative_error=ref_err)
+        return out
 
     def lines(self) -> list[str]:
         """A short human-readable summary."""
         u, height = self.case.units, self.height
         f, r, s = self.fast, self.reference, self.shape
-        target = f.area_target
-        return [
-            f"{self.case.name}: {f.model} model against the finite-element reference "
+        head = [
+            f"{self.case.name}: {self.model} model against the finite-element reference"
+            f"{' (body of revolution)' if self.revolution else ''} "
             f"(height {height:.4g} {u}, mean thickness {self.thickness:.4g} {u})",
-            f"  area target      {target:12.4f} {u}²",
-            f"  area fast        {f.area_final:12.4f} {u}²   relative error {f.relative_error:+.2e}",
-            f"  area reference   {self.area_reference:12.4f} {u}²   relative error "
-            f"{(self.area_reference - target) / target:+.2e} (bulk/shear {r.bulk_to_shear:g}: "
-            f"volume change {r.volume_change:+.2e})",
-            f"  Hausdorff        {s.hausdorff:12.4f} {u}    {s.hausdorff / height:.2%} of the height",
-            f"  max pointwise    {s.max_pointwise:12.4f} {u}    {s.max_pointwise / height:.2%} of the height "
-            f"(upper point {s.max_pointwise_index})",
+        ]
+        if self.revolution:
+            fast_err, ref_err = self.volume_relative_errors
+            head += [
+                f"  volume target    {f.volume_target:12.6g} {u}³",
+                f"  volume fast      {f.volume_final:12.6g} {u}³   relative error {fast_err:+.2e}",
+                f"  volume reference {r.volume_final:12.6g} {u}³   relative error {ref_err:+.2e} "
+                f"(bulk/shear {r.bulk_to_shear:g}: volume change {r.volume_change:+.2e})",
+                f"  area fast        {f.area_final:12.4f} {u}²   reference {self.area_reference:.4f} {u}² "
+                f"(initial {f.area_initial:.4f} {u}²)",
+            ]
+        else:
+            target = f.area_target
+            head += [
+                f"  area target      {target:12.4f} {u}²",
+                f"  area fast        {f.area_final:12.4f} {u}²   relative error {self._area_error(f.area_final):+.2e}",
+                f"  area reference   {self.area_reference:12.4f} {u}²   relative error "
+                f"{self._area_error(self.area_reference):+.2e} (bulk/shear {r.bulk_to_shear:g}: "
+                f"volume change {r.volume_change:+.2e})",
+            ]
+        return head + [
+            f"  Hausdorff        {s.hausdorff:12.4f} {u}    {s.hausdorff / height:.2%} of the height, "
+            f"{s.hausdorff / self.thickness:.2%} of the mean thickness",
+            f"  max pointwise    {s.max_pointwise:12.4f} {u}    {s.max_pointwise / height:.2%} of the height, "
+            f"{s.max_pointwise / self.thickness:.2%} of the mean thickness (upper point {s.max_pointwise_index})",
             f"  time fast        {1e3 * self.fast_seconds:12.2f} ms",
             f"  time reference   {1e3 * self.reference_seconds:12.0f} ms   ({r.elements} elements, {r.dofs} unknowns, "
             f"{r.iterations} Newton iterations)  speed ratio {self.speed_ratio:,.0f}",
         ]
 
 
-def _time_fast(case: Case, model: str | None, runs: int) -> tuple[Result, float]:
+def _time_fast(case, model: str | None, runs: int) -> tuple[Result | AssemblyResult, float]:
+    """The fast model's result on a case (a version-2 one through the assembly path) and its median time."""
+    from ..assembly import Assembly
+    from ..assembly_deform import AssemblyDeformer
+
+    deformer = AssemblyDeformer if isinstance(case, Assembly) else Deformer
     times, result = [], None
     for _ in range(runs):
         t0 = time.perf_counter()
-        result = Deformer(case, model=model).deform()
+        result = deformer(case, model=model).deform()
         times.append(time.perf_counter() - t0)
     return result, statistics.median(times)
 
@@ -168,9 +234,10 @@ def validate_case(
     Parameters
     ----------
     case : Case or Assembly
-        A version-1 case, or a version-2 case of one body (the reference
-        then uses its ``material`` and ``revolution``; the fast model its
-        body's case). Several bodies are refused.
+        A version-1 case, or a version-2 case of one body: the fast model
+        then deforms it as an assembly (so ``revolution`` and a volume law
+        are taken), the reference uses its ``material`` and ``revolution``,
+        and the figures are the body's. Several bodies are refused.
     model : str, optional
         The fast model to check, ``"paper"`` or ``"hyperelastic"``; by
         default the case's ``options.model``.
@@ -206,9 +273,10 @@ def validate_case(
     require("skfem", "fem", "the finite-element reference")
     require("triangle", "fem", "the finite-element reference")
     check_parameters(mesh_size, case.options.for_model("hyperelastic").bulk_to_shear if bulk_to_shear is None else bulk_to_shear)
-    fast, fast_s = _time_fast(case, model, max(1, int(fast_runs)))
+    whole, fast_s = _time_fast(source, model, max(1, int(fast_runs)))
+    fast, assembly = (whole.bodies[0], whole) if isinstance(whole, AssemblyResult) else (whole, None)
     if progress is not None:
-        progress(f"validate: {fast.model} model done in {1e3 * fast_s:.1f} ms; solving the reference")
+        progress(f"validate: {whole.model} model done in {1e3 * fast_s:.1f} ms; solving the reference")
     t0 = time.perf_counter()
     ref = solve_reference(source, mesh_size=mesh_size, bulk_to_shear=bulk_to_shear, progress=progress)
     ref_s = time.perf_counter() - t0
@@ -226,6 +294,7 @@ def validate_case(
         area_reference_polygon=area_poly,
         fast_seconds=fast_s,
         reference_seconds=ref_s,
+        assembly=assembly,
     )
 
 
@@ -252,7 +321,7 @@ def draw_validation(validation: Validation, fig=None):
     ref_contour = np.concatenate((f.lower, r.upper[1:-1], f.lower[:1]))
     ax.plot(*ref_contour.T, color="tab:blue", lw=1.4, zorder=2, label="finite-element reference")
     fast_contour = np.concatenate((f.contour, f.contour[:1]))
-    ax.plot(*fast_contour.T, "--", color="tab:orange", lw=1.4, zorder=3, label=f"fast ({f.model} model)")
+    ax.plot(*fast_contour.T, "--", color="tab:orange", lw=1.4, zorder=3, label=f"fast ({v.model} model)")
     # Fast upper curve coloured by its distance to the reference upper curve.
     d_pts = point_to_curve_distance(f.upper, r.upper)
     segs = np.stack((f.upper[:-1], f.upper[1:]), axis=1)
@@ -268,10 +337,11 @@ def draw_validation(validation: Validation, fig=None):
     ax.autoscale_view()
     ax.grid(True, lw=0.3, alpha=0.5)
     ax.legend(loc="best", fontsize=8)
+    measure = (f"volumes {f.volume_final:.5g} (fast) / {v.reference.volume_final:.5g} (reference) {u}³" if v.revolution
+               else f"areas {f.area_final:.1f} (fast) / {v.area_reference:.1f} (reference) {u}²")
     ax.set_title(
         f"{v.case.name}: Hausdorff {v.shape.hausdorff:.3g} {u} = {v.shape.hausdorff_relative:.1%} of T; "
-        f"areas {f.area_final:.1f} (fast) / {v.area_reference:.1f} (reference) {u}²; "
-        f"{1e3 * v.fast_seconds:.1f} ms vs {v.reference_seconds:.2f} s",
+        f"{measure}; {1e3 * v.fast_seconds:.1f} ms vs {v.reference_seconds:.2f} s",
         fontsize=9,
     )
     return fig
