@@ -211,8 +211,7 @@ class JointHyperelastic:
         geom = geometry(mesh.nodes, cells)
         mu = np.array([m.shear_modulus for m in materials])[mesh.body]
         kappa = np.array([m.kappa for m in materials])[mesh.body]
-        self.stretches = np.array([body.law.out_of_plane_stretch(s.area) for body, s in zip(a.bodies, self.sections)])
-        self.physics = _Stretches(cells, len(mesh.nodes), geom, kappa, mu, np.log(self.stretches)[mesh.body])
+        self.physics = self._physics(cells, geom, kappa, mu)
         n = len(mesh.nodes)
         fixed = (2 * ids[:, None] + np.arange(2)).ravel()
         pattern = Pattern(self.physics.edofs, 2 * n + mesh.n_vertices, fixed)
@@ -226,6 +225,16 @@ class JointHyperelastic:
         self.reference = State(z_ref, 1.0, self.solver.tangent(self.physics.fields(z_ref, 1.0)))
         self.body_meshes = tuple(self._body_mesh(b, geom, len(pattern.free), options.elements_through_thickness)
                                  for b in range(len(a.bodies)))
+
+    def _physics(self, cells, geom, kappa, mu):
+        """The mixed problem on the union mesh, per cell its body's moduli and out-of-plane stretch; sets ``stretches``."""
+        self.stretches = np.array([body.law.out_of_plane_stretch(s.area) for body, s in zip(self.assembly.bodies, self.sections)])
+        return _Stretches(cells, len(self.mesh.nodes), geom, kappa, mu, np.log(self.stretches)[self.mesh.body])
+
+    def _law_offset(self, b: int, ring: np.ndarray, movable: np.ndarray) -> tuple[np.ndarray, float]:
+        """Body ``b``'s contour ``ring`` with its movable points offset to meet its law exactly (:func:`offset_to_area`)."""
+        sec = self.sections[b]
+        return offset_to_area(ring, movable, sec.orientation * self.assembly.bodies[b].law.target_area(sec.area))
 
     def _body_mesh(self, b: int, geom, unknowns: int, through: float) -> _BodyMesh:
         mesh = self.mesh
@@ -279,9 +288,8 @@ class JointHyperelastic:
             n_low = len(sec.lower)
             movable = np.zeros(len(ring), bool)
             movable[n_low:] = ~fixed[ring[n_low:]]
-            wanted = sec.orientation * self.assembly.bodies[b].law.target_area(sec.area)
             try:
-                new, k = offset_to_area(img[ring], movable, wanted)
+                new, k = self._law_offset(b, img[ring], movable)
             except LawError as exc:
                 raise LawError(f"{self.assembly.label(b)}: {exc}") from None
             img[ring[movable]] = new[movable]
