@@ -233,3 +233,17 @@ def test_the_undertread_alone_lies_near_the_reference_and_nearer_as_the_mesh_is_
         distances.append(np.hypot(*(body.upper - reference.upper).T).max() / 3.0)
     assert distances[1] < 2e-3
     assert distances[0] > 2.0 * distances[1]
+
+
+def test_the_cli_deforms_the_tread_on_drum_with_the_hyperelastic_model(tmp_path, capsys):
+    from sectiondeform.cli import main
+
+    out = tmp_path / "r.json"
+    assert main(["deform", str(DRUM), "-o", str(out), "--model", "hyperelastic", "--fields"]) == 0
+    data = json.loads(out.read_text())
+    assert data["model"] == "hyperelastic" and data["revolution"]["axis"] == [list(p) for p in DRUM_AXIS]
+    ratios = {"undertread": 1.0, "tread": 0.98}
+    for body in data["bodies"]:
+        assert abs(body["volume"]["relative_error"]) <= 1e-9
+        # the volume ratio at element centres, the hoop stretch out of the plane: each body's growth, typically
+        assert np.median(body["fields"]["J"]) == pytest.approx(ratios[body["name"]], abs=1e-3)
