@@ -1,13 +1,12 @@
 """Assemblies with the hyperelastic model: one solve, per-body materials and laws, bonded interfaces."""
 
-import dataclasses
 import json
 
 import numpy as np
 import pytest
 import shapely
 
-from sectiondeform.assembly import Revolution, assembly_from_dict
+from sectiondeform.assembly import assembly_from_dict
 from sectiondeform.assembly_deform import AssemblyDeformer
 from sectiondeform.assembly_hyperelastic import offset_to_area
 from sectiondeform.case import case_from_dict
@@ -222,15 +221,6 @@ def test_a_stiff_cover_on_a_soft_backing_barely_changes_its_shape():
     assert cover[100.0, 1.0] > cover[1.0, 1.0]
     for r in results.values():
         assert _shape_change(r.body("backing")) == pytest.approx(2.5, rel=0.01)
-
-
-def test_revolution_is_refused_by_the_hyperelastic_model_naming_the_paper_model():
-    assembly = dataclasses.replace(assembly_from_dict(strip_dict()), revolution=Revolution(((0.0, -50.0), (100.0, -50.0))))
-    with pytest.raises(CaseError) as err:
-        AssemblyDeformer(assembly)
-    message = str(err.value)
-    assert message.startswith("revolution: the hyperelastic model deforms plane assemblies only")
-    assert "--model paper" in message and "\n" not in message
 
 
 def _top_waviness(result):

@@ -16,7 +16,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from sectiondeform.assembly import assembly_from_dict
-from sectiondeform.assembly_deform import AssemblyDeformer, deform_assembly
+from sectiondeform.assembly_deform import deform_assembly
 from sectiondeform.case import case_from_dict
 from sectiondeform.cli import main
 from sectiondeform.errors import CaseError, GeometryError, LawError
@@ -265,8 +265,3 @@ def test_a_target_that_brings_the_body_across_the_axis_is_refused():
         deform_assembly(assembly_from_dict(one_body(lower, upper, {"area_ratio": 1.0}, target)))
 
 
-def test_the_hyperelastic_model_is_refused_on_bodies_of_revolution_in_one_line():
-    with pytest.raises(CaseError) as info:
-        AssemblyDeformer(assembly_from_dict(json.loads(DRUM.read_text())), model="hyperelastic")
-    assert str(info.value) == ("revolution: the hyperelastic model deforms plane assemblies only; "
-                               "deform a body of revolution with the paper model (--model paper)")

@@ -93,8 +93,8 @@ class AssemblyDeformer:
     Raises
     ------
     CaseError
-        For a model that does not deform assemblies, a material the model
-        cannot take, or ``revolution`` with the hyperelastic model.
+        For a model that does not deform assemblies, or a material the model
+        cannot take.
     GeometryError, MeshError
         Naming the body whose section or mesh cannot be built.
     """
@@ -105,8 +105,6 @@ class AssemblyDeformer:
         self.model_name = model or assembly.model
         if self.model_name not in ("paper", "hyperelastic"):
             raise CaseError("options.model", f"the {self.model_name} model does not deform assemblies yet; use the paper model (--model paper)")
-        if self.model_name == "hyperelastic" and assembly.revolution is not None:
-            raise CaseError("revolution", "the hyperelastic model deforms plane assemblies only; deform a body of revolution with the paper model (--model paper)")
         self.model = get_model(self.model_name)
         lay = assembly.layout
         self.layout = lay
@@ -118,8 +116,9 @@ class AssemblyDeformer:
         self.joint = None
         if self.model_name == "hyperelastic":
             from .assembly_hyperelastic import JointHyperelastic
+            from .assembly_hyperelastic_revolution import JointRevolution
 
-            self.joint = JointHyperelastic(self, options)
+            self.joint = (JointHyperelastic if assembly.revolution is None else JointRevolution)(self, options)
             for b, prepared in enumerate(self.joint.body_meshes):
                 self.bodies[b].prepared = prepared
         for b in lay.order if self.joint is None else ():

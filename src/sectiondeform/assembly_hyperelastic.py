@@ -224,8 +224,7 @@ class JointHyperelastic:
         geom = geometry(mesh.nodes, cells)
         mu = np.array([m.shear_modulus for m in materials])[mesh.body]
         kappa = np.array([m.kappa for m in materials])[mesh.body]
-        self.stretches = self.stretches_of(tuple(body.law for body in a.bodies))
-        self.physics = _Stretches(cells, len(mesh.nodes), geom, kappa, mu, np.log(self.stretches)[mesh.body])
+        self.physics = self._physics(cells, geom, kappa, mu)
         n = len(mesh.nodes)
         fixed = (2 * ids[:, None] + np.arange(2)).ravel()
         pattern = Pattern(self.physics.edofs, 2 * n + mesh.n_vertices, fixed)
@@ -236,6 +235,25 @@ class JointHyperelastic:
         self.reference = State(z_ref, 1.0, self.solver.tangent(self.physics.fields(z_ref, 1.0)))
         self.body_meshes = tuple(self._body_mesh(b, geom, len(pattern.free), options.elements_through_thickness)
                                  for b in range(len(a.bodies)))
+
+    plane = True
+    """Plane sections: ``stretches`` are the bodies' out-of-plane stretches (else growths, reported as 1)."""
+
+    def _physics(self, cells, geom, kappa, mu):
+        """The mixed problem on the union mesh, per cell its body's moduli and out-of-plane stretch; sets ``stretches``."""
+        self.stretches = self.stretches_of(tuple(body.law for body in self.assembly.bodies))
+        return _Stretches(cells, len(self.mesh.nodes), geom, kappa, mu, np.log(self.stretches)[self.mesh.body])
+
+    def _physics_for(self, stretches: tuple):
+        """A copy of the prepared physics under other per-body ``stretches`` (same mesh and moduli)."""
+        physics = copy.copy(self.physics)
+        physics.ln_stretch = np.log(np.asarray(stretches))[self.mesh.body][:, None]
+        return physics
+
+    def _law_offset(self, b: int, ring: np.ndarray, movable: np.ndarray, law) -> tuple[np.ndarray, float]:
+        """Body ``b``'s contour ``ring`` with its movable points offset to meet ``law`` exactly (:func:`offset_to_area`)."""
+        sec = self.sections[b]
+        return offset_to_area(ring, movable, sec.orientation * law.target_area(sec.area))
 
     def _body_mesh(self, b: int, geom, unknowns: int, through: float) -> _BodyMesh:
         mesh = self.mesh
@@ -259,8 +277,7 @@ class JointHyperelastic:
         """
         if stretches == self.stretches:
             return self.physics, self.solver
-        physics = copy.copy(self.physics)
-        physics.ln_stretch = np.log(np.asarray(stretches))[self.mesh.body][:, None]
+        physics = self._physics_for(stretches)
         solver = copy.copy(self.solver)
         solver.physics = physics
         solver.dres_dlnlz = self._dres_dlns(physics)
@@ -342,7 +359,7 @@ class JointHyperelastic:
                 newton_full=int(state.iterations[0]), newton_modified=int(state.iterations[1]),
                 load_steps=int(state.iterations[2]), factorisations=int(solver.factorisations - f0),
                 assemblies=int(solver.assemblies - a0), warm_start=start is not None and base is start.state,
-                area_correction=float(correction), out_of_plane_stretch=float(stretches[b]),
+                area_correction=float(correction), out_of_plane_stretch=float(stretches[b]) if self.plane else 1.0,
             )
 
         return (*self._finish(curve, laws, state.z, f, info), JointState(state, stretches))
@@ -385,9 +402,8 @@ class JointHyperelastic:
             n_low = len(sec.lower)
             movable = np.zeros(len(ring), bool)
             movable[n_low:] = ~fixed[ring[n_low:]]
-            wanted = sec.orientation * laws[b].target_area(sec.area)
             try:
-                new, k = offset_to_area(img[ring], movable, wanted)
+                new, k = self._law_offset(b, img[ring], movable, laws[b])
             except LawError as exc:
                 raise LawError(f"{self.assembly.label(b)}: {exc}") from None
             img[ring[movable]] = new[movable]

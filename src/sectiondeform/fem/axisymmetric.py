@@ -1,0 +1,226 @@
+"""Vectorised assembly of the mixed neo-Hookean problem of a body of revolution.
+
+The section lies in a half-plane bounded by the axis; a point ``X`` of it is
+at the distance ``R = n · (X − a)`` from the axis (``a`` a point of the
+axis, ``n`` its unit normal towards the section). Under the deformation
+``x(X)`` the three principal directions are the section's two and the hoop
+direction, with the hoop stretch ``λ = n · (x − a) / R``: the current
+distance from the axis over the initial one. It is linear in the node
+positions, ``∂λ/∂x_a = N_a n / R``, so it enters the residual and the
+tangent through the constant rows of ``B`` below; the kinematics carry no
+second derivative.
+
+With ``F3 = [[F, 0], [0, λ]]`` (``F`` the in-plane gradient), ``J = λ det F``,
+``I1 = |F|² + λ²``, ``a = J^(-2/3)`` and per body the shear modulus ``μ``,
+the bulk modulus ``κ`` and a volumetric growth ``c`` (the law's volume ratio
+``v``: ``F = Fe · c^(1/3) I``, the elastic part carrying the energy per unit
+grown volume), the energy per unit initial volume is (see
+:mod:`sectiondeform.reference.mixed`: the isochoric part does not see an
+isotropic growth)::
+
+    ψ(F3, p) = c μ (a I1 − 3) / 2 + p (J − c) − c p² / (2 κ)
+
+and every integral is over the body of revolution per radian,
+``∫ · R dA``. With the five varying components of ``F3`` as a vector
+``f = (F11, F12, F21, F22, λ)`` and ``B`` the constant map from an element's
+node positions to ``f`` at a quadrature point::
+
+    P  = c μ a (F3 − I1 F3^-T / 3) + p J F3^-T         (its five components)
+    R_x = Σ_q w R Bᵀ P,          R_p[b] = Σ_q w R M_b (J − c − c p / κ)
+    K_xx = Σ_q w R Bᵀ A B,       K_xp = Σ_q w R J Bᵀ F3^-T M,   K_pp = −Σ_q w R c M M / κ
+    A_iJkL = c μ a (δ_ik δ_JL − 2/3 (F_iJ G_kL + G_iJ F_kL) + 2 I1/9 G_iJ G_kL + I1/3 G_iL G_kJ)
+             + p J (G_iJ G_kL − G_iL G_kJ),     G = F3^-T
+
+``c = 1`` is plain near-incompressibility. The growth follows a path
+parameter ``s`` of the Newton solver (its ``lz``): ``c = exp(ln s · ln v)``,
+so ``s = 1`` is the undeformed state and ``s = e`` every body's own ratio.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .elements import QUAD_POINTS, Geometry, p2_values
+
+__all__ = ["AxisymmetricNeoHooke", "AxisymmetricFields"]
+
+_I = np.array([0, 0, 1, 1, 2])
+_J = np.array([0, 1, 0, 1, 2])
+_DELTA = ((_I[:, None] == _I[None, :]) & (_J[:, None] == _J[None, :])).astype(np.float64)
+
+
+@dataclass(frozen=True, eq=False)
+class AxisymmetricFields:
+    """Kinematics at the quadrature points for one state.
+
+    Attributes
+    ----------
+    F : (E, q, 2, 2) float64 ndarray
+        In-plane deformation gradient.
+    det : (E, q) float64 ndarray
+        det F (the in-plane area stretch).
+    hoop : (E, q) float64 ndarray
+        Hoop stretch λ, current over initial distance from the axis.
+    J : (E, q) float64 ndarray
+        Volume ratio ``λ det F``.
+    i1 : (E, q) float64 ndarray
+        ``|F|² + λ²``.
+    p : (E, q) float64 ndarray
+        Pressure at the quadrature points (units of the moduli).
+    growth : (E, 1) float64 ndarray
+        Volumetric growth ``c`` of each element at this point of the path.
+    """
+
+    F: np.ndarray
+    det: np.ndarray
+    hoop: np.ndarray
+    J: np.ndarray
+    i1: np.ndarray
+    p: np.ndarray
+    growth: np.ndarray
+
+
+class AxisymmetricNeoHooke:
+    """Residual and tangent of the Taylor-Hood neo-Hookean problem of a body of revolution.
+
+    Same interface as :class:`~sectiondeform.fem.assembly.MixedNeoHooke`
+    (what :class:`~sectiondeform.fem.newton.NewtonSolver` uses): the unknown
+    vector ``z = [x (2 N, node-major), p (n_vertices)]``, element dofs
+    ``(x0, y0, ..., x5, y5, p0, p1, p2)``, and the solver's scalar ``lz``
+    read as the growth path parameter ``s``.
+
+    Parameters
+    ----------
+    cells : (E, 6) int64 ndarray
+        P2 cells; their first three nodes are the pressure nodes.
+    nodes : (N, 2) float64 ndarray
+        Initial node positions, units.
+    geom : Geometry
+        Shape-function gradients and weights at the quadrature points.
+    origin : (2,) float64 array_like
+        A point of the axis, units.
+    normal : (2,) float64 array_like
+        Unit normal of the axis, pointing to the section's side.
+    kappa : float or (E,) float64 ndarray
+        Bulk modulus (in the units of ``mu``).
+    mu : float or (E,) float64 ndarray
+        Shear modulus.
+    ln_growth : float or (E,) float64 ndarray
+        ``ln v`` of each element's volume ratio (0: no growth).
+
+    Attributes
+    ----------
+    radius : (E, q) float64 ndarray
+        Initial distance of each quadrature point from the axis, units.
+    ln_stretch : (E, 1) float64 ndarray
+        ``−ln v``: the pressure rows of the residual change along the path
+        by ``Σ_q w R M ln_stretch`` per unit ``ln s`` at the undeformed state
+        (the role the out-of-plane stretch's logarithm plays in the plane
+        problem, so an assembly's predictor reads both alike).
+    """
+
+    def __init__(self, cells: np.ndarray, nodes: np.ndarray, geom: Geometry, origin, normal, kappa, mu, ln_growth=0.0):
+        e, q = geom.weight.shape
+        self.cells = cells
+        self.n_nodes = len(nodes)
+        self.geom = geom
+        self.origin = np.asarray(origin, dtype=np.float64)
+        self.normal = np.asarray(normal, dtype=np.float64)
+        column = lambda v: np.broadcast_to(np.asarray(v, dtype=np.float64).reshape(-1, 1), (e, 1)).copy()  # noqa: E731
+        self.kappa, self.mu, self.ln_growth = column(kappa), column(mu), column(ln_growth)
+        self.ln_stretch = -self.ln_growth
+        self.n_vertices = int(cells[:, :3].max()) + 1
+        self.n_dofs = 2 * self.n_nodes + self.n_vertices
+        xd = (2 * cells[:, :, None] + np.arange(2)).reshape(e, 12)
+        self.edofs = np.concatenate((xd, 2 * self.n_nodes + cells[:, :3]), axis=1)
+        self.values = p2_values(QUAD_POINTS)  # (q, 6)
+        self.radius = self._distance(np.einsum("qa,eai->eqi", self.values, nodes[cells]))
+        if not self.radius.min() > 0:
+            raise ValueError("AxisymmetricNeoHooke: a quadrature point lies on the axis or beyond it")
+        self.wr = geom.weight * self.radius  # (E, q), units³ per radian
+        M = geom.pvalues
+        self._wM = self.wr[:, :, None] * M[None]  # (E, q, 3)
+        # B: (E, q, 5, 12), the five components of F3 from the element's positions.
+        G = geom.grad
+        B = np.zeros((e, q, 5, 6, 2))
+        for m in range(4):
+            B[:, :, m, :, _I[m]] = G[:, :, :, _J[m]]
+        B[:, :, 4] = (self.values[None, :, :, None] * self.normal) / self.radius[:, :, None, None]
+        self.B = B.reshape(e, q, 5, 12)
+
+    def _distance(self, points: np.ndarray) -> np.ndarray:
+        return (points[..., 0] - self.origin[0]) * self.normal[0] + (points[..., 1] - self.origin[1]) * self.normal[1]
+
+    def fields(self, z: np.ndarray, lz: float) -> AxisymmetricFields | None:
+        """Kinematics of state ``z`` at path parameter ``lz``, or None if some J <= 0 or a point reaches the axis."""
+        n = self.n_nodes
+        x = z[: 2 * n].reshape(n, 2)[self.cells]  # (E, 6, 2)
+        F = np.einsum("eai,eqaj->eqij", x, self.geom.grad)
+        det = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
+        hoop = self._distance(np.einsum("qa,eai->eqi", self.values, x)) / self.radius
+        if not (det.min() > 0 and hoop.min() > 0):
+            return None
+        p = np.einsum("eb,qb->eq", z[2 * n :][self.cells[:, :3]], self.geom.pvalues)
+        i1 = np.einsum("eqij,eqij->eq", F, F) + hoop * hoop
+        growth = np.exp(math.log(lz) * self.ln_growth)
+        return AxisymmetricFields(F, det, hoop, hoop * det, i1, p, growth)
+
+    @staticmethod
+    def _inverse_transpose(f: AxisymmetricFields) -> np.ndarray:
+        """``F3^-T``, ``(E, q, 3, 3)``."""
+        F, det = f.F, f.det
+        it = np.zeros(F.shape[:2] + (3, 3))
+        it[..., 0, 0], it[..., 1, 1] = F[..., 1, 1] / det, F[..., 0, 0] / det
+        it[..., 0, 1], it[..., 1, 0] = -F[..., 1, 0] / det, -F[..., 0, 1] / det
+        it[..., 2, 2] = 1.0 / f.hoop
+        return it
+
+    def _vectors(self, f: AxisymmetricFields):
+        """``(f, F3^-T)`` as five-component vectors, the full ``F3^-T`` and ``c μ a``."""
+        fv = np.concatenate((f.F.reshape(f.F.shape[:2] + (4,)), f.hoop[..., None]), axis=-1)
+        it = self._inverse_transpose(f)
+        gv = it[..., _I, _J]
+        shear = f.growth * self.mu * f.J ** (-2.0 / 3.0)
+        return fv, gv, it, shear
+
+    def _stress(self, f: AxisymmetricFields) -> np.ndarray:
+        """``P`` (five components) at the quadrature points, ``(E, q, 5)``."""
+        fv, gv, _, shear = self._vectors(f)
+        return shear[..., None] * (fv - (f.i1 / 3.0)[..., None] * gv) + (f.p * f.J)[..., None] * gv
+
+    def _pressure_residual(self, f: AxisymmetricFields) -> np.ndarray:
+        return (f.J - f.growth - f.growth * f.p / self.kappa) * self.wr
+
+    def element_residuals(self, f: AxisymmetricFields) -> np.ndarray:
+        """Element residual vectors, ``(E, 15)``."""
+        rx = np.einsum("eqm,eqmr->er", self._stress(f) * self.wr[..., None], self.B)
+        rp = np.einsum("eq,qb->eb", self._pressure_residual(f), self.geom.pvalues)
+        return np.concatenate((rx, rp), axis=1)
+
+    def residual(self, f: AxisymmetricFields) -> np.ndarray:
+        """Assembled residual ``(2 N + n_vertices,)``."""
+        return np.bincount(self.edofs.ravel(), weights=self.element_residuals(f).ravel(), minlength=self.n_dofs)
+
+    def element_matrices(self, f: AxisymmetricFields) -> np.ndarray:
+        """Element tangent matrices, ``(E, 15, 15)``, symmetric."""
+        e, q = self.geom.weight.shape
+        fv, gv, it, shear = self._vectors(f)
+        cross = it[..., _I[:, None], _J[None, :]]  # [m, n] = G_{i_m J_n}
+        swap = cross * cross.swapaxes(-1, -2)  # G_iL G_kJ
+        gg = gv[..., :, None] * gv[..., None, :]
+        fg = fv[..., :, None] * gv[..., None, :]
+        s, i1, pj = shear[..., None, None], f.i1[..., None, None], (f.p * f.J)[..., None, None]
+        A = s * (_DELTA - 2.0 / 3.0 * (fg + fg.swapaxes(-1, -2)) + 2.0 * i1 / 9.0 * gg + i1 / 3.0 * swap) + pj * (gg - swap)
+        wB = self.B * self.wr[..., None, None]
+        kxx = np.einsum("eqmr,eqmn,eqns->ers", wB, A, self.B, optimize=True)
+        kxp = np.einsum("eqmr,eqm,eq,qb->erb", wB, gv, f.J, self.geom.pvalues, optimize=True)
+        kpp = -np.einsum("eqa,qb,e->eab", self._wM, self.geom.pvalues, (f.growth / self.kappa)[:, 0])
+        out = np.empty((e, 15, 15))
+        out[:, :12, :12] = kxx
+        out[:, :12, 12:] = kxp
+        out[:, 12:, :12] = kxp.transpose(0, 2, 1)
+        out[:, 12:, 12:] = kpp
+        return out
