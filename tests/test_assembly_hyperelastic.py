@@ -257,13 +257,6 @@ def test_a_soft_cover_on_a_stiff_backing_follows_the_support_less_than_a_stiff_c
     assert stiff_top > 1.2 * stiff_bottom
 
 
-def test_a_mooney_rivlin_body_is_refused_with_one_line():
-    data = strip_dict()
-    data["bodies"][1]["material"] = {"model": "mooney-rivlin", "c10": 0.4, "c01": 0.1}
-    with pytest.raises(CaseError, match=r"^bodies\[1\]\.material\.model: the hyperelastic model of an assembly takes neo-Hookean"):
-        solve(data)
-
-
 def test_offset_to_area_meets_the_area_moving_only_the_free_points():
     rng = np.random.default_rng(3)
     angles = np.sort(rng.uniform(0, 2 * np.pi, 20))

@@ -8,9 +8,9 @@ Prepare (once, :class:`JointHyperelastic`):
   piece has shared nodes; every cell carries its body; each body's element
   size is its own thickness over ``elements_through_thickness`` (a shared
   piece takes the smaller of its two bodies');
-* per body its material (neo-Hookean: ``shear_modulus`` and ``bulk_to_shear``
-  or ``bulk_modulus`` of its ``material``, ``options.bulk_to_shear`` by
-  default) and its own out-of-plane stretch ``1 / r`` of its area law, in
+* per body its material (any rubber of its ``material``: neo-Hookean in
+  closed form, Mooney–Rivlin or Yeoh through :class:`~sectiondeform.fem.rubber.MixedRubber`;
+  ``options.bulk_to_shear`` by default) and its own out-of-plane stretch ``1 / r`` of its area law, in
   one generalised plane strain problem (Taylor-Hood elements, the
   single-body model's :class:`~sectiondeform.fem.assembly.MixedNeoHooke`
   with per-cell moduli and stretches);
@@ -43,11 +43,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import CaseError, LawError, MeshError
+from .errors import LawError, MeshError
 from .fem.assembly import MixedNeoHooke, Pattern
 from .fem.elements import geometry
 from .fem.mapping import rigid_fit
 from .fem.newton import NewtonSolver, State
+from .fem.rubber import MixedRubber
 from .fem.union_mesh import union_mesh
 from .materials import NeoHookean, material_from_json
 from .models.base import FinalQuality, MeshData, MeshQuality, Placement
@@ -155,7 +156,7 @@ class JointHyperelastic:
     Raises
     ------
     CaseError
-        For a body whose material is not neo-Hookean.
+        For a body whose material is invalid.
     MeshError
         If the assembly cannot be meshed.
     """
@@ -168,11 +169,7 @@ class JointHyperelastic:
         self.sections = [b.section for b in bodies]
         materials = []
         for i, body in enumerate(a.bodies):
-            mat = material_from_json(body.material_data, f"bodies[{i}].material", default_bulk_to_shear=options.bulk_to_shear)
-            if not isinstance(mat, NeoHookean):
-                raise CaseError(f"bodies[{i}].material.model", f"the hyperelastic model of an assembly takes neo-Hookean bodies only so far, "
-                                f"not {mat.model}; give shear_modulus (and bulk_to_shear) for {a.label(i)}")
-            materials.append(mat)
+            materials.append(material_from_json(body.material_data, f"bodies[{i}].material", default_bulk_to_shear=options.bulk_to_shear))
         self.materials = tuple(materials)
         thickness = min(s.mesh_scale for s in self.sections)
         self.sizes = np.array([s.mesh_scale for s in self.sections]) / options.elements_through_thickness
@@ -212,7 +209,10 @@ class JointHyperelastic:
         mu = np.array([m.shear_modulus for m in materials])[mesh.body]
         kappa = np.array([m.kappa for m in materials])[mesh.body]
         self.stretches = np.array([body.law.out_of_plane_stretch(s.area) for body, s in zip(a.bodies, self.sections)])
-        self.physics = _Stretches(cells, len(mesh.nodes), geom, kappa, mu, np.log(self.stretches)[mesh.body])
+        if all(type(m) is NeoHookean for m in materials):  # the closed form, else any rubber
+            self.physics = _Stretches(cells, len(mesh.nodes), geom, kappa, mu, np.log(self.stretches)[mesh.body])
+        else:
+            self.physics = MixedRubber(cells, len(mesh.nodes), geom, materials, mesh.body, np.log(self.stretches)[mesh.body])
         n = len(mesh.nodes)
         fixed = (2 * ids[:, None] + np.arange(2)).ravel()
         pattern = Pattern(self.physics.edofs, 2 * n + mesh.n_vertices, fixed)
