@@ -8,9 +8,9 @@ Prepare (once, :class:`JointHyperelastic`):
   piece has shared nodes; every cell carries its body; each body's element
   size is its own thickness over ``elements_through_thickness`` (a shared
   piece takes the smaller of its two bodies');
-* per body its material (neo-Hookean: ``shear_modulus`` and ``bulk_to_shear``
-  or ``bulk_modulus`` of its ``material``, ``options.bulk_to_shear`` by
-  default) and its own out-of-plane stretch ``1 / r`` of its area law, in
+* per body its material (any rubber of its ``material``: neo-Hookean in
+  closed form, Mooney–Rivlin or Yeoh through :class:`~sectiondeform.fem.rubber.MixedRubber`;
+  ``options.bulk_to_shear`` by default) and its own out-of-plane stretch ``1 / r`` of its area law, in
   one generalised plane strain problem (Taylor-Hood elements, the
   single-body model's :class:`~sectiondeform.fem.assembly.MixedNeoHooke`
   with per-cell moduli and stretches);
@@ -53,6 +53,7 @@ from .fem.assembly import MixedNeoHooke, Pattern
 from .fem.elements import geometry
 from .fem.mapping import rigid_fit
 from .fem.newton import NewtonSolver, State
+from .fem.rubber import MixedRubber
 from .fem.union_mesh import union_mesh
 from .materials import NeoHookean, material_from_json
 from .models.base import FinalQuality, MeshData, MeshQuality, Placement
@@ -168,7 +169,7 @@ class JointHyperelastic:
     Raises
     ------
     CaseError
-        For a body whose material is not neo-Hookean.
+        For a body whose material is invalid.
     MeshError
         If the assembly cannot be meshed.
     """
@@ -181,11 +182,7 @@ class JointHyperelastic:
         self.sections = [b.section for b in bodies]
         materials = []
         for i, body in enumerate(a.bodies):
-            mat = material_from_json(body.material_data, f"bodies[{i}].material", default_bulk_to_shear=options.bulk_to_shear)
-            if not isinstance(mat, NeoHookean):
-                raise CaseError(f"bodies[{i}].material.model", f"the hyperelastic model of an assembly takes neo-Hookean bodies only so far, "
-                                f"not {mat.model}; give shear_modulus (and bulk_to_shear) for {a.label(i)}")
-            materials.append(mat)
+            materials.append(material_from_json(body.material_data, f"bodies[{i}].material", default_bulk_to_shear=options.bulk_to_shear))
         self.materials = tuple(materials)
         thickness = min(s.mesh_scale for s in self.sections)
         self.sizes = np.array([s.mesh_scale for s in self.sections]) / options.elements_through_thickness
@@ -242,7 +239,10 @@ class JointHyperelastic:
     def _physics(self, cells, geom, kappa, mu):
         """The mixed problem on the union mesh, per cell its body's moduli and out-of-plane stretch; sets ``stretches``."""
         self.stretches = self.stretches_of(tuple(body.law for body in self.assembly.bodies))
-        return _Stretches(cells, len(self.mesh.nodes), geom, kappa, mu, np.log(self.stretches)[self.mesh.body])
+        ln_stretch = np.log(self.stretches)[self.mesh.body]
+        if all(type(m) is NeoHookean for m in self.materials):  # the closed form, else any rubber
+            return _Stretches(cells, len(self.mesh.nodes), geom, kappa, mu, ln_stretch)
+        return MixedRubber(cells, len(self.mesh.nodes), geom, self.materials, self.mesh.body, ln_stretch)
 
     def _physics_for(self, stretches: tuple):
         """A copy of the prepared physics under other per-body ``stretches`` (same mesh and moduli)."""

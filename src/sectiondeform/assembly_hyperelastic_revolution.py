@@ -27,8 +27,9 @@ import copy
 import numpy as np
 
 from .assembly_hyperelastic import JointHyperelastic
-from .errors import LawError
+from .errors import CaseError, LawError
 from .fem.axisymmetric import AxisymmetricNeoHooke
+from .materials import NeoHookean
 from .pappus import axis_frame, signed_distance
 
 __all__ = ["JointRevolution", "offset_to_law"]
@@ -139,6 +140,10 @@ class JointRevolution(JointHyperelastic):
 
     def _physics(self, cells, geom, kappa, mu):
         a = self.assembly
+        for i, m in enumerate(self.materials):
+            if type(m) is not NeoHookean:
+                raise CaseError(f"bodies[{i}].material.model", f"{a.label(i)}: the hyperelastic model of bodies of revolution "
+                                "takes neo-Hookean bodies only; give its shear_modulus, or use the paper model (--model paper)")
         axis = a.revolution.axis
         origin, rot = axis_frame(axis)
         side = signed_distance(np.concatenate([s.contour for s in self.sections]), axis)

@@ -48,7 +48,9 @@ from ..fem.elements import geometry
 from ..fem.mapping import boundary_weights, correct_area, interpolation_matrix, rigid_fit
 from ..fem.mesh import coarse_mesh
 from ..fem.newton import NewtonSolver, State
+from ..fem.rubber import MixedRubber
 from ..laws import Law
+from ..materials import NeoHookean
 from ..section import Section
 from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions, Placement, Prepared
 
@@ -136,6 +138,8 @@ class HyperelasticPrepared(Prepared):
         Bulk modulus over shear modulus.
     tol : float
         Newton tolerance on the position increment, relative to T.
+    material : NeoHookean or MooneyRivlin or Yeoh, optional
+        The rubber (:mod:`sectiondeform.materials`); overrides ``bulk_to_shear``.
 
     Attributes
     ----------
@@ -152,14 +156,18 @@ class HyperelasticPrepared(Prepared):
     """
 
     def __init__(self, section: Section, through_thickness: float = DEFAULT_THROUGH_THICKNESS,
-                 bulk_to_shear: float = DEFAULT_BULK_TO_SHEAR, tol: float = DEFAULT_TOLERANCE):
+                 bulk_to_shear: float = DEFAULT_BULK_TO_SHEAR, tol: float = DEFAULT_TOLERANCE, material=None):
         self.section = section
         T = section.mesh_scale
         n_low = len(section.lower)
         mesh = coarse_mesh(section.contour, np.array([0, n_low - 1]), T / through_thickness)
         self.mesh = mesh
         geom = geometry(mesh.nodes, mesh.cells)
-        self.physics = MixedNeoHooke(mesh.cells, len(mesh.nodes), geom, bulk_to_shear)
+        if material is None or type(material) is NeoHookean:  # the closed form, else any rubber
+            ratio = bulk_to_shear if material is None else material.kappa / material.shear_modulus
+            self.physics = MixedNeoHooke(mesh.cells, len(mesh.nodes), geom, ratio)
+        else:
+            self.physics = MixedRubber(mesh.cells, len(mesh.nodes), geom, [material])
         ring = mesh.ring
         s_lower = ring.s[:n_low]
         ids, s = mesh.boundary_nodes_between(0.0, float(s_lower[-1]))
