@@ -1,15 +1,15 @@
-"""Inputs the fuzz benchmark found that still break the promise (open; each must start to pass when fixed).
+"""Inputs the fuzz benchmark found where the initial area was off (fixed; kept as regression tests).
 
-All three: a section whose lower and upper curves are both arcs comes back
+All three: a section whose lower and upper curves are both arcs came back
 with its initial contour's area further from the curves' exact area than
 the documented tolerance (``verify.INITIAL_AREA_TOLERANCE``), with no
-warning. The section's refinement loop measures the area of the whole
+warning. The section's refinement loop measured the area of the whole
 contour, so the lower arc's chords (gaining area) and the upper arc's
-(losing it) cancel; the lower curve is then resampled finer for the mesh
-and the upper curve's error shows (7e-4 of the area on the first file). The
-third is small and far from the origin, where the exact area is also
-integrated in absolute coordinates. ``strict``: a fix makes these tests
-fail until the mark is removed.
+(losing it) cancelled; the lower curve was then resampled finer for the
+mesh and the upper curve's error showed (7e-4 of the area on the first
+file). The section now bounds each curve's own chord error, and integrates
+the areas about a point of the section (the third is small and far from
+the origin).
 """
 
 from __future__ import annotations
@@ -27,7 +27,6 @@ def test_the_open_inputs_are_present():
     assert len(FILES) == 3
 
 
-@pytest.mark.xfail(strict=True, reason="open: the section's area check lets the two arcs' chord errors cancel")
 @pytest.mark.parametrize("path", FILES, ids=[p.stem for p in FILES])
 def test_checked_result_or_one_line_error(path):
     outcome = outcome_api(path, TIME_LIMIT_S)

@@ -49,6 +49,7 @@ def area_coefficients(fixed: np.ndarray, moving: np.ndarray) -> np.ndarray:
     >>> area_coefficients(f, m).tolist()
     [0.0, 1.0, 0.0]
     """
+    fixed = fixed - fixed[0]  # about a vertex: no cancellation far from the origin (moving is a displacement)
     f1, g1 = _next(fixed), _next(moving)
 
     def cross(a, b):

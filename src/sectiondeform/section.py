@@ -7,10 +7,17 @@ into a :class:`Section`:
    ``DEFAULT_CHORDAL_FRACTION`` (1e-4) of the section's bounding-box diagonal;
 2. the upper curve gives its characteristic points (a polyline's vertices,
    the adaptive discretisation of the other kinds); where the polygon of
-   the discretised curves misses the curves' exact area (Green's theorem)
-   by more than ``AREA_FRACTION`` (1e-5), the chordal error of the upper
-   and lower discretisations is divided by 4 until it does not, so the
-   areas the law works on are the section's true areas;
+   each curve's chords miss (the area between the curve and its polyline,
+   Green's theorem) add up to more than ``AREA_FRACTION`` (1e-5) of the
+   curves' exact area, the chordal error of the upper and lower
+   discretisations is divided by 4 until they do not, so the areas the law
+   works on are the section's true areas. Each curve is bounded on its
+   own: the two curves' errors may cancel in the contour's area (a lower
+   arc gaining what an upper arc loses), and the lower curve is resampled
+   finer below, which would undo the cancellation. Areas are integrated
+   about the lower curve's start A, not the coordinates' origin, when A
+   is farther from the origin than the section's size, so a section far
+   from the origin loses no digits;
 3. the lower curve is discretised adaptively, and the arc-length fractions
    at which the *target* needs vertices to stay within ``tol`` are added, so
    the deformed lower curve is resolved too (a target vertex closer than
@@ -38,7 +45,7 @@ import shapely
 
 from .case import Case
 from .compare import section_height
-from .curves import DEFAULT_CHORDAL_FRACTION, Curve, polygon_area
+from .curves import DEFAULT_CHORDAL_FRACTION, Arc, Chain, Curve, polygon_area
 from .errors import GeometryError
 from .limits import MAX_LOWER_NODES, MAX_UPPER_POINTS, bounded
 
@@ -46,7 +53,7 @@ __all__ = ["Section", "build_section", "polygon_area", "mesh_scale", "DEFAULT_CH
 
 JOIN_FRACTION = 1e-6
 AREA_FRACTION = 1e-5
-AREA_REFINEMENTS = 8
+AREA_REFINEMENTS = 12
 STEP_CAP_FRACTION = 0.25
 ELEMENT_FLOOR_FRACTION = 1.0 / 32.0
 MIN_CHORDAL_FRACTION = 1e-9
@@ -167,6 +174,41 @@ def _split_steps(fractions: np.ndarray, max_step: float, fix: str = "raise optio
     return np.concatenate((k * (steps / parts)[step] + fractions[:-1][step], fractions[-1:]))
 
 
+def _translated(curve: Curve, offset: np.ndarray) -> Curve:
+    """``curve`` moved by ``offset`` ``(2,)``; an arc keeps its angles exactly."""
+    if isinstance(curve, Arc):
+        return Arc(curve.center + offset, curve.radius, curve.start_deg, curve.end_deg)
+    if isinstance(curve, Chain):
+        return Chain(tuple(_translated(p, offset) for p in curve.pieces))
+    return curve.transformed(np.eye(2), offset)
+
+
+def local_green(curve: Curve, origin: np.ndarray) -> float:
+    """:meth:`Curve.green` about ``origin`` ``(2,)`` instead of (0, 0), units².
+
+    Summed over a closed contour it is the enclosed signed area, whatever
+    the origin; about a point of the section it keeps its digits where the
+    section is small and far from (0, 0).
+    """
+    origin = np.asarray(origin, dtype=np.float64)
+    return (_translated(curve, -origin) if origin.any() else curve).green()
+
+
+def open_green(points: np.ndarray, origin: np.ndarray) -> float:
+    """The polyline ``points`` ``(N, 2)``'s 1/2 * sum of (x dy - y dx) about ``origin`` ``(2,)``, units².
+
+    Minus :func:`local_green` of the curve it discretises, it is the signed
+    area between the curve and its chords.
+
+    Examples
+    --------
+    >>> float(open_green(np.array([[1.0, 0.0], [1.0, 1.0]]), np.zeros(2)))
+    0.5
+    """
+    p = points - origin
+    return 0.5 * float(np.dot(p[:-1, 0], p[1:, 1]) - np.dot(p[1:, 0], p[:-1, 1]))
+
+
 def _sketch(curve: Curve) -> np.ndarray:
     return curve.at_fractions(np.linspace(0.0, 1.0, 65))
 
@@ -200,7 +242,12 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
         raise GeometryError(
             f"options.chordal_error: {tol:.6g} is below {MIN_CHORDAL_FRACTION:g} of the section's size {size:.6g}; use a larger one"
         )
-    exact = abs(case.lower.green() + case.upper.green())
+    # About A when the section is farther from (0, 0) than its own size (digits); else as given (no copy).
+    origin = np.asarray(case.lower.ends[0], dtype=np.float64)
+    if not float(np.hypot(*origin)) > size:
+        origin = np.zeros(2)
+    green_low, green_up = local_green(case.lower, origin), local_green(case.upper, origin)
+    exact = abs(green_low + green_up)
     if not math.isfinite(exact):
         raise GeometryError("section: the curves' exact area is not finite; check the coordinates")
     uppers, lowers = case.upper.characteristic_refinements(tol, 4.0), case.lower.refinements(tol, 4.0)
@@ -209,7 +256,8 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
         low_pts, low_s = next(lowers)
         bounded(len(upper), MAX_UPPER_POINTS, "upper points", "raise options.chordal_error or simplify the upper curve")
         bounded(len(low_pts), MAX_LOWER_NODES, "lower nodes", "raise options.chordal_error or simplify the lower curve")
-        missed = abs(abs(polygon_area(np.concatenate((low_pts, upper[1:-1])))) - exact)
+        # Each curve's own chord error, so that neither hides the other.
+        missed = abs(open_green(low_pts, origin) - green_low) + abs(open_green(upper, origin) - green_up)
         if len(upper) < 2 or missed <= AREA_FRACTION * exact:
             break
     join = JOIN_FRACTION * size
@@ -236,7 +284,7 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
         raise GeometryError("section: lower and upper enclose no area; check that upper is not the lower curve retraced")
     if missed > AREA_FRACTION * exact:
         raise GeometryError(
-            f"section: the discretised contour misses the curves' exact area {exact:.9g} by {missed:.3g} "
+            f"section: the discretised curves miss the curves' exact area {exact:.9g} by {missed:.3g} "
             f"(more than {AREA_FRACTION:g} of it) after {AREA_REFINEMENTS} refinements; "
             "smooth the curves or set a smaller options.chordal_error"
         )
@@ -265,6 +313,11 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
     ring = np.concatenate((lower, upper[1:-1]))
     signed = polygon_area(ring)
     _check_simple(ring, len(lower))
+    if abs(abs(signed) - exact) > 2.0 * AREA_FRACTION * exact:  # the finer lower curve only lowers its error
+        raise GeometryError(
+            f"section: the contour's area {abs(signed):.9g} misses the curves' exact area {exact:.9g} "
+            f"by more than {2.0 * AREA_FRACTION:g} of it; set a smaller options.chordal_error"
+        )
     for arr in (lower, s, upper):
         arr.setflags(write=False)
     return Section(

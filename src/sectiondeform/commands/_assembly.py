@@ -6,6 +6,7 @@ from ..assembly import Assembly
 from ..assembly_deform import AssemblyDeformer
 from ..errors import CaseError
 from ..io import write_result
+from ._common import print_warnings
 from ._io_args import write_meshes
 
 __all__ = ["run_assembly", "assembly_summary"]
@@ -25,8 +26,8 @@ def _refuse_unsupported(args) -> None:
         raise CaseError("--element-size", f"must be > 0, got {args.element_size}")
 
 
-def assembly_summary(result) -> str:
-    """A few lines on an assembly's result: each body's areas and error, and the time."""
+def assembly_summary(result, warnings: bool = True) -> str:
+    """A few lines on an assembly's result: each body's areas and error, and the time; its warnings unless False."""
     u = result.units
     lines = [f"{result.name} ({result.model} model, {len(result.bodies)} bodies)"]
     for b in result.bodies:
@@ -39,7 +40,7 @@ def assembly_summary(result) -> str:
                          f"area {b.area_initial:.4f} -> {b.area_final:.4f} {u}²")
     t = result.timings
     lines.append(f"  time          prepare {1e3 * t['prepare_s']:.2f} ms, deform {1e3 * t['place_s']:.3f} ms")
-    for w in result.warnings:
+    for w in result.warnings if warnings else ():
         lines.append(f"  warning: {w}")
     return "\n".join(lines)
 
@@ -61,6 +62,7 @@ def run_assembly(args, assembly: Assembly, report: list) -> int:
         save_plot(args, result)
     for line in report:
         print(f"  {line}")
-    print(assembly_summary(result))
+    print(assembly_summary(result, warnings=False))
     print(f"  wrote {', '.join(str(p) for p in [args.output, *meshes, *([args.plot] if args.plot else [])])}")
+    print_warnings(result.warnings)
     return 0

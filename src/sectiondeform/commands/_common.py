@@ -28,8 +28,8 @@ def apply_overrides(case, args):
     return case
 
 
-def summary(result) -> str:
-    """A few lines on a result: areas, error, mesh and time."""
+def summary(result, warnings: bool = True) -> str:
+    """A few lines on a result: areas, error, mesh and time; its warnings too unless ``warnings`` is False."""
     u = result.units
     q = result.quality
     lines = [
@@ -46,9 +46,15 @@ def summary(result) -> str:
         lines.append(text)
     t = result.timings
     lines.append(f"  time          prepare {1e3 * t['prepare_s']:.2f} ms, deform {1e3 * t['place_s']:.3f} ms")
-    for w in result.warnings:
+    for w in result.warnings if warnings else ():
         lines.append(f"  warning: {w}")
     return "\n".join(lines)
+
+
+def print_warnings(warnings) -> None:
+    """Each warning on stderr as one line, ``warning: <text>``."""
+    for w in warnings:
+        eprint("warning: " + " ".join(str(w).split()))
 
 
 def eprint(*args) -> None:

@@ -17,7 +17,7 @@ from ..deform import Deformer
 from ..errors import CaseError
 from ..io import write_result
 from ._assembly import run_assembly
-from ._common import add_model_args, apply_overrides, summary
+from ._common import add_model_args, apply_overrides, print_warnings, summary
 from ._io_args import add_input_args, add_output_args, check_outputs, output_options, read_input_case, write_meshes
 
 
@@ -93,6 +93,7 @@ def run(args) -> int:
         save_plot(args, result)
     for line in report:
         print(f"  {line}")
-    print(summary(result))
+    print(summary(result, warnings=False))
     print(f"  wrote {', '.join(str(p) for p in [args.output, *meshes, *([args.plot] if args.plot else [])])}")
+    print_warnings(result.warnings)
     return 0

@@ -1,0 +1,42 @@
+"""The command line's deform puts each of a result's warnings on stderr, one line ``warning: ...``.
+
+Issue 10: a result far outside what the model can mean carries a warning
+on stderr and in the result's ``warnings``. The grooved tread under the
+paper model changes its heights by more than the documented limit (the
+height-change warning); the paper example does not.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+CASES = Path(__file__).parent / "data" / "cases"
+
+
+def run_deform(case: Path, out: Path, *extra: str) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "sectiondeform", "deform", str(case), "-o", str(out), "--no-meshes", *extra],
+        capture_output=True, text=True, timeout=300,
+    )
+
+
+@pytest.mark.parametrize("name, model", [("grooved-tread", "paper"), ("paper-example", "paper"),
+                                         ("tread-on-drum", None)])
+def test_each_warning_is_one_stderr_line_and_in_the_result(tmp_path, name, model):
+    path = CASES / f"{name}.json" if (CASES / f"{name}.json").exists() else CASES / "v2" / f"{name}.json"
+    out = tmp_path / "result.json"
+    run = run_deform(path, out, *(["--model", model] if model else []))
+    assert run.returncode == 0, run.stderr
+    warnings = json.loads(out.read_text())["warnings"]
+    lines = [line for line in run.stderr.splitlines() if line.strip()]
+    assert lines == [f"warning: {' '.join(w.split())}" for w in warnings]
+    assert "warning:" not in run.stdout
+    if name == "grooved-tread":  # the height-change warning, with its number
+        assert len(lines) == 1 and "heights change" in lines[0] and "%" in lines[0]
+    if name == "paper-example":
+        assert lines == []
