@@ -145,3 +145,19 @@ def test_element_gradients_of_linear_triangles_and_quads_are_exact_for_affine_ma
     for kind, cells in (("quad", np.array([[0, 1, 2, 3]])), ("triangle", np.array([[0, 1, 2], [0, 2, 3]]))):
         f = element_gradients(MeshData(pts, cells, kind), MeshData(pts @ affine.T, cells, kind))
         np.testing.assert_allclose(f, np.broadcast_to(affine, f.shape), rtol=1e-12)
+
+
+def test_an_assemblys_bodies_carry_strains_but_no_stress_they_cannot_state(tmp_path):
+    # each body's rubber (shear modulus 3 and 1 here) and growth are not applied to the stress:
+    # it is left out, not written with the wrong modulus
+    import json
+    from pathlib import Path
+
+    from sectiondeform.assembly import assembly_from_dict
+    from sectiondeform.assembly_deform import deform_assembly
+
+    strip = json.loads((Path(__file__).parent / "data" / "cases" / "v2" / "two-layer-strip.json").read_text())
+    result = deform_assembly(assembly_from_dict(strip), model="hyperelastic")
+    for body in result.to_json(fields=True)["bodies"]:
+        assert body["fields"]["kind"] == "mechanical"
+        assert "J" in body["fields"] and "von_mises_stress" not in body["fields"]

@@ -107,7 +107,7 @@ class BodyResult:
             from .strain_fields import result_fields
 
             kind, values = result_fields(self.initial_mesh, self.final_mesh, model,
-                                         getattr(self.info, "out_of_plane_stretch", 1.0), axis)
+                                         getattr(self.info, "out_of_plane_stretch", 1.0), axis, stress=False)
             out["fields"] = fields_to_json(values, kind)
         return out
 

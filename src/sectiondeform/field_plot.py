@@ -58,11 +58,16 @@ def field_values(result, name: str) -> tuple[str, list[np.ndarray]]:
     axis = getattr(result, "axis", None)
     kind, out = "geometric", []
     for initial, final, _contour, info in _pieces(result):
-        kind, fields = result_fields(initial, final, result.model, getattr(info, "out_of_plane_stretch", 1.0), axis)
+        assembly = hasattr(result, "bodies")
+        kind, fields = result_fields(initial, final, result.model, getattr(info, "out_of_plane_stretch", 1.0), axis,
+                                     stress=not assembly)
         values = fields.get(key if kind == "mechanical" else f"geometric_{key}")
         if values is None and kind == "geometric" and key == "von_mises_stress":
             raise CaseError("--plot-field", "von_mises_stress is a stress and the paper model has no material; "
                             "use --model hyperelastic or a strain field")
+        if values is None and assembly and key == "von_mises_stress":
+            raise CaseError("--plot-field", "von_mises_stress is not written for an assembly's bodies yet (each body's "
+                            "own rubber and growth are not applied to it); plot a strain field")
         if values is None:
             raise CaseError("--plot-field", f"no {name} for this result's {final.kind} mesh")
         out.append(values if column is None else values[:, column])

@@ -136,7 +136,7 @@ def strain_fields(initial: MeshData, final: MeshData, out_of_plane: float = 1.0,
 
 
 def result_fields(initial: MeshData, final: MeshData, model: str, out_of_plane: float = 1.0,
-                  axis=None) -> tuple[str, dict[str, np.ndarray]]:
+                  axis=None, stress: bool = True) -> tuple[str, dict[str, np.ndarray]]:
     """All per-element fields of a result, and their kind.
 
     Parameters
@@ -148,6 +148,11 @@ def result_fields(initial: MeshData, final: MeshData, model: str, out_of_plane: 
         The hyperelastic model's out-of-plane stretch (its ``info``).
     axis : optional
         The revolution axis of a body of revolution.
+    stress : bool
+        Add the hyperelastic model's von Mises stress (a one-body section:
+        its neo-Hookean rubber, relative modulus). False for a body of an
+        assembly, whose own rubber, modulus and growth the stress would
+        need: it is left out rather than written wrong.
 
     Returns
     -------
@@ -161,7 +166,7 @@ def result_fields(initial: MeshData, final: MeshData, model: str, out_of_plane: 
         stretch), prefixed ``geometric_``.
     """
     if model == "hyperelastic":  # its rubber: neo-Hookean, shear modulus 1 (relative)
-        return "mechanical", strain_fields(initial, final, out_of_plane, axis, NeoHookean(1.0))
+        return "mechanical", strain_fields(initial, final, out_of_plane, axis, NeoHookean(1.0) if stress else None)
     from .geometric_fields import geometric_fields
 
     strains = strain_fields(initial, final, 1.0, axis)
