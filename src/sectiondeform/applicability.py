@@ -101,12 +101,6 @@ def overhang(lower: np.ndarray, upper: np.ndarray) -> float:
     return out
 
 
-def _turning(line: np.ndarray) -> np.ndarray:
-    """Direction angle of each segment of a polyline, unwrapped, ``(n - 1,)``, radians."""
-    d = np.diff(line, axis=0)
-    return np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
-
-
 def bend_change(lower: np.ndarray, target: np.ndarray, height: float) -> float:
     """Largest change of the support's turning over a stretch of it as long as the section's height, radians.
 
@@ -138,8 +132,13 @@ def bend_change(lower: np.ndarray, target: np.ndarray, height: float) -> float:
     >>> round(bend_change(low, arc, 2.0), 2)                               # 2 / 20
     0.1
     """
-    delta = np.unwrap(_turning(target) - _turning(lower))
-    d = np.diff(lower, axis=0)
+    d, e = np.diff(lower, axis=0), np.diff(target, axis=0)
+    # the turning of the target against the lower curve's, segment by segment: one angle per segment
+    # (atan2 of the cross and dot products), summed from the first with jumps wrapped to (-pi, pi]
+    raw = np.arctan2(d[:, 0] * e[:, 1] - d[:, 1] * e[:, 0], d[:, 0] * e[:, 0] + d[:, 1] * e[:, 1])
+    step = np.diff(raw)
+    step -= 2.0 * np.pi * np.round(step / (2.0 * np.pi))
+    delta = raw[0] + np.concatenate(([0.0], np.cumsum(step)))
     seg = np.hypot(d[:, 0], d[:, 1])
     mid = np.cumsum(seg) - 0.5 * seg
     length = float(seg.sum())

@@ -26,7 +26,7 @@ from ._common import apply_overrides, eprint
 
 def add_fe_args(parser) -> None:
     """``--element``, ``--mesh-size`` and ``--area-ratio`` (shared with solve-fe)."""
-    from ..external.deck import DEFAULT_AXI_ELEMENT, DEFAULT_ELEMENT, DEFAULT_MESH_SIZE
+    from ..external import DEFAULT_AXI_ELEMENT, DEFAULT_ELEMENT, DEFAULT_MESH_SIZE
 
     parser.add_argument("--element", default=None, metavar="TYPE",
                         help=f"element type: CPE3, CPE6, CPE4, CPE4R, CPE8, CPE8R (CAX... for a body of revolution), "

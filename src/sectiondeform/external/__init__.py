@@ -5,3 +5,10 @@ motion, step); :mod:`.calculix` runs ``ccx``; :mod:`.frd` reads its results;
 :mod:`.solve` turns them into a ``section-result``; :mod:`.validation`
 compares the project's models with it.
 """
+
+DEFAULT_MESH_SIZE = 0.1
+"""Triangle size of a deck's mesh, as a fraction of the section's mean thickness."""
+DEFAULT_ELEMENT = "CPE6"
+"""Element of a plane deck: quadratic, does not lock in CalculiX 2.20 at kappa/mu = 1000."""
+DEFAULT_AXI_ELEMENT = "CAX6"
+"""Element of a deck of a body of revolution."""

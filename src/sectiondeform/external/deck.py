@@ -58,7 +58,8 @@ __all__ = [
     "default_element",
 ]
 
-DEFAULT_MESH_SIZE = 0.1
+from . import DEFAULT_AXI_ELEMENT, DEFAULT_ELEMENT, DEFAULT_MESH_SIZE  # noqa: E402 - light defaults, read by the command line
+
 DEFAULT_BULK_TO_SHEAR = 1000.0
 INITIAL_INCREMENT = 0.05
 MIN_INCREMENT = 1e-5
@@ -109,8 +110,6 @@ def _element_table() -> dict:
 
 #: Every element type the writer knows, by Abaqus name.
 ELEMENTS = _element_table()
-DEFAULT_ELEMENT = "CPE6"
-DEFAULT_AXI_ELEMENT = "CAX6"
 
 
 @dataclass(frozen=True, eq=False)
