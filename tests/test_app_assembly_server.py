@@ -94,9 +94,9 @@ def test_a_law_change_leaves_the_prepared_assembly_alone(strip):
 
 
 def test_a_refusal_comes_with_the_librarys_message_and_the_server_goes_on(client, drum):
-    # the hyperelastic model of an assembly takes neo-Hookean bodies only
+    # a Yeoh rubber needs c10 > 0
     yeoh = json.loads(json.dumps(drum))
-    yeoh["bodies"][1]["material"] = {"model": "yeoh", "c10": 0.4, "c20": 0.01, "c30": 0.0}
+    yeoh["bodies"][1]["material"] = {"model": "yeoh", "c10": -0.4, "c20": 0.01, "c30": 0.0}
     with client.websocket_connect("/ws", headers=ORIGIN) as ws:
         ws.send_text(request(yeoh, 1, model="hyperelastic"))
         bad = receive(ws)

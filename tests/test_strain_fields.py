@@ -147,17 +147,19 @@ def test_element_gradients_of_linear_triangles_and_quads_are_exact_for_affine_ma
         np.testing.assert_allclose(f, np.broadcast_to(affine, f.shape), rtol=1e-12)
 
 
-def test_an_assemblys_bodies_carry_strains_but_no_stress_they_cannot_state(tmp_path):
-    # each body's rubber (shear modulus 3 and 1 here) and growth are not applied to the stress:
-    # it is left out, not written with the wrong modulus
-    import json
+def test_an_assemblys_bodies_carry_the_stresses_of_their_own_rubbers(tmp_path):
+    # the two-layer strip: backing shear modulus 3, cover 1 (MPa). Neo-Hookean von Mises stress from the
+    # written principal stretches alone: mu J^(-5/3) sqrt(3/2 |dev(lambda^2)|^2)
     from pathlib import Path
-
-    from sectiondeform.assembly import assembly_from_dict
-    from sectiondeform.assembly_deform import deform_assembly
 
     strip = json.loads((Path(__file__).parent / "data" / "cases" / "v2" / "two-layer-strip.json").read_text())
     result = deform_assembly(assembly_from_dict(strip), model="hyperelastic")
-    for body in result.to_json(fields=True)["bodies"]:
-        assert body["fields"]["kind"] == "mechanical"
-        assert "J" in body["fields"] and "von_mises_stress" not in body["fields"]
+    for body, mu in zip(result.to_json(fields=True)["bodies"], (3.0, 1.0)):
+        fields = body["fields"]
+        assert fields["kind"] == "mechanical" and "MPa" in fields["note"]
+        lam = np.asarray(fields["principal_stretches"])
+        squares = lam**2
+        dev = squares - squares.mean(axis=1, keepdims=True)
+        vm = mu * np.prod(lam, axis=1) ** (-5 / 3) * np.sqrt(1.5 * np.sum(dev**2, axis=1))
+        np.testing.assert_allclose(fields["von_mises_stress"], vm, rtol=1e-9)
+        assert len(fields["pressure"]) == len(vm) and np.all(np.isfinite(fields["pressure"]))

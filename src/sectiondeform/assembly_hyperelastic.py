@@ -150,10 +150,21 @@ class _BodyMesh:
 
 @dataclass(frozen=True, eq=False)
 class JointState:
-    """A solved state of the whole assembly and the out-of-plane stretches (one per body) it was solved for."""
+    """A solved state of the whole assembly and the out-of-plane stretches (one per body) it was solved for.
+
+    Also what the bodies' stresses need beyond their meshes
+    (:func:`~sectiondeform.strain_fields.result_mechanics`): ``materials``,
+    each body's rubber; ``pressure_dofs``, per body an ``(M_b, 3)`` int
+    array, the entries of ``state.z`` holding the pressure unknown at its
+    elements' corners (in the order of its final mesh's cells); ``growth``,
+    True when ``stretches`` are volumetric growths (bodies of revolution).
+    """
 
     state: State
     stretches: tuple
+    materials: tuple = ()
+    pressure_dofs: tuple = ()
+    growth: bool = False
 
 
 class JointHyperelastic:
@@ -232,6 +243,7 @@ class JointHyperelastic:
         self.reference = State(z_ref, 1.0, self.solver.tangent(self.physics.fields(z_ref, 1.0)))
         self.body_meshes = tuple(self._body_mesh(b, geom, len(pattern.free), options.elements_through_thickness)
                                  for b in range(len(a.bodies)))
+        self.pressure_dofs = tuple(2 * n + cells[bm.elements, :3] for bm in self.body_meshes)
 
     plane = True
     """Plane sections: ``stretches`` are the bodies' out-of-plane stretches (else growths, reported as 1)."""
@@ -362,7 +374,7 @@ class JointHyperelastic:
                 area_correction=float(correction), out_of_plane_stretch=float(stretches[b]) if self.plane else 1.0,
             )
 
-        return (*self._finish(curve, laws, state.z, f, info), JointState(state, stretches))
+        return (*self._finish(curve, laws, state.z, f, info), JointState(state, stretches, self.materials, self.pressure_dofs, not self.plane))
 
     def preview(self, curve, laws: tuple, start: JointState | None = None) -> tuple[list, list, list, JointState | None]:
         """Drag preview: one linear step from ``start`` (or the undeformed assembly), no new factorisation.

@@ -5,7 +5,10 @@ one union mesh, the support bonded to the target, shared pieces bonded by
 their shared nodes, one Newton solve) except two things:
 
 * the mechanics are axisymmetric
-  (:class:`~sectiondeform.fem.axisymmetric.AxisymmetricNeoHooke`): the hoop
+  (:class:`~sectiondeform.fem.axisymmetric.AxisymmetricNeoHooke` for
+  neo-Hookean bodies, in closed form, else
+  :class:`~sectiondeform.fem.axisymmetric.AxisymmetricRubber`: each body's
+  neo-Hookean, Mooney–Rivlin or Yeoh rubber, moduli as given): the hoop
   stretch at each point is its current distance from the case's axis over
   its initial one, integrals are weighted by the radius, and a body's
   ``volume_ratio`` v is an isotropic volumetric growth of that body (cure
@@ -27,8 +30,8 @@ import copy
 import numpy as np
 
 from .assembly_hyperelastic import JointHyperelastic
-from .errors import CaseError, LawError
-from .fem.axisymmetric import AxisymmetricNeoHooke
+from .errors import LawError
+from .fem.axisymmetric import AxisymmetricNeoHooke, AxisymmetricRubber
 from .materials import NeoHookean
 from .pappus import axis_frame, signed_distance
 
@@ -139,18 +142,17 @@ class JointRevolution(JointHyperelastic):
         return tuple(float(law.ratio) if law.measure == "volume" else 1.0 for law in laws)
 
     def _physics(self, cells, geom, kappa, mu):
+        """The axisymmetric problem: neo-Hookean bodies in closed form, any other rubber through the materials."""
         a = self.assembly
-        for i, m in enumerate(self.materials):
-            if type(m) is not NeoHookean:
-                raise CaseError(f"bodies[{i}].material.model", f"{a.label(i)}: the hyperelastic model of bodies of revolution "
-                                "takes neo-Hookean bodies only; give its shear_modulus, or use the paper model (--model paper)")
         axis = a.revolution.axis
         origin, rot = axis_frame(axis)
         side = signed_distance(np.concatenate([s.contour for s in self.sections]), axis)
         normal = rot[1] if side[np.argmax(np.abs(side))] > 0 else -rot[1]
         self.stretches = self.stretches_of(tuple(body.law for body in a.bodies))
-        return AxisymmetricNeoHooke(cells, self.mesh.nodes, geom, origin, normal, kappa, mu,
-                                    np.log(self.stretches)[self.mesh.body])
+        ln_growth = np.log(self.stretches)[self.mesh.body]
+        if all(type(m) is NeoHookean for m in self.materials):
+            return AxisymmetricNeoHooke(cells, self.mesh.nodes, geom, origin, normal, kappa, mu, ln_growth)
+        return AxisymmetricRubber(cells, self.mesh.nodes, geom, origin, normal, self.materials, self.mesh.body, ln_growth)
 
     def _physics_for(self, stretches: tuple):
         physics = copy.copy(self.physics)

@@ -81,12 +81,15 @@ class BodyResult:
         """(final - target) / target of the law's quantity."""
         return (self.final - self.target) / self.target
 
-    def to_json(self, meshes: bool = True, fields: bool = False, model: str = "paper", axis=None) -> dict:
+    def to_json(self, meshes: bool = True, fields: bool = False, model: str = "paper", axis=None,
+                mechanics=None) -> dict:
         """The body's object of ``section-result/2``, with the project's extra keys.
 
         ``fields``: add the per-element fields of the ``model``'s meshes
         (:func:`~sectiondeform.strain_fields.result_fields`; with the
-        revolution ``axis``, the hoop stretch out of the plane).
+        revolution ``axis``, the hoop stretch out of the plane; with the
+        body's ``mechanics``, its von Mises stress and pressure in the unit
+        of its material).
         """
         out = {
             "name": self.name,
@@ -103,12 +106,11 @@ class BodyResult:
         if meshes:
             out["meshes"] = {"initial": self.initial_mesh.to_json(), "final": self.final_mesh.to_json()}
         if fields:
-            from .geometric_fields import fields_to_json
-            from .strain_fields import result_fields
+            from .strain_fields import fields_json, result_fields
 
             kind, values = result_fields(self.initial_mesh, self.final_mesh, model,
-                                         getattr(self.info, "out_of_plane_stretch", 1.0), axis, stress=False)
-            out["fields"] = fields_to_json(values, kind)
+                                         getattr(self.info, "out_of_plane_stretch", 1.0), axis, mechanics)
+            out["fields"] = fields_json(kind, values, mechanics)
         return out
 
 
@@ -167,13 +169,20 @@ class AssemblyResult:
             Include each body's meshes under ``"meshes"``.
         fields : bool
             Include each body's per-element fields under ``"fields"`` (geometric
-            for the paper model; with the hoop stretch for bodies of revolution).
+            for the paper model; with the hoop stretch for bodies of revolution;
+            the hyperelastic model's with each body's von Mises stress and
+            pressure, in the unit of its material's moduli).
         """
+        mechanics = [None] * len(self.bodies)
+        if fields:
+            from .strain_fields import result_mechanics
+
+            mechanics = result_mechanics(self)
         out = {
             "format": ASSEMBLY_RESULT_FORMAT,
             "name": self.name,
             "units": self.units,
-            "bodies": [b.to_json(meshes, fields, self.model, self.axis) for b in self.bodies],
+            "bodies": [b.to_json(meshes, fields, self.model, self.axis, m) for b, m in zip(self.bodies, mechanics)],
             "model": self.model,
             "timings": self.timings,
             "warnings": list(self.warnings),

@@ -4,7 +4,11 @@ One panel: each element of the final mesh (every body's, for an assembly)
 filled with the colour of one scalar field of :mod:`sectiondeform.strain_fields`,
 clipped to the deformed section, its outline drawn over it, with a colour
 bar naming the field and its kind. For the paper model the field is the
-geometric one of that name (``geometric_J`` for ``J``), and says so.
+geometric one of that name (``geometric_J`` for ``J``), and says so. The
+stresses (``von_mises_stress``, ``pressure``: hyperelastic model only) are
+labelled with their unit: × shear modulus for a one-body section (its
+modulus is relative), the unit of the bodies' material moduli for an
+assembly (MPa as the case gives them).
 """
 
 from __future__ import annotations
@@ -12,17 +16,19 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import CaseError
-from .strain_fields import result_fields
+from .strain_fields import result_fields, result_mechanics
 
-__all__ = ["PLOT_FIELDS", "check_plot_field", "draw_field", "save_field_figure"]
+__all__ = ["PLOT_FIELDS", "STRESS_FIELDS", "check_plot_field", "field_values", "draw_field", "save_field_figure", "stress_unit"]
 
 PLOT_FIELDS = {
     "max_principal_strain": ("max_principal_strain", None, "largest principal strain λ₁ − 1"),
     "J": ("J", None, "J = det F, local volume ratio"),
     "max_principal_stretch": ("principal_stretches", 0, "largest principal stretch λ₁"),
     "min_principal_stretch": ("principal_stretches", 2, "smallest principal stretch λ₃"),
-    "von_mises_stress": ("von_mises_stress", None, "von Mises stress / shear modulus"),
+    "von_mises_stress": ("von_mises_stress", None, "von Mises stress"),
+    "pressure": ("pressure", None, "pressure −tr σ / 3 (positive in compression)"),
 }
+STRESS_FIELDS = ("von_mises_stress", "pressure")
 
 
 def check_plot_field(name: str) -> str:
@@ -53,25 +59,38 @@ def field_values(result, name: str) -> tuple[str, list[np.ndarray]]:
     kind : str
     values : list of (M_b,) float64 ndarray
         One array per body, one value per element of its final mesh.
+
+    Raises
+    ------
+    CaseError
+        For a stress of the paper model (no material), or the pressure of a
+        drag preview (its state is not a solution).
     """
     key, column, _ = PLOT_FIELDS[check_plot_field(name)]
     axis = getattr(result, "axis", None)
     kind, out = "geometric", []
-    for initial, final, _contour, info in _pieces(result):
-        assembly = hasattr(result, "bodies")
-        kind, fields = result_fields(initial, final, result.model, getattr(info, "out_of_plane_stretch", 1.0), axis,
-                                     stress=not assembly)
+    mechanics = result_mechanics(result)
+    for (initial, final, _contour, info), mech in zip(_pieces(result), mechanics):
+        kind, fields = result_fields(initial, final, result.model, getattr(info, "out_of_plane_stretch", 1.0), axis, mech)
         values = fields.get(key if kind == "mechanical" else f"geometric_{key}")
-        if values is None and kind == "geometric" and key == "von_mises_stress":
-            raise CaseError("--plot-field", "von_mises_stress is a stress and the paper model has no material; "
+        if values is None and kind == "geometric" and key in STRESS_FIELDS:
+            raise CaseError("--plot-field", f"{name} is a stress and the paper model has no material; "
                             "use --model hyperelastic or a strain field")
-        if values is None and assembly and key == "von_mises_stress":
-            raise CaseError("--plot-field", "von_mises_stress is not written for an assembly's bodies yet (each body's "
-                            "own rubber and growth are not applied to it); plot a strain field")
+        if values is None and key in STRESS_FIELDS:
+            raise CaseError("--plot-field", f"no {name} for a drag preview (its state is not a solution); "
+                            "deform to plot a stress")
         if values is None:
             raise CaseError("--plot-field", f"no {name} for this result's {final.kind} mesh")
         out.append(values if column is None else values[:, column])
     return kind, out
+
+
+def stress_unit(result) -> str:
+    """The unit of a hyperelastic result's stresses, for a label: ``× shear modulus`` (relative) or its material's."""
+    mechanics = [m for m in result_mechanics(result) if m is not None]
+    if mechanics and all(m.relative for m in mechanics):
+        return "× shear modulus"
+    return "unit of the bodies' moduli, MPa as given"
 
 
 def draw_field(result, name: str, fig=None):
@@ -97,7 +116,10 @@ def draw_field(result, name: str, fig=None):
         outline = Polygon(contour, closed=True, facecolor="none", edgecolor="k", lw=0.8)
         ax.add_patch(outline)
         collection.set_clip_path(outline)  # the paper model's mesh may reach beyond the body
-    label = PLOT_FIELDS[name][2] + ("\n(geometric: the paper model's mesh, not a material)" if kind == "geometric" else "")
+    label = PLOT_FIELDS[name][2]
+    if name in STRESS_FIELDS:
+        label += f" ({stress_unit(result)})"
+    label += "\n(geometric: the paper model's mesh, not a material)" if kind == "geometric" else ""
     fig.colorbar(collection, ax=ax, label=label, shrink=0.8)
     ax.set_aspect("equal")
     ax.autoscale_view()

@@ -105,7 +105,8 @@ class Result:
             Include both meshes under ``"meshes"``.
         fields : bool
             Include the per-element fields under ``"fields"``: the hyperelastic
-            model's strains, or the paper model's geometric fields
+            model's strains, von Mises stress and pressure (units of the
+            shear modulus), or the paper model's geometric fields
             (:mod:`sectiondeform.strain_fields`).
         """
         out = {
@@ -130,9 +131,10 @@ class Result:
         if meshes:
             out["meshes"] = {"initial": self.initial_mesh.to_json(), "final": self.final_mesh.to_json()}
         if fields:
-            from .geometric_fields import fields_to_json
-            from .strain_fields import result_fields
+            from .strain_fields import fields_json, result_fields, result_mechanics
 
             lz = getattr(self.info, "out_of_plane_stretch", 1.0)
-            out["fields"] = fields_to_json(*result_fields(self.initial_mesh, self.final_mesh, self.model, lz)[::-1])
+            mechanics = result_mechanics(self)[0]
+            kind, values = result_fields(self.initial_mesh, self.final_mesh, self.model, lz, mechanics=mechanics)
+            out["fields"] = fields_json(kind, values, mechanics)
         return out

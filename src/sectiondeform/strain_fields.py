@@ -19,12 +19,28 @@ data, in element order):
 ``max_principal_strain`` ``(M,)``
     λ₁ − 1 (nominal, the rubber-testing convention).
 ``von_mises_stress`` ``(M,)``
-    Hyperelastic model only: √(3/2 s:s) of the Cauchy stress of its
-    neo-Hookean rubber at F, in units of the shear modulus (the model's
-    modulus is relative: a one-body case's shape does not depend on it).
-    The von Mises stress needs only the stress deviator, which F gives
-    exactly; the pressure, set by the solution's independent pressure
-    field, is not written.
+    Hyperelastic model only: √(3/2 s:s), s the deviator of the Cauchy
+    stress of the element's rubber at F (at ``c^(-1/3) F`` for a body of
+    revolution grown by ``c``: the elastic part). The deviator is the
+    solution's: F gives it exactly.
+``pressure`` ``(M,)``
+    Hyperelastic model only, solved results: the hydrostatic pressure
+    p = −tr σ / 3, **positive in compression** (Abaqus PRESS). It is the
+    solution's own pressure field (the mixed formulation's independent
+    unknown, linear on each element, read at the element's centre), not
+    κ (J − 1) from F: in a nearly incompressible solve J − 1 is of the
+    order of the stress over κ and its rounding and discretisation errors
+    are multiplied by κ, while the pressure field is the one equilibrium
+    holds with. Its sign in the solver is the opposite (the unknown is the
+    mean stress tr σ / 3, positive in tension).
+
+Stress units: those of the rubber's moduli. A one-body section's rubber is
+neo-Hookean with a relative shear modulus (its shape does not depend on
+it): its stresses are in units of the shear modulus ("× shear modulus").
+An assembly's bodies each have their own rubber (``material``, in the unit
+the case gives, MPa by convention; shear modulus 1 for a body without one):
+their stresses are in that unit. A drag preview carries strains only (its
+state is not a solution). The stresses need :func:`result_mechanics`.
 
 For the hyperelastic model these are the solution's strains. The paper
 model has no material: the same measures of its constructed mesh are
@@ -34,6 +50,8 @@ model has no material: the same measures of its constructed mesh are
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from .fem.elements import p2_gradients
@@ -42,9 +60,45 @@ from .materials.models import NeoHookean, gradient_3d
 from .models.base import MeshData
 from .pappus import signed_distance
 
-__all__ = ["element_gradients", "element_centres", "strain_fields", "result_fields", "STRAIN_NOTE"]
+__all__ = ["element_gradients", "element_centres", "strain_fields", "result_fields", "result_mechanics", "Mechanics",
+           "fields_json", "STRAIN_NOTE", "STRESS_NOTES"]
 
 STRAIN_NOTE = "deformation gradient at each element's centre; hoop stretch r/R for bodies of revolution"
+STRESS_NOTES = {
+    True: ("strains of the hyperelastic model's solution; von_mises_stress and pressure (-tr(sigma)/3, positive in "
+           "compression, the solution's pressure field) in units of the shear modulus (x shear modulus: the "
+           "model's modulus is relative)"),
+    False: ("strains of the hyperelastic model's solution; von_mises_stress and pressure (-tr(sigma)/3, positive in "
+            "compression, the solution's pressure field) in the unit of each body's material moduli (MPa as the "
+            "case gives them; relative to a shear modulus of 1 for a body without a material)"),
+}
+"""The ``note`` of a hyperelastic result's ``fields`` object, by whether its modulus is relative."""
+
+
+@dataclass(frozen=True, eq=False)
+class Mechanics:
+    """What the stresses of a hyperelastic result's elements need beyond its meshes.
+
+    Attributes
+    ----------
+    material : NeoHookean or MooneyRivlin or Yeoh
+        The rubber of the elements (moduli in MPa, or relative).
+    mean_stress : (M,) float64 ndarray or None
+        The solution's pressure unknown at each element's centre: the mean
+        Cauchy stress tr σ / 3, positive in tension, units of the moduli.
+        None for a state that is not a solution (a drag preview).
+    growth : float
+        Volumetric growth c of the elements (bodies of revolution under a
+        volume law); 1 otherwise.
+    relative : bool
+        The moduli are relative (a one-body section): stresses in units of
+        the shear modulus.
+    """
+
+    material: object
+    mean_stress: np.ndarray | None = None
+    growth: float = 1.0
+    relative: bool = False
 
 _QUAD_CENTRE = 0.25 * np.array([[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]])  # dN/d(xi, eta) at (0, 0)
 _TRI_CENTRE = np.array([[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]])  # linear: constant
@@ -94,7 +148,7 @@ def element_centres(mesh: MeshData) -> np.ndarray:
 
 
 def strain_fields(initial: MeshData, final: MeshData, out_of_plane: float = 1.0, axis=None,
-                  material=None) -> dict[str, np.ndarray]:
+                  material=None, mean_stress=None, growth: float = 1.0) -> dict[str, np.ndarray]:
     """The strain fields of the module docstring, one row per element.
 
     Parameters
@@ -109,6 +163,12 @@ def strain_fields(initial: MeshData, final: MeshData, out_of_plane: float = 1.0,
     material : optional
         A rubber of :mod:`sectiondeform.materials` (``cauchy(F)``): adds
         ``von_mises_stress`` in the units of its moduli.
+    mean_stress : (M,) float64 ndarray, optional
+        The solution's pressure unknown at each element's centre (tr σ / 3,
+        units of the moduli): adds ``pressure``, its opposite.
+    growth : float
+        Volumetric growth of the elements: the stress is the rubber's at
+        ``growth^(-1/3) F``.
 
     Returns
     -------
@@ -131,12 +191,66 @@ def strain_fields(initial: MeshData, final: MeshData, out_of_plane: float = 1.0,
         "max_principal_strain": max_principal_strain(F),
     }
     if material is not None:
-        out["von_mises_stress"] = von_mises(material.cauchy(F))
+        elastic = F if growth == 1.0 else F * float(growth) ** (-1.0 / 3.0)
+        out["von_mises_stress"] = von_mises(material.cauchy(elastic))
+    if mean_stress is not None:
+        mean_stress = np.asarray(mean_stress, dtype=np.float64)
+        if mean_stress.shape != (len(F),):
+            raise ValueError(f"mean_stress: expected one value per element ({len(F)}), got shape {mean_stress.shape}")
+        out["pressure"] = -mean_stress
+    return out
+
+
+def _mean_stress(z: np.ndarray, dofs: np.ndarray) -> np.ndarray:
+    """The P1 pressure unknown at each element's centre: the mean of its corners', ``(M,)``."""
+    return z[dofs].mean(axis=1)
+
+
+def result_mechanics(result) -> list:
+    """Per body of a hyperelastic result, what its stresses need (:class:`Mechanics`); None where there is none.
+
+    Parameters
+    ----------
+    result : Result or AssemblyResult
+
+    Returns
+    -------
+    list of Mechanics or None
+        One entry per body (one for a :class:`~sectiondeform.result.Result`).
+        A one-body section's rubber is neo-Hookean, shear modulus 1 (the
+        model's, relative); an assembly's bodies have theirs, read from the
+        solved state. None for the paper model, and for a drag preview of
+        an assembly; a preview's ``mean_stress`` is None (its state is not a
+        solution).
+    """
+    bodies = getattr(result, "bodies", None)
+    count = 1 if bodies is None else len(bodies)
+    if result.model != "hyperelastic":
+        return [None] * count
+    state = getattr(result, "state", None)
+    if bodies is None:
+        preview = getattr(result.info, "preview", False)
+        mean = None
+        cells = np.asarray(result.final_mesh.cells)
+        z = getattr(state, "z", None)
+        if not preview and z is not None and result.final_mesh.kind == "triangle6":
+            dofs = 2 * len(result.final_mesh.points) + cells[:, :3]
+            if z.shape == (int(dofs.max()) + 1,):
+                mean = _mean_stress(z, dofs)
+        return [Mechanics(NeoHookean(1.0), mean, 1.0, relative=True)]
+    if not getattr(state, "materials", ()):
+        return [None] * count
+    out = []
+    for b, body in enumerate(bodies):
+        preview = getattr(body.info, "preview", False)
+        mean = None if preview else _mean_stress(state.state.z, state.pressure_dofs[b])
+        growth = float(state.stretches[b]) if state.growth else 1.0
+        out.append(Mechanics(state.materials[b], mean, growth))
     return out
 
 
 def result_fields(initial: MeshData, final: MeshData, model: str, out_of_plane: float = 1.0,
-                  axis=None, stress: bool = True) -> tuple[str, dict[str, np.ndarray]]:
+                  axis=None, mechanics: Mechanics | None = None) -> tuple[str, dict[str, np.ndarray]]:
     """All per-element fields of a result, and their kind.
 
     Parameters
@@ -148,26 +262,37 @@ def result_fields(initial: MeshData, final: MeshData, model: str, out_of_plane: 
         The hyperelastic model's out-of-plane stretch (its ``info``).
     axis : optional
         The revolution axis of a body of revolution.
-    stress : bool
-        Add the hyperelastic model's von Mises stress (a one-body section:
-        its neo-Hookean rubber, relative modulus). False for a body of an
-        assembly, whose own rubber, modulus and growth the stress would
-        need: it is left out rather than written wrong.
+    mechanics : Mechanics, optional
+        The hyperelastic body's rubber, pressure field and growth
+        (:func:`result_mechanics`): adds ``von_mises_stress`` and, for a
+        solution, ``pressure``. Without it, strains only.
 
     Returns
     -------
     kind : str
         ``"mechanical"`` for the hyperelastic model, ``"geometric"`` otherwise.
     fields : dict of str to ndarray
-        The hyperelastic model's strain fields and von Mises stress
-        (relative to its shear modulus); for the paper model its
-        geometric fields (:mod:`sectiondeform.geometric_fields`) and the
-        strain fields of its mesh (out-of-plane stretch 1, or the hoop
-        stretch), prefixed ``geometric_``.
+        The hyperelastic model's strain fields and stresses; for the paper
+        model its geometric fields (:mod:`sectiondeform.geometric_fields`)
+        and the strain fields of its mesh (out-of-plane stretch 1, or the
+        hoop stretch), prefixed ``geometric_``.
     """
-    if model == "hyperelastic":  # its rubber: neo-Hookean, shear modulus 1 (relative)
-        return "mechanical", strain_fields(initial, final, out_of_plane, axis, NeoHookean(1.0) if stress else None)
+    if model == "hyperelastic":
+        if mechanics is None:
+            return "mechanical", strain_fields(initial, final, out_of_plane, axis)
+        return "mechanical", strain_fields(initial, final, out_of_plane, axis, mechanics.material,
+                                           mechanics.mean_stress, mechanics.growth)
     from .geometric_fields import geometric_fields
 
     strains = strain_fields(initial, final, 1.0, axis)
     return "geometric", {**geometric_fields(initial, final), **{f"geometric_{k}": v for k, v in strains.items()}}
+
+
+def fields_json(kind: str, values: dict, mechanics: Mechanics | None) -> dict:
+    """The ``fields`` object of one body (:func:`~sectiondeform.geometric_fields.fields_to_json`), its note naming the stress units."""
+    from .geometric_fields import fields_to_json
+
+    out = fields_to_json(values, kind)
+    if out and mechanics is not None:
+        out["note"] = STRESS_NOTES[mechanics.relative]
+    return out

@@ -13,15 +13,12 @@ __all__ = ["run_assembly", "assembly_summary"]
 
 
 def _refuse_unsupported(args) -> None:
-    """Refuse, before any work, what an assembly cannot do yet (one law, spline DXF, fields in meshes)."""
+    """Refuse, before any work, what an assembly cannot do yet (one law, spline DXF)."""
     drawing = getattr(args, "case", None) is not None and args.case.suffix.lower() in (".dxf", ".svg")
     if getattr(args, "area_ratio", None) is not None and not drawing:  # a drawing's reader gives it to every body
         raise CaseError("--area-ratio", "an assembly has one law per body; set each body's law in the case")
     if getattr(args, "dxf_spline", False):
         raise CaseError("--dxf-spline", "not available for assemblies; their DXF curves are polylines")
-    meshes = args.output.suffix.lower() != ".json" or getattr(args, "mesh_out", None) or getattr(args, "initial_mesh_out", None)
-    if getattr(args, "fields", False) and meshes:
-        raise CaseError("--fields", "an assembly's geometric fields go to the result JSON only; leave out the other outputs")
     if getattr(args, "element_size", None) is not None and not args.element_size > 0:
         raise CaseError("--element-size", f"must be > 0, got {args.element_size}")
 
@@ -54,7 +51,10 @@ def run_assembly(args, assembly: Assembly, report: list) -> int:
     if ext == ".json":
         write_result(args.output, result, meshes=not args.no_meshes, fields=getattr(args, "fields", False))
     else:  # DXF and SVG draw the support and target too; mesh formats tag each body (sectiondeform.io.assembly)
-        write_result(args.output, result, **({"case": assembly} if ext in (".dxf", ".svg") else {}))
+        options = {"case": assembly} if ext in (".dxf", ".svg") else {}
+        if getattr(args, "fields", False) and ext in (".vtu", ".vtk", ".msh"):
+            options["fields"] = True
+        write_result(args.output, result, **options)
     meshes = write_meshes(args, result)
     if args.plot:
         from .deform import save_plot

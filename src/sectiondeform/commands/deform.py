@@ -29,10 +29,12 @@ def add_args(parser) -> None:
     parser.add_argument("--no-meshes", action="store_true", help="leave the meshes out of the result JSON")
     parser.add_argument("--fields", action="store_true",
                         help="add per-element fields to the result JSON and the meshes written: principal stretches, J, "
-                             "Green-Lagrange strain (hyperelastic model); the paper model's geometric ones")
+                             "Green-Lagrange strain, von Mises stress and pressure (hyperelastic model); the paper "
+                             "model's geometric ones")
     parser.add_argument("--plot-field", metavar="FIELD",
                         help="draw the --plot figure as a colour map of FIELD on the deformed mesh: max_principal_strain, J, "
-                             "max_principal_stretch, min_principal_stretch (geometric for the paper model) or von_mises_stress")
+                             "max_principal_stretch, min_principal_stretch (geometric for the paper model), von_mises_stress or "
+                             "pressure (hyperelastic model)")
     add_model_args(parser)
     add_input_args(parser)
     add_output_args(parser)

@@ -1,4 +1,4 @@
-"""Vectorised assembly of the mixed neo-Hookean problem of a body of revolution.
+"""Vectorised assembly of the mixed problem of a body of revolution: neo-Hookean in closed form, or any rubber.
 
 The section lies in a half-plane bounded by the axis; a point ``X`` of it is
 at the distance ``R = n · (X − a)`` from the axis (``a`` a point of the
@@ -34,6 +34,13 @@ node positions to ``f`` at a quadrature point::
 ``c = 1`` is plain near-incompressibility. The growth follows a path
 parameter ``s`` of the Newton solver (its ``lz``): ``c = exp(ln s · ln v)``,
 so ``s = 1`` is the undeformed state and ``s = e`` every body's own ratio.
+
+:class:`AxisymmetricRubber` replaces the closed-form isochoric part
+``c μ (a I1 − 3) / 2`` by ``c W_iso(F3)`` of any rubber of
+:mod:`sectiondeform.materials` (Mooney–Rivlin, Yeoh), its stress and
+tangent taken from the material on the five components; the pressure
+part is the same. In both, the pressure unknown ``p`` is the mean Cauchy
+stress tr σ / 3 (the isochoric part's Cauchy stress is deviatoric).
 """
 
 from __future__ import annotations
@@ -43,9 +50,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..materials.models import gradient_3d
 from .elements import QUAD_POINTS, Geometry, p2_values
 
-__all__ = ["AxisymmetricNeoHooke", "AxisymmetricFields"]
+__all__ = ["AxisymmetricNeoHooke", "AxisymmetricRubber", "AxisymmetricFields"]
 
 _I = np.array([0, 0, 1, 1, 2])
 _J = np.array([0, 1, 0, 1, 2])
@@ -189,7 +197,20 @@ class AxisymmetricNeoHooke:
     def _stress(self, f: AxisymmetricFields) -> np.ndarray:
         """``P`` (five components) at the quadrature points, ``(E, q, 5)``."""
         fv, gv, _, shear = self._vectors(f)
-        return shear[..., None] * (fv - (f.i1 / 3.0)[..., None] * gv) + (f.p * f.J)[..., None] * gv
+        return self._iso_stress(f, fv, gv, shear) + (f.p * f.J)[..., None] * gv
+
+    def _iso_stress(self, f: AxisymmetricFields, fv, gv, shear) -> np.ndarray:
+        """The isochoric part of ``P`` (five components), ``(E, q, 5)``: closed-form neo-Hookean."""
+        return shear[..., None] * (fv - (f.i1 / 3.0)[..., None] * gv)
+
+    def _iso_tangent(self, f: AxisymmetricFields, fv, gv, it, shear) -> np.ndarray:
+        """The isochoric part of ``A`` on the five components, ``(E, q, 5, 5)``: closed-form neo-Hookean."""
+        cross = it[..., _I[:, None], _J[None, :]]  # [m, n] = G_{i_m J_n}
+        swap = cross * cross.swapaxes(-1, -2)  # G_iL G_kJ
+        gg = gv[..., :, None] * gv[..., None, :]
+        fg = fv[..., :, None] * gv[..., None, :]
+        s, i1 = shear[..., None, None], f.i1[..., None, None]
+        return s * (_DELTA - 2.0 / 3.0 * (fg + fg.swapaxes(-1, -2)) + 2.0 * i1 / 9.0 * gg + i1 / 3.0 * swap)
 
     def _pressure_residual(self, f: AxisymmetricFields) -> np.ndarray:
         return (f.J - f.growth - f.growth * f.p / self.kappa) * self.wr
@@ -211,9 +232,7 @@ class AxisymmetricNeoHooke:
         cross = it[..., _I[:, None], _J[None, :]]  # [m, n] = G_{i_m J_n}
         swap = cross * cross.swapaxes(-1, -2)  # G_iL G_kJ
         gg = gv[..., :, None] * gv[..., None, :]
-        fg = fv[..., :, None] * gv[..., None, :]
-        s, i1, pj = shear[..., None, None], f.i1[..., None, None], (f.p * f.J)[..., None, None]
-        A = s * (_DELTA - 2.0 / 3.0 * (fg + fg.swapaxes(-1, -2)) + 2.0 * i1 / 9.0 * gg + i1 / 3.0 * swap) + pj * (gg - swap)
+        A = self._iso_tangent(f, fv, gv, it, shear) + (f.p * f.J)[..., None, None] * (gg - swap)
         wB = self.B * self.wr[..., None, None]
         kxx = np.einsum("eqmr,eqmn,eqns->ers", wB, A, self.B, optimize=True)
         kxp = np.einsum("eqmr,eqm,eq,qb->erb", wB, gv, f.J, self.geom.pvalues, optimize=True)
@@ -224,3 +243,74 @@ class AxisymmetricNeoHooke:
         out[:, 12:, :12] = kxp.transpose(0, 2, 1)
         out[:, 12:, 12:] = kpp
         return out
+
+
+class AxisymmetricRubber(AxisymmetricNeoHooke):
+    """The problem of :class:`AxisymmetricNeoHooke` for any rubber of :mod:`sectiondeform.materials`.
+
+    What :class:`~.rubber.MixedRubber` is to the plane problem: the
+    kinematics, the pressure and the growth are the neo-Hookean class's; the
+    isochoric stress and tangent come from the materials (neo-Hookean,
+    Mooney–Rivlin, Yeoh), one per body, evaluated on ``F3`` and restricted
+    to its five varying components. The isochoric energy does not see an
+    isotropic growth (``Ī₁``, ``Ī₂`` of ``F`` and of ``c^(-1/3) F`` are the
+    same), so per unit initial volume it is ``c W_iso(F3)``::
+
+        P = c P_iso(F3) + p J F3^-T,    A = c A_iso(F3) + p J (G ⊗ G − G_iL G_kJ),   G = F3^-T
+
+    With a neo-Hookean material of shear modulus μ this is
+    :class:`AxisymmetricNeoHooke` with that μ, to rounding.
+
+    Parameters
+    ----------
+    cells, nodes, geom, origin, normal : as :class:`AxisymmetricNeoHooke`
+    materials : sequence of NeoHookean or MooneyRivlin or Yeoh
+        The rubbers (one per body), moduli in their own unit (MPa or relative).
+    body : (E,) int ndarray, optional
+        Index into ``materials`` of each element; all 0 by default.
+    ln_growth : float or (E,) float64 ndarray
+        ``ln v`` of each element's volume ratio (0: no growth).
+
+    Examples
+    --------
+    >>> from sectiondeform.fem.elements import geometry
+    >>> from sectiondeform.materials import MooneyRivlin
+    >>> nodes = np.array([[0, 1], [1, 1], [0, 2], [.5, 1], [.5, 1.5], [0, 1.5]], float)
+    >>> cells = np.arange(6)[None]
+    >>> phys = AxisymmetricRubber(cells, nodes, geometry(nodes, cells), [0, 0], [0, 1], [MooneyRivlin(0.3, 0.1)])
+    >>> z = np.concatenate((nodes.ravel(), np.zeros(3)))
+    >>> bool(np.abs(phys.residual(phys.fields(z, 1.0))).max() < 1e-12)   # the undeformed state is free
+    True
+    """
+
+    def __init__(self, cells: np.ndarray, nodes: np.ndarray, geom: Geometry, origin, normal, materials,
+                 body: np.ndarray | None = None, ln_growth=0.0):
+        self.materials = tuple(materials)
+        e = len(cells)
+        self.body = np.zeros(e, np.int64) if body is None else np.asarray(body, dtype=np.int64)
+        kappa = np.array([m.kappa for m in self.materials], dtype=np.float64)[self.body]
+        mu = np.array([m.shear_modulus for m in self.materials], dtype=np.float64)[self.body]
+        super().__init__(cells, nodes, geom, origin, normal, kappa, mu, ln_growth)
+        self._groups = [(m, np.flatnonzero(self.body == i)) for i, m in enumerate(self.materials)]
+        self._groups = [(m, idx) for m, idx in self._groups if idx.size]
+
+    def _material(self, f: AxisymmetricFields, tangent: bool):
+        """``c P_iso`` (E, q, 5) and ``c A_iso`` (E, q, 5, 5) or None, from the materials."""
+        e, q = f.det.shape
+        P = np.empty((e, q, 5))
+        A = np.empty((e, q, 5, 5)) if tangent else None
+        for mat, idx in self._groups:
+            F3 = gradient_3d(f.F[idx], f.hoop[idx])
+            c = f.growth[idx][..., None]  # (e_b, 1, 1)
+            P[idx] = c * mat.first_piola(F3, volumetric=False)[..., _I, _J]
+            if tangent:
+                full = mat.tangent(F3, volumetric=False)
+                A[idx] = c[..., None] * full[..., _I[:, None], _J[:, None], _I[None, :], _J[None, :]]
+        return P, A
+
+    def _iso_stress(self, f: AxisymmetricFields, fv, gv, shear) -> np.ndarray:
+        return self._material(f, False)[0]
+
+    def _iso_tangent(self, f: AxisymmetricFields, fv, gv, it, shear) -> np.ndarray:
+        A = self._material(f, True)[1]
+        return 0.5 * (A + A.swapaxes(-1, -2))

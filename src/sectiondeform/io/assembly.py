@@ -823,11 +823,13 @@ def to_meshio(result, which: str = "final"):
                        field_data=field_data)
 
 
-def write_mesh(path, result, which: str = "final") -> None:
+def write_mesh(path, result, which: str = "final", cell_data: dict | None = None) -> None:
     """Write one mesh of every body of an assembly result (.vtu, .vtk, .msh, .inp), atomically.
 
     Gmsh files carry ``gmsh:physical`` = the body tag, named by the field
     data; Abaqus files carry one element set per body, named after it.
+    ``cell_data``: more cell data, name to one array per body (one row per
+    element of its mesh); not in Abaqus files.
 
     Raises
     ------
@@ -847,6 +849,8 @@ def write_mesh(path, result, which: str = "final") -> None:
         raise CaseError(str(path), f"unknown mesh format {ext!r}; use one of {', '.join(FORMATS)}")
     fmt = FORMATS[ext]
     mesh = to_meshio(result, which)
+    for name, blocks in (cell_data or {}).items() if fmt != "abaqus" else ():
+        mesh.cell_data[name] = [np.asarray(v) for v in blocks]
     kwargs = {"binary": True} if fmt in ("gmsh", "vtk") else {}
     if fmt == "gmsh":
         mesh.cell_data["gmsh:physical"] = [t.astype(np.int32) for t in mesh.cell_data["body"]]

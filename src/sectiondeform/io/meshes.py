@@ -14,7 +14,10 @@ mesh ``final`` and ``displacement``; every file has the cell data
 ``element`` (0-based element number). Any other point or cell data (one row
 per node or element, any number of components) is passed through
 :func:`to_meshio`; ``write_mesh(..., fields=True)`` adds the per-element
-strain or geometric fields as cell data (:mod:`sectiondeform.strain_fields`).
+strain or geometric fields as cell data (:mod:`sectiondeform.strain_fields`):
+for the hyperelastic model also ``von_mises_stress`` and ``pressure``
+(−tr σ / 3, positive in compression), in units of the shear modulus for a
+one-body section, in the unit of each body's material for an assembly.
 Abaqus INP carries the mesh only.
 """
 
@@ -121,8 +124,9 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
     fields : bool
         Add the per-element fields as cell data
         (:func:`~sectiondeform.strain_fields.result_fields`: the hyperelastic
-        model's strains, the paper model's geometric fields and its mesh's
-        strains prefixed ``geometric_``; none in Abaqus files). Gmsh files
+        model's strains, von Mises stress and pressure, the paper model's
+        geometric fields and its mesh's strains prefixed ``geometric_``;
+        none in Abaqus files; for an assembly, each body's, in its block). Gmsh files
         take 1, 3 or 9 components per field: the others are split into
         ``name_0``, ``name_1``, ...
 
@@ -136,7 +140,10 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
     if isinstance(result, AssemblyResult):  # one mesh of every body, tagged (sectiondeform.io.assembly)
         from .assembly import write_mesh as write_assembly_mesh
 
-        return write_assembly_mesh(path, result, which)
+        cells = None
+        if fields and FORMATS.get(Path(path).suffix.lower()) not in (None, "abaqus"):
+            cells = assembly_cell_data(result, gmsh=FORMATS[Path(path).suffix.lower()] == "gmsh")
+        return write_assembly_mesh(path, result, which, cell_data=cells)
     meshio = require("meshio", "cad", "writing meshes")
     path = Path(path)
     ext = path.suffix.lower()
@@ -145,10 +152,11 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
     fmt = FORMATS[ext]
     cells = None
     if fields and fmt != "abaqus":
-        from ..strain_fields import result_fields
+        from ..strain_fields import result_fields, result_mechanics
 
         lz = getattr(result.info, "out_of_plane_stretch", 1.0)
-        cells = result_fields(result.initial_mesh, result.final_mesh, result.model, lz)[1]
+        cells = result_fields(result.initial_mesh, result.final_mesh, result.model, lz,
+                              mechanics=result_mechanics(result)[0])[1]
         if fmt == "gmsh":
             cells = _gmsh_components(cells)
     mesh = to_meshio(result, which, data=fmt != "abaqus", cell_data=cells)
@@ -164,6 +172,25 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
             tmp.write_text(re.sub(r"(?i)type\s*=\s*CAX4P\b", "type=CPE4", tmp.read_text()))
 
     atomic_write(path, write)
+
+
+def assembly_cell_data(result, gmsh: bool = False) -> dict:
+    """Each body's per-element fields of an assembly result, as cell data: name to one array per body.
+
+    The fields of :func:`~sectiondeform.strain_fields.result_fields` with each
+    body's mechanics (the hyperelastic model's von Mises stress and pressure
+    in the unit of the body's material); a field some body lacks is left out.
+    ``gmsh``: split the fields Gmsh cannot carry (see :func:`write_mesh`).
+    """
+    from ..strain_fields import result_fields, result_mechanics
+
+    per_body = []
+    for body, mechanics in zip(result.bodies, result_mechanics(result)):
+        lz = getattr(body.info, "out_of_plane_stretch", 1.0)
+        values = result_fields(body.initial_mesh, body.final_mesh, result.model, lz, result.axis, mechanics)[1]
+        per_body.append(_gmsh_components(values) if gmsh else values)
+    names = [k for k in per_body[0] if all(k in v for v in per_body)] if per_body else []
+    return {k: [v[k] for v in per_body] for k in names}
 
 
 def write_result(path, result, fields: bool = False) -> None:
