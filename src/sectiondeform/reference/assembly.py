@@ -138,21 +138,25 @@ def _merge(rings: list[np.ndarray], tol: float) -> tuple[np.ndarray, list[np.nda
 
 def _node_edges(points: np.ndarray, ring: np.ndarray, tol: float) -> list[tuple[int, int]]:
     """The ring's edges, each split at the vertices that lie on it (within ``tol``), as vertex pairs."""
+    import shapely
+
     a = points[ring]
     b = points[np.roll(ring, -1)]
-    d = b - a
-    length2 = np.einsum("ij,ij->i", d, d)
-    rel = points[None, :, :] - a[:, None, :]  # (E, V, 2)
-    t = np.einsum("evk,ek->ev", rel, d) / np.where(length2 > 0, length2, 1.0)[:, None]
-    gap = np.linalg.norm(rel - t[..., None] * d[:, None, :], axis=2)
-    length = np.sqrt(length2)[:, None]
-    on = (gap <= tol) & (t * length > tol) & ((1.0 - t) * length > tol)
+    lines = shapely.linestrings(np.stack((a, b), axis=1))
+    edge, vertex = shapely.STRtree(shapely.points(points)).query(lines, predicate="dwithin", distance=tol)
+    d = (b - a)[edge]
+    length = np.hypot(d[:, 0], d[:, 1])
+    t = np.einsum("kj,kj->k", points[vertex] - a[edge], d) / np.where(length > 0, length * length, 1.0)
+    inner = (t * length > tol) & ((1.0 - t) * length > tol)
+    edge, vertex, t = edge[inner], vertex[inner], t[inner]
+    order = np.lexsort((t, edge))
+    edge, vertex = edge[order], vertex[order]
     edges = []
     for e, (u, w) in enumerate(zip(ring, np.roll(ring, -1))):
         if u == w:
             continue
-        inside = np.flatnonzero(on[e])
-        chain = [int(u)] + [int(v) for v in inside[np.argsort(t[e, inside])]] + [int(w)]
+        inside = vertex[np.searchsorted(edge, e, "left"):np.searchsorted(edge, e, "right")]
+        chain = [int(u), *map(int, inside), int(w)]
         edges += list(zip(chain[:-1], chain[1:]))
     return edges
 

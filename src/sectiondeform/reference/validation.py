@@ -491,7 +491,8 @@ def validate_assembly(
     check_parameters(mesh_size, case.options.for_model("hyperelastic").bulk_to_shear if bulk_to_shear is None else bulk_to_shear)
     whole, fast_s = _time_fast(case, model, max(1, int(fast_runs)))
     if progress is not None:
-        progress(f"validate: {whole.model} model done in {1e3 * fast_s:.1f} ms; solving the reference")
+        progress(f"validate: {whole.model} model done in {1e3 * fast_s:.1f} ms"
+                 f"{'; solving the reference' if reference is None else ''}")
     if reference is None:
         t0 = time.perf_counter()
         reference = solve_assembly_reference(case, mesh_size=mesh_size, bulk_to_shear=bulk_to_shear, progress=progress)
