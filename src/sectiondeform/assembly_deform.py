@@ -431,10 +431,12 @@ class AssemblyDeformer:
         """
         a = self.assembly
         label = a.label
+        rings = [None] * len(results)
         for b, r in enumerate(results):
             if not abs(r.final - r.target) <= AREA_TOLERANCE * r.target:
                 raise LawError(f"{label(b)}: the final {r.measure} {r.final:.9g} misses the target {r.target:.9g} by more than 1e-9")
-            if not shapely.is_simple(shapely.linearrings(r.contour)):
+            rings[b] = shapely.linearrings(r.contour)
+            if not shapely.is_simple(rings[b]):
                 raise GeometryError(f"{label(b)}: the deformed contour crosses itself; the target or the law is too severe for this body")
             if a.revolution is not None:
                 after = signed_distance(r.contour, a.revolution.axis)
@@ -463,7 +465,8 @@ class AssemblyDeformer:
                     if prepared[k] is None:
                         fixed = self.fixed_parts[k]
                         ring = np.concatenate((lowers[k], images[k][1:-1]))
-                        prepared[k] = _Prepared(results[k].contour, ring, results[k].area_final, fixed["inserted"], fixed["anchor"])
+                        prepared[k] = _Prepared(results[k].contour, ring, results[k].area_final, fixed["inserted"], fixed["anchor"],
+                                                rings[k])
                 if _no_overlap(prepared[i], prepared[j], OVERLAP_TOLERANCE):
                     continue
                 for k in (i, j):
@@ -496,6 +499,9 @@ class _Prepared:
     inserted, anchor : (q,) int ndarray
         Positions in ``contour`` of the points not in ``ring``, and of the
         last point of ``ring`` before each.
+    contour_ring : shapely.LinearRing, optional
+        ``contour`` as a ring, already found simple (then, with nothing
+        inserted, the polygon is built on it).
 
     Attributes
     ----------
@@ -507,11 +513,14 @@ class _Prepared:
     area : float
     """
 
-    def __init__(self, contour, ring, area, inserted, anchor):
+    def __init__(self, contour, ring, area, inserted, anchor, contour_ring=None):
         self.sliver = _sliver(contour, inserted, anchor)
         self.area = area
-        simple = not len(inserted) or shapely.is_simple(shapely.linearrings(ring))  # else ring is the contour, checked
-        self.polygon = shapely.Polygon(ring) if simple else None
+        if not len(inserted) and contour_ring is not None:  # the ring is the contour, found simple
+            self.polygon = shapely.polygons(contour_ring)
+            return
+        ring = shapely.linearrings(ring)
+        self.polygon = shapely.polygons(ring) if shapely.is_simple(ring) else None
 
 
 def _sliver(contour: np.ndarray, inserted: np.ndarray, anchor: np.ndarray) -> float:
