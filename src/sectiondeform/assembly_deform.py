@@ -295,6 +295,8 @@ class AssemblyDeformer:
             curve = target
         else:
             curve = Polyline(as_points(target, "target", min_count=2))
+        if not curve.length > 1e-9 * self.assembly.support.length:
+            raise CaseError("target", "the target has zero length")
         if start is not None and not isinstance(start, AssemblyResult):
             raise CaseError("start", f"give an earlier AssemblyResult of this deformer, not {type(start).__name__}")
         n = len(self.bodies)
