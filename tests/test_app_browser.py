@@ -258,3 +258,49 @@ def test_nudge_zoom_pan_and_reset(page):
     assert d["contourHash"] == before["contourHash"]
     page.click("#fit")
     assert page.evaluate("() => sdState.view.s") == pytest.approx(view["s"])
+
+
+
+def test_a_drag_shows_previews_then_the_full_deformation_and_a_late_answer_does_not_hide_the_edit(browser, server):
+    """While dragging, the edited curve is drawn with its answer; if the answer is late, it is drawn alone.
+
+    The server's answers pass through a relay that can hold them (Playwright's WebSocket routing): with
+    answers held, the moved target still appears on screen, no answer drawn; let through, the preview is
+    drawn and labelled as one; on release of the mouse the full deformation replaces it.
+    """
+    context = browser.new_context(viewport={"width": 1200, "height": 700})
+    page = context.new_page()
+    held, relay = [], {"hold": False}
+
+    def route(ws):
+        relay["page"] = ws
+        ws.connect_to_server().on_message(lambda m: held.append(m) if relay["hold"] else ws.send(m))
+
+    page.route_web_socket(re.compile(r".*/ws$"), route)
+    try:
+        page.goto(server)
+        page.wait_for_selector("#view[data-final='1']")
+        before = shown(page)
+        target = page.locator("#target-polygon").get_attribute("d")
+        x, y = centre(page, 'circle[data-curve=target][data-index="1"]')
+        page.mouse.move(x, y)
+        page.mouse.down()
+        relay["hold"] = True
+        page.mouse.move(x, y + 30)
+        page.wait_for_function(f"document.getElementById('target-polygon').getAttribute('d') !== {json.dumps(target)}",
+                               timeout=20_000)
+        late = shown(page)
+        assert late["seq"] == before["seq"] and int(late["pending"]) > int(late["seq"])  # the edit alone, no answer
+        page.wait_for_timeout(300)  # the answer reaches the relay and is held
+        relay["hold"] = False
+        while held:
+            relay["page"].send(held.pop(0))
+        preview = wait_for(page, "d.pending === d.seq")
+        assert preview["final"] == "0" and on_law(preview)
+        assert page.locator("#r-state").inner_text().startswith("preview")
+        assert preview["contourHash"] != before["contourHash"]
+        page.mouse.up()
+        full = wait_for(page, f"d.seq > {preview['seq']} && d.final === '1' && d.pending === d.seq")
+        assert page.locator("#r-state").inner_text().startswith("full deformation") and on_law(full)
+    finally:
+        context.close()

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import io
 import json
+import re
 import struct
 
 import numpy as np
@@ -272,3 +273,64 @@ def test_a_preview_carries_only_what_moves(client, case_json):
     assert preview["mesh_final"]["points"].shape == full["mesh_final"]["points"].shape
     assert preview["contour"].shape[1] == 2 and np.all(np.isfinite(preview["contour"]))
     assert abs(preview["area_final"] - 0.78 * preview["area_initial"]) <= 1e-9 * preview["area_initial"]
+
+
+def test_the_server_refuses_websocket_compression(case_json):
+    """The serve command's WebSocket takes no permessage-deflate: a client offering it gets no extension back.
+
+    Compressing about 20 kB of float64 per answer costs time on both ends and saves nothing on the loopback
+    (docs/benchmarks-page.md); uvicorn would accept it by default.
+    """
+    import subprocess
+    import sys
+    import time
+
+    ws_client = pytest.importorskip("websockets.sync.client")
+    pytest.importorskip("uvicorn")
+    proc = subprocess.Popen([sys.executable, "-m", "sectiondeform", "serve", "--port", "0", "--no-browser"],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        host = re.search(r"http://(\S+)/", proc.stdout.readline()).group(1)
+        for _ in range(200):  # the address is printed just before the server listens
+            try:
+                ws = ws_client.connect(f"ws://{host}/ws", origin=f"http://{host}", compression="deflate")
+                break
+            except ConnectionRefusedError:
+                time.sleep(0.05)
+        else:
+            pytest.fail("the server did not listen")
+        with ws:
+            offered = ws.request.headers.get("Sec-WebSocket-Extensions") or ""
+            assert "permessage-deflate" in offered  # the client asked for it...
+            assert ws.response.headers.get("Sec-WebSocket-Extensions") is None  # ...and the server declined
+            ws.send(request(case_json, 1, final=False))
+            data = ws.recv()
+    finally:
+        proc.terminate()
+        proc.wait(timeout=10)
+    assert isinstance(data, bytes)
+    (n,) = struct.unpack_from("<I", data, 0)
+    header = json.loads(data[4:4 + n])
+    assert header["type"] == "result" and header["seq"] == 1
+    assert header["final"] is False  # a preview is labelled as one
+
+
+def test_a_prepared_section_is_found_by_its_key(case_json):
+    """The cache tells a prepared section by its key, which the answer then reuses: the same deformer, no new preparation."""
+    from sectiondeform.app import engine
+
+    cache = engine.DeformerCache()
+    assert cache.ready(case_json, "paper") is None
+    engine.answer(cache, case_json, "paper", 0.8, True)
+    key = cache.ready(case_json, "paper")
+    assert key == engine.section_key(case_json, "paper")
+    moved = dict(case_json, target={"polyline": [[0.0, 0.0], [60.0, -8.0], [112.0, 0.0]]})
+    assert cache.ready(moved, "paper") == key  # the target is not part of the section
+    assert cache.ready(moved, "hyperelastic") is None and cache.ready(moved, "no such model") is None
+    assert cache.ready({**case_json, "upper": {"polyline": [[110.0, 0.0], [0.0, 30.0], [0.0, 0.0]]}}, "paper") is None
+    preview = engine.answer(cache, moved, "paper", 0.8, False, key=key)
+    assert preview["prepared"] is False and preview["final"] is False
+    other = engine.DeformerCache()
+    engine.answer(other, case_json, "paper", 0.8, True)
+    expected = engine.answer(other, moved, "paper", 0.8, False)  # the key found again
+    np.testing.assert_array_equal(preview["contour"], expected["contour"])

@@ -159,6 +159,25 @@ def test_preview_of_the_paper_model_is_the_full_deformation():
     assert np.array_equal(deformer.preview(t).upper, deformer.deform(t).upper)
 
 
+def test_laws_met_in_turn_give_the_results_of_a_fresh_deformer():
+    """The initial quantity kept per law (a drag asks it at every move) changes no result, bit for bit.
+
+    Twenty ratios, more than are kept, then the first ones again: each result equals that of a new
+    deformer that never saw another law.
+    """
+    case = sd.load_case(sd.example_case_path())
+    deformer = sd.Deformer(case)
+    x = np.linspace(0, 110, 23)
+    t = Polyline(np.column_stack((x, 4 * (1 - (2 * x / 110 - 1) ** 2))))
+    ratios = [0.5 + 0.03 * i for i in range(20)]
+    for ratio in ratios + ratios[:3]:
+        got = deformer.preview(t, AreaRatio(ratio))
+        fresh = sd.Deformer(case).deform(t, AreaRatio(ratio))
+        assert np.array_equal(got.contour, fresh.contour) and np.array_equal(got.final_mesh.points, fresh.final_mesh.points)
+        assert got.area_final == fresh.area_final
+    assert deformer.prepared.initial_quantity(AreaRatio(0.7)) == AreaRatio(0.7).quantity(deformer.section.contour)
+
+
 def test_fine_mesh_on_a_tightly_curved_target():
     """Four times finer elements than the default on the S-curve: the normal field needs more smoothing."""
     case = sd.load_case(SHARED_CASES[[p.stem for p in SHARED_CASES].index("thick-block-s-curve")])

@@ -134,8 +134,11 @@ class Deformer:
         ``section.chordal_error``.
         """
         curve = self._target_curve(target)
+        return self._deviation(curve, curve.at_fractions(self.section.fractions))
+
+    def _deviation(self, curve: Curve, nodes: np.ndarray) -> float:
+        """:meth:`target_deviation` of ``curve`` given its ``nodes`` at the lower fractions (not sampled twice)."""
         s = self.section.fractions
-        nodes = curve.at_fractions(s)
         mids = curve.at_fractions(0.5 * (s[1:] + s[:-1]))
         d = mids - 0.5 * (nodes[1:] + nodes[:-1])
         return float(np.hypot(d[:, 0], d[:, 1]).max())
@@ -203,7 +206,7 @@ class Deformer:
         else:
             curve = self._target_curve(target)
             nodes = self._sample(curve)
-            deviation = self.target_deviation(curve)
+            deviation = self._deviation(curve, nodes)
             tol = self.section.chordal_error
             if deviation > TARGET_DEVIATION_SLACK * tol:
                 warnings.append(

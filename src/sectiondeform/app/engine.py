@@ -88,11 +88,14 @@ class DeformerCache:
         self._items: OrderedDict[str, Deformer] = OrderedDict()
         self._last: dict[int, Result] = {}  # the last full deformation of each deformer: the next warm start
 
-    def get(self, case_json: dict, model: str) -> tuple[Deformer | AssemblyDeformer, bool]:
-        """The deformer of a case for a model; True if it was prepared now."""
+    def get(self, case_json: dict, model: str, key: str | None = None) -> tuple[Deformer | AssemblyDeformer, bool]:
+        """The deformer of a case for a model; True if it was prepared now.
+
+        ``key`` is the case's :func:`section_key` for ``model`` if known (from :meth:`ready`), not computed again.
+        """
         if model not in MODELS:
             raise CaseError("model", f"unknown model {model!r}; use one of {', '.join(MODELS)}")
-        key = section_key(case_json, model)
+        key = key or section_key(case_json, model)
         if key in self._items:
             self._items.move_to_end(key)
             return self._items[key], False
@@ -106,15 +109,18 @@ class DeformerCache:
             self._last.pop(id(old), None)
         return deformer, True
 
-    def ready(self, case_json, model) -> bool:
-        """True if the section of ``case_json`` is already prepared for ``model`` (a preview is then fast).
+    def ready(self, case_json, model) -> str | None:
+        """The :func:`section_key` of ``case_json`` if its section is already prepared for ``model`` (a preview is then fast), else None.
 
         Never for an assembly: each of its answers is a full placement of every body.
         """
+        if not isinstance(case_json, dict) or is_assembly(case_json) or model not in MODELS:
+            return None
         try:
-            return isinstance(case_json, dict) and not is_assembly(case_json) and section_key(case_json, model) in self._items
+            key = section_key(case_json, model)
         except (TypeError, ValueError):
-            return False
+            return None
+        return key if key in self._items else None
 
     def start(self, deformer: Deformer) -> Result | None:
         """The last full deformation of ``deformer``, from which a preview or a solve starts (or None)."""
@@ -126,7 +132,8 @@ class DeformerCache:
             self._last[id(deformer)] = result
 
 
-def answer(cache: DeformerCache, case_json: dict, model: str, ratio, final: bool, meshes: bool = True) -> dict:
+def answer(cache: DeformerCache, case_json: dict, model: str, ratio, final: bool, meshes: bool = True,
+           key: str | None = None) -> dict:
     """Deform a case for the page: the preview while dragging, the full deformation on release.
 
     Parameters
@@ -141,6 +148,8 @@ def answer(cache: DeformerCache, case_json: dict, model: str, ratio, final: bool
         Full deformation (True) or the model's fast preview (False).
     meshes : bool
         Send the meshes.
+    key : str, optional
+        The case's :func:`section_key` for ``model``, if known (:meth:`DeformerCache.ready`).
 
     Returns
     -------
@@ -159,7 +168,7 @@ def answer(cache: DeformerCache, case_json: dict, model: str, ratio, final: bool
         raise CaseError("case", "expected a section-case/1 object")
     if is_assembly(case_json):
         return assembly_answer(cache, case_json, model, final, meshes, t0)
-    deformer, prepared = cache.get(case_json, model)
+    deformer, prepared = cache.get(case_json, model, key)
     target = curve_from_json(case_json.get("target"), "target")
     law = law_of(ratio)
     start = cache.start(deformer)

@@ -45,10 +45,20 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 from ..errors import CaseError, SectionDeformError
 from . import engine
 
-__all__ = ["MAX_MESSAGE", "MAX_UPLOAD", "STATIC", "create_app"]
+__all__ = ["MAX_MESSAGE", "MAX_UPLOAD", "STATIC", "UVICORN_OPTIONS", "create_app"]
 
 MAX_UPLOAD = 8 * 1024 * 1024  # bytes of an uploaded drawing or a posted case
 MAX_MESSAGE = 1024 * 1024  # characters of one WebSocket message
+UVICORN_OPTIONS = {"ws_max_size": 4 * MAX_MESSAGE, "ws_per_message_deflate": False}
+"""The WebSocket settings of the server (``uvicorn.Config`` keywords).
+
+No per-message compression (uvicorn offers permessage-deflate by default):
+on the loopback it only costs time, deflating each answer (about 20 kB of
+float64 that hardly compress) on the server and inflating it in the
+browser, and each request the other way; measured, about a millisecond per
+round trip at the median and several at the 95th percentile
+(docs/benchmarks-page.md).
+"""
 STATIC = Path(str(resources.files(__package__) / "static"))
 OPEN_FORMATS = (".json", ".dxf", ".svg")
 CASE_FORMATS = (".json", ".dxf", ".svg")
@@ -332,12 +342,13 @@ def create_app(case_json: dict, hosts, message_limit: int = MAX_MESSAGE, upload_
                 if msg["seq"] <= last:
                     continue
                 last = msg["seq"]
-                args = (cache, msg.get("case"), msg.get("model", "paper"), msg.get("ratio"), bool(msg.get("final")))
+                case, model, final = msg.get("case"), msg.get("model", "paper"), bool(msg.get("final"))
                 try:
-                    if args[-1] or not cache.ready(args[1], args[2]):
-                        out = await asyncio.to_thread(engine.answer, *args)
-                    else:  # a preview of a prepared section: about a millisecond, not worth a thread hop
-                        out = engine.answer(*args)
+                    key = cache.ready(case, model)
+                    if final or key is None:
+                        out = await asyncio.to_thread(engine.answer, cache, case, model, msg.get("ratio"), final)
+                    else:  # a preview of a prepared section: under a millisecond, not worth a thread hop
+                        out = engine.answer(cache, case, model, msg.get("ratio"), final, key=key)
                     reply = framed({"type": "result", "seq": msg["seq"], **out})
                 except SectionDeformError as exc:
                     reply = {"type": "refused", "seq": msg["seq"], "message": str(exc)}

@@ -40,7 +40,7 @@ def run(args) -> int:
 
     require("starlette", "app", "the interactive page")
     uvicorn = require("uvicorn", "app", "the interactive page")
-    from ..app.server import MAX_MESSAGE, create_app
+    from ..app.server import UVICORN_OPTIONS, create_app
 
     report: list[str] = []
     path = args.case or example_case_path()
@@ -49,7 +49,7 @@ def run(args) -> int:
         print(f"  {line}")
     if args.host not in ("127.0.0.1", "localhost", "::1"):
         print(f"warning: listening on {args.host}: anyone who can reach this address can use the page")
-    config = uvicorn.Config(None, host=args.host, port=args.port, log_level="warning", ws_max_size=4 * MAX_MESSAGE)
+    config = uvicorn.Config(None, host=args.host, port=args.port, log_level="warning", **UVICORN_OPTIONS)
     server = uvicorn.Server(config)
     sock = config.bind_socket()
     port = sock.getsockname()[1]

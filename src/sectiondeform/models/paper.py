@@ -241,6 +241,19 @@ class PaperPrepared(Prepared):
         self.height = section.height
         self.overhang = overhang(section.lower, section.upper)
         self.edges = edges(self.mesh.nodes)  # the initial elements' edge lengths, for the extent figures
+        self._initial: dict = {}  # each law's quantity of the initial contour (a drag asks it at every move)
+
+    def initial_quantity(self, law: Law) -> float:
+        """``law.quantity`` of the initial contour, computed once per law (laws are frozen values)."""
+        try:
+            return self._initial[law]
+        except KeyError:
+            if len(self._initial) >= 16:  # a slider's many ratios: keep the memory bounded
+                self._initial.clear()
+            value = self._initial[law] = law.quantity(self.section.contour)
+            return value
+        except TypeError:  # an unhashable law: nothing kept
+            return law.quantity(self.section.contour)
 
     def extended_target(self, target_nodes: np.ndarray) -> np.ndarray:
         """The target nodes with the virtual base nodes beyond A' and B', ``(n + p + q, 2)``.
@@ -275,7 +288,7 @@ class PaperPrepared(Prepared):
         ``start`` is ignored: the placement is closed-form.
         """
         sec = self.section
-        initial = law.quantity(sec.contour)
+        initial = self.initial_quantity(law)
         wanted = law.target(initial)
         real = target_nodes
         target_nodes = self.extended_target(real)

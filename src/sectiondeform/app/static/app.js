@@ -27,6 +27,7 @@ const state = {
   undo: [],
   selected: null,      // {curve: "target"|"upper", index}
   drag: null,
+  editsPending: false, // an edit made while dragging, drawn with its answer (editLater)
   latencies: [],       // ms from pointer event to redrawn section (for the benchmark)
 };
 window.sdState = state;
@@ -357,6 +358,7 @@ function onAnswer(msg, received) {
   for (const k of state.sent.keys()) if (k <= msg.seq) state.sent.delete(k);
   for (const k of state.sentAt.keys()) if (k <= msg.seq) state.sentAt.delete(k);
   if (msg.type === "refused") {
+    flushEdits();
     svg.classList.add("refused");
     svg.dataset.refusedSeq = msg.seq;
     message("refused: " + msg.message + (state.result ? " (the last good shape is kept)" : ""), "error");
@@ -388,7 +390,7 @@ function onAnswer(msg, received) {
   }
   state.result = msg;
   drawResult();
-  if (!state.drag) drawHandles();
+  if (state.editsPending) flushEdits(); else if (!state.drag) drawHandles();
   const now = performance.now();
   if (t0 !== undefined) {
     state.latencies.push({ seq: msg.seq, ms: now - t0, compute: msg.compute_ms, final: msg.final,
@@ -449,14 +451,31 @@ svg.addEventListener("pointermove", (e) => {
   }
   if (!setPoints(d.curve, P)) return;
   d.moved = true;
-  request(false, t0);   // first: the server computes while the page redraws the edited curve
-  drawEdits();
+  request(false, t0);
+  editLater();
 });
+
+// While dragging, the edited curve is drawn with the answer to its request, in the same frame. Drawn at
+// once, it would make the browser render a frame for it alone (style, layout, paint, commit: several ms
+// on a busy machine) while the answer, ready sooner, waits behind it. An answer that takes longer than
+// EDIT_WAIT ms (a slow model, a section being prepared) lets the edit be drawn alone meanwhile.
+const EDIT_WAIT = 20;
+let editTimer = 0;
+function editLater() {
+  state.editsPending = true;
+  if (!editTimer) editTimer = setTimeout(flushEdits, EDIT_WAIT);
+}
+function flushEdits() {
+  clearTimeout(editTimer);
+  editTimer = 0;
+  if (state.editsPending) { state.editsPending = false; drawEdits(); }
+}
 
 function endDrag(e) {
   const d = state.drag;
   state.drag = null;
   if (!d || d.pan) return;
+  flushEdits();
   if (d.moved) request(true); else state.undo.pop();
 }
 svg.addEventListener("pointerup", endDrag);
