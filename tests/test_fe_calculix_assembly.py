@@ -12,6 +12,8 @@ import numpy as np
 import pytest
 
 from sectiondeform.cli import main
+from sectiondeform.external.calculix import run_ccx
+from sectiondeform.external.deck import build_deck, deck_text
 from sectiondeform.external.fe_assembly import read_fe_assembly
 from sectiondeform.external.solve_assembly import solve_calculix_assembly
 
@@ -84,6 +86,20 @@ def test_two_bonded_bodies_come_back_as_a_section_result_2(ccx, tmp_path):
     for body in (backing, cover):
         assert abs(body["area"]["final"] / body["area"]["initial"] - 1) < 2e-3
     assert len(data["warnings"]) == 2
+
+
+def test_ccx_reads_the_nodes_and_the_support_motion_as_the_deck_means_them(ccx):
+    # CalculiX reads only the first 20 characters of a real; this deck has a coordinate that took 21 when
+    # written with 15 digits (-1.8e-15, read as -0.18). Its .frd gives back the nodes as read, and the
+    # support's displacements, which *BOUNDARY prescribes exactly.
+    deck = build_deck(read_fe_assembly(small_strip()), mesh_size=1.0)
+    results, _ = run_ccx(deck_text(deck), job="numbers")
+    assert results.nodes.tolist() == list(range(1, len(deck.mesh.points) + 1))
+    assert np.abs(results.coordinates[:, :2] - deck.placed_points).max() < 1e-4  # .frd: 6 digits
+    _, ids, disp = results.last("DISP")
+    u = np.zeros((len(deck.mesh.points), 2))
+    u[ids - 1] = disp[:, :2]
+    assert np.abs(u[deck.mesh.lower_nodes] - deck.support_displacement).max() < 1e-4
 
 
 def test_a_ccx_run_that_does_not_finish_is_stopped(tmp_path, monkeypatch):

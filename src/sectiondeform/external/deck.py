@@ -16,6 +16,9 @@ writes it in the keyword syntax both Abaqus/Standard and CalculiX read:
   the project;
 * ``*NODE FILE`` U and ``*EL FILE`` S (CalculiX's ``.frd``, Abaqus's ``.fil``).
 
+Every real is written in at most 20 characters (:func:`.inp_number.inp_real`):
+CalculiX reads no more of a field and drops the rest without a word.
+
 The default element, CPE6, does not lock for nearly incompressible rubber
 in CalculiX 2.20, which has no hybrid elements. The deck is designed for
 several bodies (one set, section and material each) and for bodies of
@@ -38,6 +41,7 @@ from ..section import build_section
 from .assembly_mesh import assembly_mesh, body_ring
 from .axis import AxisFrame, axis_frame, reverse_orientation
 from .fe_assembly import FeAssembly
+from .inp_number import inp_real
 from .material_cards import hyperelastic_card, material_summary
 from .mesh import FeMesh, element_areas, fe_mesh
 
@@ -420,8 +424,8 @@ def build_assembly_deck(fe: FeAssembly, element: str | None = None, mesh_size: f
                 area_initial=float(areas.sum()), area_target=float(target), axis=axis, rotation=R, translation=t)
 
 
-def _rows(first: int, table: np.ndarray, fmt: str) -> list[str]:
-    return [f"{first + i}, " + ", ".join(fmt.format(v) for v in row) for i, row in enumerate(table)]
+def _rows(first: int, table: np.ndarray) -> list[str]:
+    return [f"{first + i}, " + ", ".join(inp_real(v) for v in row) for i, row in enumerate(table)]
 
 
 def _id_lines(ids: np.ndarray, per_line: int = 16) -> list[str]:
@@ -467,7 +471,7 @@ def deck_text(deck: Deck) -> str:
         out.append("** NOT EXPRESSED BY THIS DECK:")
         out += [f"**   - {line}" for line in deck.unexpressed]
     out += ["*NODE, NSET=ALL_NODES"]
-    out += _rows(1, points, "{:.15g}")
+    out += _rows(1, points)
     for body in deck.bodies:
         out.append(f"*ELEMENT, TYPE={el.name}, ELSET={body.name}")
         out += [f"{e + 1}, " + ", ".join(str(int(v)) for v in row)
@@ -490,7 +494,7 @@ def deck_text(deck: Deck) -> str:
     ]
     nodes = m.lower_nodes + 1
     for node, (ux, uy) in zip(nodes.tolist(), u.tolist()):
-        out.append(f"{node}, 1, 1, {ux:.15g}")
-        out.append(f"{node}, 2, 2, {uy:.15g}")
+        out.append(f"{node}, 1, 1, {inp_real(ux)}")
+        out.append(f"{node}, 2, 2, {inp_real(uy)}")
     out += ["*NODE FILE, FREQUENCY=1000", "U", "*EL FILE, FREQUENCY=1000", "S", "*END STEP"]
     return "\n".join(out) + "\n"

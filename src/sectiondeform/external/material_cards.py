@@ -11,6 +11,8 @@ Both solvers write the strain energy as the project does
 
 from __future__ import annotations
 
+from .inp_number import inp_real
+
 __all__ = ["hyperelastic_card", "material_summary"]
 
 
@@ -37,12 +39,12 @@ def hyperelastic_card(material) -> list[str]:
     """
     d1 = 2.0 / material.kappa
     if material.model == "neo-hookean":
-        return ["*HYPERELASTIC, NEO HOOKE", f"{material.coefficients[0]:.15g}, {d1:.15g}"]
+        return ["*HYPERELASTIC, NEO HOOKE", ", ".join(map(inp_real, (material.coefficients[0], d1)))]
     if material.model == "mooney-rivlin":
-        return ["*HYPERELASTIC, MOONEY-RIVLIN", f"{material.c10:.15g}, {material.c01:.15g}, {d1:.15g}"]
+        return ["*HYPERELASTIC, MOONEY-RIVLIN", ", ".join(map(inp_real, (material.c10, material.c01, d1)))]
     if material.model == "yeoh":
         c10, c20, c30 = material.coefficients
-        return ["*HYPERELASTIC, YEOH", f"{c10:.15g}, {c20:.15g}, {c30:.15g}, {d1:.15g}, 0, 0"]
+        return ["*HYPERELASTIC, YEOH", ", ".join(map(inp_real, (c10, c20, c30, d1))) + ", 0, 0"]
     raise ValueError(f"no *HYPERELASTIC card for the material model {material.model!r}")  # pragma: no cover
 
 
