@@ -2,7 +2,7 @@
 
 Every case at area (volume) ratio 1, the only law a hyperelastic solver
 expresses. Per case: CalculiX (default element, ``--mesh-size``), the
-project's finite-element reference (version 1) and fast models, the
+project's finite-element reference (one body, or an assembly) and fast models, the
 Hausdorff distance between deformed upper curves in units and over the
 section's height (:func:`sectiondeform.compare.section_height`), and the
 wall times. Needs ``ccx``.
@@ -102,8 +102,17 @@ def row_v2(path: Path, mesh_size: float) -> str:
     if ccx.bodies[0].volume_initial is not None:
         extra = "; volume change " + ", ".join(f"{b.name} {b.volume_final / b.volume_initial - 1:+.1e}" for b in ccx.bodies)
     cells = [f"mesh {mesh_size:g}: {n} {b0.element_type}, {ccx.timings['solve_s']:.1f} s ({b0.increments} increments)"
-             f"{extra}", "—"]
+             f"{extra}"]
     project = assembly_from_dict(data)  # the project's reader, with the axis of a body of revolution
+    from sectiondeform.reference.assembly import solve_assembly_reference
+
+    try:
+        ref, t_ref = _timed(lambda: solve_assembly_reference(project))
+        worst = max(compare_curves(r.upper, c.upper).hausdorff for r, c in zip(ref.bodies, ccx.bodies))
+        cells.append(f"{worst:.3f} mm ({100 * worst / height:.2f} %) (worst body), reference {t_ref:.1f} s")
+    except SectionDeformError as exc:
+        stop = re.search(r"beyond load ([0-9.]+) ?%", str(exc))
+        cells.append(f"reference stops at {stop.group(1)} % of the load" if stop else f"reference fails: {str(exc)[:60]}")
     for model in ("paper", "hyperelastic"):
         try:
             fast, t = _timed(lambda m=model: AssemblyDeformer(project, model=m).deform(), runs=3)

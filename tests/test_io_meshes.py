@@ -40,3 +40,20 @@ def test_initial_mesh_and_bad_extension(tmp_path, result):
     with pytest.raises(CaseError, match="unknown mesh format"):
         write_mesh(tmp_path / "x.stl", result)
     assert not (tmp_path / "x.stl").exists()
+
+
+def test_an_abaqus_mesh_reaches_calculix_as_meant(tmp_path, result):
+    """CalculiX reads the first 20 characters of a real only: every coordinate must fit, to 13 digits."""
+    for which, mesh in (("final", result.final_mesh), ("initial", result.initial_mesh)):
+        path = tmp_path / f"{which}.inp"
+        write_mesh(path, result, which)
+        lines = path.read_text().splitlines()
+        start = next(i for i, line in enumerate(lines) if line.upper().startswith("*NODE"))
+        rows = []
+        for line in lines[start + 1:]:
+            if line.startswith("*"):
+                break
+            fields = [f.strip() for f in line.split(",")]
+            assert all(len(f) <= 20 for f in fields[1:]), line
+            rows.append([float(f[:20]) for f in fields[1:3]])  # what CalculiX keeps of each field
+        np.testing.assert_allclose(np.array(rows), mesh.points, rtol=1e-12, atol=1e-12 * np.abs(mesh.points).max())

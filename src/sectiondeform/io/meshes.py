@@ -37,8 +37,16 @@ FORMATS = {".vtu": "vtu", ".vtk": "vtk", ".msh": "gmsh", ".xdmf": "xdmf", ".inp"
 
 
 def writer_options(fmt: str) -> dict:
-    """Write options for meshio by format: binary VTK and Gmsh; XDMF with its data inline (one file, no HDF5 beside it)."""
-    return {"gmsh": {"binary": True}, "vtk": {"binary": True}, "xdmf": {"data_format": "XML"}}.get(fmt, {})
+    """Write options for meshio by format.
+
+    Binary VTK and Gmsh; XDMF with its data inline (one file, no HDF5 beside
+    it); Abaqus reals with 13 significant digits, at most 20 characters,
+    since CalculiX reads only the first 20 characters of a field
+    (:mod:`sectiondeform.external.inp_number`; meshio's default, 17 digits,
+    takes 22 or 23).
+    """
+    return {"gmsh": {"binary": True}, "vtk": {"binary": True}, "xdmf": {"data_format": "XML"},
+            "abaqus": {"float_fmt": ".12e"}}.get(fmt, {})
 
 
 def _xyz(points: np.ndarray) -> np.ndarray:
