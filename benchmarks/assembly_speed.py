@@ -17,6 +17,12 @@ For each model (paper, hyperelastic), medians over repeated interleaved runs
   distance to the warm result's contour, relative to the thinnest body's
   thickness T.
 
+For the paper model a third subject is timed in the same run: the
+assembly's bodies placed alone, each through its own prepared single-body
+placement (``prepared.place`` of the body's section, the path a one-body
+deformation takes) with the lower nodes of the assembly's answer: the floor
+an assembly's deformation can reach, every check and bookkeeping left out.
+
 Every figure goes through the public calls with a target curve (the
 deformers sample it). Printed as a Markdown table with the assembly's
 figures per body and its ratio to the single body; the hyperelastic rows
@@ -25,7 +31,12 @@ larger one. No figure is asserted: the benchmark reports, the reader judges.
 
 Usage::
 
-    python benchmarks/assembly_speed.py [--repeats 21] [--json OUT]
+    python benchmarks/assembly_speed.py [--repeats 21] [--clock wall|cpu] [--json OUT]
+    python benchmarks/assembly_speed.py --summarise RUN.json [RUN.json ...]
+
+``--summarise`` prints the table of the medians, figure by figure, of
+several reports written with ``--json`` (runs of one version of the
+library taken in turn with another's on a shared machine).
 """
 
 from __future__ import annotations
@@ -43,7 +54,29 @@ from sectiondeform.assembly import assembly_from_dict
 from sectiondeform.assembly_deform import AssemblyDeformer
 from sectiondeform.curves import Polyline
 
-from speed import median_time, median_times  # benchmarks/, beside this file
+CLOCKS = {"wall": time.perf_counter, "cpu": time.process_time}
+"""``cpu`` counts the process's CPU time (all its threads): on a loaded shared machine a
+millisecond call is often put aside by the scheduler, which the wall clock counts and the
+CPU clock does not."""
+
+
+def median_time(fn, repeats: int, warmup: int = 1, clock=time.perf_counter) -> float:
+    """Median time of ``fn()`` over ``repeats`` runs after ``warmup`` runs, seconds of ``clock``."""
+    return median_times({0: fn}, repeats, warmup, clock)[0]
+
+
+def median_times(fns: dict, repeats: int, warmup: int = 1, clock=time.perf_counter) -> dict:
+    """Median time of each callable, runs interleaved (a burst of load hits them all alike), seconds of ``clock``."""
+    for _ in range(warmup):
+        for fn in fns.values():
+            fn()
+    times = {name: [] for name in fns}
+    for _ in range(repeats):
+        for name, fn in fns.items():
+            t0 = clock()
+            fn()
+            times[name].append(clock() - t0)
+    return {name: float(np.median(t)) for name, t in times.items()}
 
 ROOT = Path(__file__).resolve().parents[1]
 STRIP = ROOT / "tests" / "data" / "cases" / "v2" / "two-layer-strip.json"
@@ -74,7 +107,7 @@ def subjects(model: str) -> dict:
     err1 = float(np.abs(single.preview(t1, start=r1).contour - single.deform(t1, start=r1).contour).max()) / T1
     err2 = max(float(np.abs(p.contour - w.contour).max())
                for p, w in zip(joint.preview(t2, start=r2).bodies, joint.deform(t2, start=r2).bodies)) / T2
-    return {
+    out = {
         "single": {"bodies": 1, "unknowns": _unknowns(r1.quality), "preview_error": err1,
                    "prepare": lambda: Deformer(case, model), "deform": single.deform,
                    "warm": lambda: single.deform(t1, start=r1), "preview": lambda: single.preview(t1, start=r1)},
@@ -82,25 +115,40 @@ def subjects(model: str) -> dict:
                      "prepare": lambda: AssemblyDeformer(assembly, model), "deform": joint.deform,
                      "warm": lambda: joint.deform(t2, start=r2), "preview": lambda: joint.preview(t2, start=r2)},
     }
+    if model == "paper":  # the paper model places body by body: its bodies' own placements are the floor
+        laws = [b.law for b in assembly.bodies]
+        w2 = joint.deform(t2, start=r2)
+
+        def placements(result):
+            return lambda: [body.prepared.place(r.lower, law) for body, r, law in zip(joint.bodies, result.bodies, laws)]
+
+        out["placements"] = {"bodies": len(assembly.bodies), "unknowns": None, "preview_error": 0.0, "prepare": None,
+                             "deform": placements(r2), "warm": placements(w2), "preview": placements(w2)}
+    return out
 
 
-def run(repeats: int) -> dict:
-    """Medians, seconds, per model and subject; prepare timed apart (fewer runs, it is the slow one)."""
-    out = {"python": platform.python_version(), "machine": platform.machine(), "repeats": repeats, "rows": []}
+def run(repeats: int, clock: str = "wall") -> dict:
+    """Medians, seconds of ``clock`` (a key of :data:`CLOCKS`), per model and subject; prepare timed apart (fewer runs)."""
+    tick = CLOCKS[clock]
+    out = {"python": platform.python_version(), "machine": platform.machine(), "repeats": repeats, "clock": clock, "rows": []}
     for model in MODELS:
         subj = subjects(model)
         calls = {(name, key): s[key] for name, s in subj.items() for key in ("deform", "warm", "preview")}
-        times = median_times(calls, repeats, warmup=2)
+        times = median_times(calls, repeats, warmup=2, clock=tick)
         for name, s in subj.items():
             row = {"model": model, "subject": name, "bodies": s["bodies"], "unknowns": s["unknowns"], "preview_error": s["preview_error"],
-                   "prepare_s": median_time(s["prepare"], max(3, repeats // 4), warmup=1)}
+                   "prepare_s": median_time(s["prepare"], max(3, repeats // 4), warmup=1, clock=tick) if s["prepare"] else None}
             row.update({f"{key}_s": times[name, key] for key in ("deform", "warm", "preview")})
             out["rows"].append(row)
     return out
 
 
-def _ms(t: float) -> str:
-    return f"{1e3 * t:.3g} ms"
+def _ms(t: float | None) -> str:
+    return f"{1e3 * t:.3g} ms" if t is not None else "–"
+
+
+def _ratio(a: float | None, b: float | None, scale: float = 1.0) -> str:
+    return f"{a * scale / b:.2g}×" if a is not None and b is not None else ""
 
 
 def to_markdown(report: dict) -> str:
@@ -120,7 +168,13 @@ def to_markdown(report: dict) -> str:
                      + f" | {joint['preview_error']:.2g} |")
         nb = joint["bodies"]
         lines.append(f"| {model} | two-layer-strip, per body / one body | | | "
-                     + " | ".join(f"{joint[k] / nb / single[k]:.2g}×" for k in keys) + " | |")
+                     + " | ".join(_ratio(joint[k], single[k], 1.0 / nb) for k in keys) + " | |")
+        if "placements" in rows:
+            alone = rows["placements"]
+            lines.append(f"| {model} | two-layer-strip's bodies placed alone (`prepared.place`) | {nb} | – | "
+                         + " | ".join(_ms(alone[k]) for k in keys) + " | |")
+            lines.append(f"| {model} | two-layer-strip / its bodies placed alone | | | "
+                         + " | ".join(_ratio(joint[k], alone[k]) for k in keys) + " | |")
         if single["unknowns"] and joint["unknowns"]:
             per = single["unknowns"] / joint["unknowns"]
             lines.append(f"| {model} | two-layer-strip, per unknown / one body | | | "
@@ -128,18 +182,39 @@ def to_markdown(report: dict) -> str:
     return "\n".join(lines)
 
 
+def summarise(reports: list[dict]) -> dict:
+    """One report whose every time is the median of that time over ``reports`` (same rows, in order)."""
+    out = dict(reports[0], rows=[], runs=len(reports))
+    for rows in zip(*(r["rows"] for r in reports)):
+        row = dict(rows[0])
+        for key, value in row.items():
+            if key.endswith("_s") and value is not None:
+                row[key] = float(np.median([r[key] for r in rows]))
+        out["rows"].append(row)
+    return out
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=21)
     parser.add_argument("--json", type=Path, default=None)
+    parser.add_argument("--clock", choices=tuple(CLOCKS), default="wall",
+                        help="wall time, or the process's CPU time (steadier on a loaded shared machine)")
+    parser.add_argument("--summarise", type=Path, nargs="+", default=None, metavar="RUN.json")
     args = parser.parse_args()
+    if args.summarise:
+        report = summarise([json.loads(p.read_text()) for p in args.summarise])
+        print(to_markdown(report))
+        print(f"\nMedians over {report['runs']} runs of medians of {report['repeats']} interleaved runs each "
+              f"({report.get('clock', 'wall')} clock).")
+        return
     t0 = time.perf_counter()
-    report = run(args.repeats)
+    report = run(args.repeats, args.clock)
     report["wall_s"] = time.perf_counter() - t0
     if args.json is not None:
         args.json.write_text(json.dumps(report, indent=1))
     print(to_markdown(report))
-    print(f"\nPython {report['python']} on {report['machine']}; medians of {args.repeats} interleaved runs "
+    print(f"\nPython {report['python']} on {report['machine']}; {args.clock} clock; medians of {args.repeats} interleaved runs "
           f"(prepare: {max(3, args.repeats // 4)}); {report['wall_s']:.0f} s in all.")
 
 

@@ -22,8 +22,14 @@ and "Assemblies" (blocks ``validation:revolution`` and
    comparison), through the fast models' assembly path, with the body's law
    (volume for revolution, area in plane) and its errors; what a model or
    the reference refuses is a row with the one-line refusal.
-4. Version-2 cases of several bodies: per-body figures when the reference
-   solves assemblies, the refusal until then.
+4. Version-2 cases of several bodies: one reference solve of all bodies
+   (``sectiondeform.reference.assembly``) per case, each fast model against
+   it, one row per body (Hausdorff over the body's mean thickness and over
+   the assembly's height, each body's law's measure and error, the times of
+   the whole); a reference that does not converge is a row saying so.
+   ``--assembly-mesh-size`` sets its element size (default 0.1 of each
+   body's mesh scale); ``--assembly-study`` adds its refinement (twice
+   that size against it, per body: block ``validation:assemblies-study``).
 
 Needs the extra ``[fem]``; takes a few minutes on 2 cores (the finest
 meshes of the study dominate). ``--quick`` skips the two finest meshes.
@@ -129,6 +135,95 @@ def v2_table(cases, models, figures: Path | None) -> str:
     return "\n".join(rows)
 
 
+ASSEMBLY_HEADER = [
+    "| case | kinematics | body | rubber | law | fast model | T (mm) | Hausdorff (mm) | Hausdorff / T "
+    "| Hausdorff / height | max pointwise (mm) | law's measure fast (rel. err.) | reference (rel. err.) "
+    "| time fast | time reference | speed ratio |",
+    "|---|---|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+]
+
+
+def assembly_rows(case: Assembly, models, figures: Path | None, mesh_size: float, solved: dict | None = None) -> list[str]:
+    """Rows of the assemblies table: one reference solve, then each model against it, one row per body.
+
+    ``solved``, if given, receives the reference under ``(case.name, mesh_size)``.
+    """
+    from sectiondeform.reference.assembly import solve_assembly_reference
+    from sectiondeform.reference.validation import validate_assembly
+
+    kinematics = "revolution" if case.revolution is not None else "plane"
+    head = f"| {case.name} | {kinematics} "
+    try:
+        ref = solve_assembly_reference(case, mesh_size=mesh_size, progress=eprint)
+        if solved is not None:
+            solved[(case.name, mesh_size)] = ref
+    except SectionDeformError as exc:
+        eprint(f"   reference failed: {exc}")
+        return [head + f"| {', '.join(b.name for b in case.bodies)} | | | {model} | reference failed: {exc} |" + " |" * 9
+                for model in models]
+    eprint(f"   reference: {ref.elements} triangles, {ref.dofs} unknowns, {ref.iterations} Newton iterations, "
+           f"{ref.seconds:.2f} s")
+    rows = []
+    for model in models:
+        eprint(f"== {case.name}, {model} model")
+        try:
+            v = validate_assembly(case, model=model, mesh_size=mesh_size, reference=ref, progress=eprint)
+        except SectionDeformError as exc:
+            eprint(f"   refused: {exc}")
+            rows.append(head + f"| {', '.join(b.name for b in case.bodies)} | | | {model} | refused: {exc} |" + " |" * 9)
+            continue
+        if figures is not None:
+            save_validation_figure(v, figures / f"validation-{case.name}-{model}.png")
+        for body, bv, rubber in zip(case.bodies, v.bodies, ref.materials):
+            s = bv.shape
+            unit = "mm³" if bv.measure == "volume" else "mm²"
+            rows.append(
+                head + f"| {body.name} | {rubber.model}, μ {rubber.shear_modulus:g} MPa | {_law(body)} | {model} "
+                f"| {bv.thickness:.2f} | {s.hausdorff:.3f} | {s.hausdorff / bv.thickness:.1%} | {s.hausdorff / v.height:.1%} "
+                f"| {s.max_pointwise:.3f} | {bv.measure} {bv.fast_final:.6g} {unit} ({bv.fast_error:+.0e}) "
+                f"| {bv.reference_final:.6g} {unit} ({bv.reference_error:+.1e}) | {1e3 * v.fast_seconds:.1f} ms "
+                f"| {v.reference_seconds:.2f} s | {v.speed_ratio:,.0f} |"
+            )
+    return rows
+
+
+def assembly_table(cases, models, figures: Path | None, mesh_size: float = DEFAULT_MESH_SIZE,
+                   solved: dict | None = None) -> str:
+    """The table of assemblies of several bodies (already loaded): per body, each model against the reference."""
+    rows = list(ASSEMBLY_HEADER)
+    for case in cases:
+        eprint(f"== {case.name}: the reference of its {len(case.bodies)} bodies")
+        rows += assembly_rows(case, models, figures, mesh_size, solved)
+    return "\n".join(rows)
+
+
+def assembly_study(cases, sizes, solved: dict | None = None) -> str:
+    """Refinement of the assembly reference: per body, the largest move of an upper point between sizes."""
+    from sectiondeform.reference.assembly import solve_assembly_reference
+
+    solved = {} if solved is None else solved
+    rows = [
+        "| case | body | h / mesh scale | triangles (all bodies) | max move vs finer / T | law's rel. err. | time |",
+        "|---|---|---:|---:|---:|---:|---:|",
+    ]
+    for case in cases:
+        refs = []
+        for h in sizes:
+            if (case.name, h) not in solved:
+                eprint(f"== study {case.name}, h = {h}")
+                solved[(case.name, h)] = solve_assembly_reference(case, mesh_size=h)
+            refs.append(solved[(case.name, h)])
+        T = [sd.build_section(case.body_case(b)).thickness for b in range(len(case.bodies))]
+        for k, (h, ref) in enumerate(zip(sizes, refs)):
+            for b, body in enumerate(ref.bodies):
+                move = ""
+                if k + 1 < len(refs):
+                    move = f"{np.hypot(*(body.upper - refs[k + 1].bodies[b].upper).T).max() / T[b]:.3%}"
+                rows.append(f"| {case.name} | {body.name} | {h:g} | {ref.elements} | {move} "
+                            f"| {body.relative_error:+.1e} | {ref.seconds:.1f} s |")
+    return "\n".join(rows)
+
+
 def study_table(cases, sizes) -> str:
     rows = [
         "| case | h / T | triangles | unknowns | Newton its | max move vs previous / T "
@@ -172,6 +267,12 @@ def main(argv=None) -> int:
     parser.add_argument("--write", type=Path, metavar="DOC", help="markdown file whose validation blocks to replace")
     parser.add_argument("--figures", type=Path, metavar="DIR", help="also write one overlay figure per case and model")
     parser.add_argument("--quick", action="store_true", help="study down to 0.1 T only")
+    parser.add_argument("--assembly-mesh-size", type=float, default=DEFAULT_MESH_SIZE, metavar="H",
+                        help=f"reference element size of the assemblies, fraction of each body's mesh scale "
+                             f"(default {DEFAULT_MESH_SIZE})")
+    parser.add_argument("--assembly-study", action="store_true",
+                        help="also the refinement of the assembly reference: twice that size against it "
+                             "(block validation:assemblies-study)")
     args = parser.parse_args(argv)
     loaded = {path: sd.load_case(path) for path in sorted(args.cases)}
     cases = [path for path, case in loaded.items() if not isinstance(case, Assembly)]
@@ -188,7 +289,11 @@ def main(argv=None) -> int:
     if one_body:
         blocks["revolution"] = v2_table(one_body, args.models, args.figures)
     if several:
-        blocks["assemblies"] = v2_table(several, args.models, args.figures)
+        solved: dict = {}
+        blocks["assemblies"] = assembly_table(several, args.models, args.figures, args.assembly_mesh_size, solved)
+        if args.assembly_study:
+            blocks["assemblies-study"] = assembly_study(several, (2 * args.assembly_mesh_size, args.assembly_mesh_size),
+                                                        solved)
     print(*blocks.values(), sep="\n\n")
     if args.write:
         text = args.write.read_text(encoding="utf-8")

@@ -115,3 +115,14 @@ def test_cli_refusals_on_assemblies_exit_2_and_write_nothing(tmp_path, capsys, e
     assert not out.exists() and list(tmp_path.iterdir()) == []
     assert len(capsys.readouterr().err.strip().splitlines()) == 1
 
+
+
+def test_a_target_of_zero_length_is_named_as_for_one_body():
+    import numpy as np
+
+    from sectiondeform.assembly_deform import AssemblyDeformer
+
+    deformer = AssemblyDeformer(assembly_from_dict(json.loads((CASES_DIR / "v2" / "two-layer-strip.json").read_text())))
+    for nodes in (np.array([[1.0, 1.0], [1.0, 1.0]]), np.array([[1.0, 1.0], [1.0 + 1e-13, 1.0]])):
+        with pytest.raises(CaseError, match=r"^target: the target has zero length$"):
+            deformer.deform(nodes)

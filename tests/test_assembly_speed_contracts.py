@@ -15,7 +15,7 @@ import pytest
 from sectiondeform.assembly import assembly_from_dict
 from sectiondeform.assembly_deform import AssemblyDeformer
 from sectiondeform.curves import Polyline
-from sectiondeform.errors import CaseError
+from sectiondeform.errors import CaseError, MeshError
 
 from conftest import CASES_DIR
 
@@ -152,6 +152,23 @@ def test_the_paper_model_ignores_start():
     assert first.state is None
     assert same(d.deform(bumped(a, 0.5), start=first), d.deform(bumped(a, 0.5)))
     assert same(d.preview(bumped(a, 0.5)), d.deform(bumped(a, 0.5)))
+
+
+def test_a_paper_re_deformation_depends_on_the_target_alone_whatever_ran_before():
+    """What the deformer works out once and keeps (node sources, upper bookkeeping) is never changed by a call:
+    the same target gives the same answer bit for bit after other targets, refused ones included.
+    """
+    a = strip("paper")
+    d = AssemblyDeformer(a)
+    fresh = AssemblyDeformer(a).deform(bumped(a, 0.5))
+    d.deform(bumped(a, -2.0))
+    result = d.deform(bumped(a, 0.5))
+    for body in result.bodies:  # writing into a result must not reach the deformer
+        for key in ("lower", "upper", "contour"):
+            getattr(body, key)[:] = np.nan
+    with pytest.raises(MeshError, match="inverted"):
+        d.deform(np.array([[0.0, 0.0], [100.0, 0.0], [0.0, 0.01]]))  # folded back on itself
+    assert same(d.deform(bumped(a, 0.5)), fresh)
 
 
 def test_other_laws_on_the_prepared_assembly_are_met_from_a_start_under_the_old_ones(solved):

@@ -1,4 +1,4 @@
-"""Meshes through meshio: VTU, VTK, MSH, INP re-read with numbering kept."""
+"""Meshes through meshio: VTU, VTK, MSH, XDMF, INP re-read with numbering kept."""
 
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ def result():
     return Deformer(shared_case("paper-example")).deform()
 
 
-@pytest.mark.parametrize("ext", [".vtu", ".vtk", ".msh", ".inp"])
+@pytest.mark.parametrize("ext", [".vtu", ".vtk", ".msh", ".xdmf", ".inp"])
 def test_final_mesh_round_trip(tmp_path, result, ext):
     path = tmp_path / f"final{ext}"
     write_result(path, result)

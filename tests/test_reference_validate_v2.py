@@ -1,4 +1,4 @@
-"""Validation of a version-2 case: one body is compared (with its material), several are refused in one line."""
+"""Validation of a version-2 case: one body is compared (with its material), several body by body."""
 
 from __future__ import annotations
 
@@ -11,8 +11,6 @@ pytest.importorskip("skfem")
 pytest.importorskip("triangle")
 
 from sectiondeform.reference.validation import validate_case  # noqa: E402
-
-from conftest import CASES_DIR  # noqa: E402
 
 LOWER = {"polyline": [[0.0, 0.0], [20.0, 0.0]]}
 UPPER = {"polyline": [[20.0, 0.0], [20.0, 5.0], [10.0, 6.0], [0.0, 5.0], [0.0, 0.0]]}
@@ -41,8 +39,17 @@ def test_a_one_body_assembly_validates_as_its_version_one_case_with_its_material
     assert np.abs(c.reference.upper - a.reference.upper).max() > 1e-6  # the stiffening rubber moves the free surface
 
 
-def test_several_bodies_are_refused_in_one_line():
-    asm = sd.load_case(CASES_DIR / "v2" / "two-layer-strip.json")
-    with pytest.raises(sd.CaseError, match=r"^bodies: validate compares one body; this assembly has 2") as err:
-        validate_case(asm)
+def test_several_bodies_are_compared_body_by_body_and_a_body_s_bad_material_is_named():
+    from sectiondeform.assembly import assembly_from_dict
+    from sectiondeform.reference.validation import AssemblyValidation
+
+    top = {"name": "cap", "lower": {"polyline": [[0.0, 5.0], [10.0, 6.0], [20.0, 5.0]]},
+           "upper": {"polyline": [[20.0, 5.0], [20.0, 8.0], [0.0, 8.0], [0.0, 5.0]]}, "law": {"area_ratio": 0.95}}
+    data = {"format": "section-case/2", "support": LOWER, "target": TARGET,
+            "bodies": [{"name": "pad", "lower": LOWER, "upper": UPPER, "law": {"area_ratio": 0.9}}, top]}
+    v = validate_case(assembly_from_dict(data), model="hyperelastic", mesh_size=0.8, fast_runs=1)
+    assert isinstance(v, AssemblyValidation) and [b.name for b in v.bodies] == ["pad", "cap"]
+    top["material"] = {"shear_modulus": 1.0, "bulk_to_shear": 50}
+    with pytest.raises(sd.CaseError, match=r"^bodies\[1\]\.material\.bulk_to_shear: the reference is a nearly") as err:
+        validate_case(assembly_from_dict(data), model="hyperelastic", mesh_size=0.8, fast_runs=1)
     assert "\n" not in str(err.value)

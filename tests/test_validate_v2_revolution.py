@@ -123,15 +123,16 @@ def test_the_hyperelastic_model_of_revolution_is_near_the_axisymmetric_reference
 
 
 @pytest.mark.parametrize(
-    ("path", "model", "message"),
+    ("path", "model", "extra", "message"),
     [
-        (STRIP, "paper", r"^bodies: validate compares one body; this assembly has 2"),
+        (STRIP, "paper", ["--bulk-to-shear", "50"], r"^options.bulk_to_shear: the reference is a nearly incompressible"),
+        (TREAD, "hyperelastic", ["--mesh-size", "0"], r"^mesh_size: must be a finite number > 0"),
     ],
 )
-def test_what_is_refused_exits_2_in_one_line_and_writes_nothing(tmp_path, capsys, path, model, message):
+def test_what_is_refused_exits_2_in_one_line_and_writes_nothing(tmp_path, capsys, path, model, extra, message):
     out, fig = tmp_path / "report.json", tmp_path / "fig.png"
     code = main(["validate", str(path), "--model", model, "--mesh-size", str(MESH), "-q", "-o", str(out),
-                 "--plot", str(fig)])
+                 "--plot", str(fig), *extra])
     err = capsys.readouterr().err.strip()
     assert code == 2
     assert len(err.splitlines()) == 1

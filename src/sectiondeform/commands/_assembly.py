@@ -52,7 +52,7 @@ def run_assembly(args, assembly: Assembly, report: list) -> int:
         write_result(args.output, result, meshes=not args.no_meshes, fields=getattr(args, "fields", False))
     else:  # DXF and SVG draw the support and target too; mesh formats tag each body (sectiondeform.io.assembly)
         options = {"case": assembly} if ext in (".dxf", ".svg") else {}
-        if getattr(args, "fields", False) and ext in (".vtu", ".vtk", ".msh"):
+        if getattr(args, "fields", False) and ext in (".vtu", ".vtk", ".msh", ".xdmf"):
             options["fields"] = True
         write_result(args.output, result, **options)
     meshes = write_meshes(args, result)

@@ -145,9 +145,9 @@ def add_output_args(parser) -> None:
     """Add the output options of ``deform``: ``--mesh-out``, ``--initial-mesh-out``, ``--dxf-spline``."""
     g = parser.add_argument_group("output")
     g.add_argument("--mesh-out", type=Path, action="append", default=[], metavar="FILE",
-                   help="also write the final mesh (.vtu, .vtk, .msh, .inp); repeatable")
+                   help="also write the final mesh (.vtu, .vtk, .msh, .xdmf, .inp); repeatable")
     g.add_argument("--initial-mesh-out", type=Path, action="append", default=[], metavar="FILE",
-                   help="also write the initial mesh (.vtu, .vtk, .msh, .inp); repeatable")
+                   help="also write the initial mesh (.vtu, .vtk, .msh, .xdmf, .inp); repeatable")
     g.add_argument("--dxf-spline", action="store_true",
                    help="DXF output: the deformed section as SPLINEs fitted within the chordal error")
 

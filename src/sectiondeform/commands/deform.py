@@ -24,7 +24,7 @@ from ._io_args import add_input_args, add_output_args, check_outputs, output_opt
 def add_args(parser) -> None:
     parser.add_argument("case", type=Path, help="case file (.json, .dxf, .svg)")
     parser.add_argument("-o", "--output", type=Path, required=True,
-                        help="result file (.json, .dxf, .svg; .vtu, .vtk, .msh, .inp: the final mesh)")
+                        help="result file (.json, .dxf, .svg; .vtu, .vtk, .msh, .xdmf, .inp: the final mesh)")
     parser.add_argument("--plot", type=Path, metavar="FIG", help="also draw the figure (.png, .svg or .pdf)")
     parser.add_argument("--no-meshes", action="store_true", help="leave the meshes out of the result JSON")
     parser.add_argument("--fields", action="store_true",
@@ -40,7 +40,7 @@ def add_args(parser) -> None:
     add_output_args(parser)
 
 
-FIELD_FORMATS = (".json", ".vtu", ".vtk", ".msh")
+FIELD_FORMATS = (".json", ".vtu", ".vtk", ".msh", ".xdmf")
 
 
 def check_fields_args(args) -> None:

@@ -17,7 +17,8 @@ extension  case in / out           result out
 ``.vtu``,  --                      the final mesh, initial coordinates as
 ``.msh``,                          point data (see :mod:`.meshes`)
 ``.inp``,
-``.vtk``
+``.vtk``,
+``.xdmf``
 =========  ======================  ==========================================
 """
 
@@ -60,6 +61,7 @@ RESULT_WRITERS = {
     ".vtu": (".meshes", "write_result"),
     ".vtk": (".meshes", "write_result"),
     ".msh": (".meshes", "write_result"),
+    ".xdmf": (".meshes", "write_result"),
     ".inp": (".meshes", "write_result"),
 }
 
@@ -110,7 +112,7 @@ def write_result(path, result, **options) -> None:
     writer(path, result, **options)
 
 
-MESH_FORMATS = (".vtu", ".vtk", ".msh", ".inp")
+MESH_FORMATS = (".vtu", ".vtk", ".msh", ".xdmf", ".inp")
 FIGURE_FORMATS = (".png", ".svg", ".pdf")
 
 

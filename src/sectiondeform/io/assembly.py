@@ -823,8 +823,23 @@ def to_meshio(result, which: str = "final"):
                        field_data=field_data)
 
 
+def _one_block_per_type(mesh, meshio):
+    """The mesh with the blocks of one cell type joined (cell data joined alike; ``body`` still tags each cell).
+
+    XDMF writes blocks of several types as one *Mixed* topology, which
+    meshio 5.3 cannot read back for quadratic triangles: an assembly whose
+    bodies share one element type is written as one block instead.
+    """
+    types = [c.type for c in mesh.cells]
+    if len(set(types)) != 1 or len(types) == 1:
+        return mesh
+    cells = [(types[0], np.concatenate([c.data for c in mesh.cells]))]
+    data = {name: [np.concatenate(blocks)] for name, blocks in mesh.cell_data.items()}
+    return meshio.Mesh(mesh.points, cells, point_data=mesh.point_data, cell_data=data)
+
+
 def write_mesh(path, result, which: str = "final", cell_data: dict | None = None) -> None:
-    """Write one mesh of every body of an assembly result (.vtu, .vtk, .msh, .inp), atomically.
+    """Write one mesh of every body of an assembly result (.vtu, .vtk, .msh, .xdmf, .inp), atomically.
 
     Gmsh files carry ``gmsh:physical`` = the body tag, named by the field
     data; Abaqus files carry one element set per body, named after it.
@@ -840,7 +855,7 @@ def write_mesh(path, result, which: str = "final", cell_data: dict | None = None
 
     from ..errors import require
     from .json import atomic_write
-    from .meshes import FORMATS, _teach_meshio_plane_strain
+    from .meshes import FORMATS, _teach_meshio_plane_strain, writer_options
 
     meshio = require("meshio", "cad", "writing meshes")
     path = Path(path)
@@ -851,7 +866,9 @@ def write_mesh(path, result, which: str = "final", cell_data: dict | None = None
     mesh = to_meshio(result, which)
     for name, blocks in (cell_data or {}).items() if fmt != "abaqus" else ():
         mesh.cell_data[name] = [np.asarray(v) for v in blocks]
-    kwargs = {"binary": True} if fmt in ("gmsh", "vtk") else {}
+    kwargs = writer_options(fmt)
+    if fmt == "xdmf":
+        mesh = _one_block_per_type(mesh, meshio)
     if fmt == "gmsh":
         mesh.cell_data["gmsh:physical"] = [t.astype(np.int32) for t in mesh.cell_data["body"]]
         mesh.cell_data["gmsh:geometrical"] = [t.astype(np.int32) for t in mesh.cell_data["body"]]

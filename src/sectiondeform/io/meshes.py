@@ -1,4 +1,4 @@
-"""The meshes of a result through meshio: VTU, VTK, Gmsh MSH, Abaqus INP.
+"""The meshes of a result through meshio: VTU, VTK, Gmsh MSH, XDMF, Abaqus INP.
 
 :func:`write_result` writes a result's *final* mesh; :func:`write_mesh`
 writes its final or its initial mesh. Numbering is kept: node i of the
@@ -33,7 +33,12 @@ from .json import atomic_write
 
 __all__ = ["write_mesh", "write_result", "to_meshio", "FORMATS"]
 
-FORMATS = {".vtu": "vtu", ".vtk": "vtk", ".msh": "gmsh", ".inp": "abaqus"}
+FORMATS = {".vtu": "vtu", ".vtk": "vtk", ".msh": "gmsh", ".xdmf": "xdmf", ".inp": "abaqus"}
+
+
+def writer_options(fmt: str) -> dict:
+    """Write options for meshio by format: binary VTK and Gmsh; XDMF with its data inline (one file, no HDF5 beside it)."""
+    return {"gmsh": {"binary": True}, "vtk": {"binary": True}, "xdmf": {"data_format": "XML"}}.get(fmt, {})
 
 
 def _xyz(points: np.ndarray) -> np.ndarray:
@@ -91,12 +96,21 @@ def _rows(values, count: int, name: str, what: str) -> np.ndarray:
     return arr
 
 
-def _gmsh_components(data: dict) -> dict:
-    """Gmsh data fields have 1, 3 or 9 components: any other field is split into ``name_0``, ``name_1``, ..."""
+#: Number of components a data field may have, by format; other fields are split.
+FIELD_WIDTHS = {"gmsh": (1, 3, 9), "xdmf": (1, 3, 6, 9)}
+
+
+def split_components(data: dict, fmt: str) -> dict:
+    """Fields a format cannot carry whole, split into ``name_0``, ``name_1``, ...
+
+    Gmsh data fields have 1, 3 or 9 components, XDMF attributes 1, 3, 6 or 9
+    (scalar, vector, symmetric or full tensor); other formats take any.
+    """
+    widths = FIELD_WIDTHS.get(fmt)
     out = {}
     for name, values in data.items():
         values = np.asarray(values)
-        if values.ndim == 1 or values.shape[1] in (1, 3, 9):
+        if widths is None or values.ndim == 1 or values.shape[1] in widths:
             out[name] = values
         else:
             out.update({f"{name}_{i}": values[:, i] for i in range(values.shape[1])})
@@ -117,7 +131,8 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
     Parameters
     ----------
     path : str or Path
-        ``.vtu``, ``.vtk``, ``.msh`` (Gmsh 4.1, binary: meshio 5.3 cannot re-read the data of ASCII files) or ``.inp`` (Abaqus).
+        ``.vtu``, ``.vtk``, ``.msh`` (Gmsh 4.1, binary: meshio 5.3 cannot re-read the data of ASCII files), ``.xdmf``
+        (XDMF 3, data inline) or ``.inp`` (Abaqus).
     result : Result
     which : str
         ``"final"`` or ``"initial"``.
@@ -127,8 +142,8 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
         model's strains, von Mises stress and pressure, the paper model's
         geometric fields and its mesh's strains prefixed ``geometric_``;
         none in Abaqus files; for an assembly, each body's, in its block). Gmsh files
-        take 1, 3 or 9 components per field: the others are split into
-        ``name_0``, ``name_1``, ...
+        take 1, 3 or 9 components per field, XDMF files 1, 3, 6 or 9: the
+        others are split into ``name_0``, ``name_1``, ...
 
     Raises
     ------
@@ -142,7 +157,7 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
 
         cells = None
         if fields and FORMATS.get(Path(path).suffix.lower()) not in (None, "abaqus"):
-            cells = assembly_cell_data(result, gmsh=FORMATS[Path(path).suffix.lower()] == "gmsh")
+            cells = assembly_cell_data(result, fmt=FORMATS[Path(path).suffix.lower()])
         return write_assembly_mesh(path, result, which, cell_data=cells)
     meshio = require("meshio", "cad", "writing meshes")
     path = Path(path)
@@ -157,10 +172,9 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
         lz = getattr(result.info, "out_of_plane_stretch", 1.0)
         cells = result_fields(result.initial_mesh, result.final_mesh, result.model, lz,
                               mechanics=result_mechanics(result)[0])[1]
-        if fmt == "gmsh":
-            cells = _gmsh_components(cells)
+        cells = split_components(cells, fmt)
     mesh = to_meshio(result, which, data=fmt != "abaqus", cell_data=cells)
-    kwargs = {"binary": True} if fmt in ("gmsh", "vtk") else {}
+    kwargs = writer_options(fmt)
     if fmt == "gmsh":
         tags = np.zeros(len(mesh.cells[0].data), dtype=np.int32)
         mesh.cell_data["gmsh:physical"] = [tags + 1]
@@ -174,13 +188,13 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
     atomic_write(path, write)
 
 
-def assembly_cell_data(result, gmsh: bool = False) -> dict:
+def assembly_cell_data(result, fmt: str = "vtu") -> dict:
     """Each body's per-element fields of an assembly result, as cell data: name to one array per body.
 
     The fields of :func:`~sectiondeform.strain_fields.result_fields` with each
     body's mechanics (the hyperelastic model's von Mises stress and pressure
     in the unit of the body's material); a field some body lacks is left out.
-    ``gmsh``: split the fields Gmsh cannot carry (see :func:`write_mesh`).
+    ``fmt``: the meshio format written, whose field widths apply (:func:`split_components`).
     """
     from ..strain_fields import result_fields, result_mechanics
 
@@ -188,7 +202,7 @@ def assembly_cell_data(result, gmsh: bool = False) -> dict:
     for body, mechanics in zip(result.bodies, result_mechanics(result)):
         lz = getattr(body.info, "out_of_plane_stretch", 1.0)
         values = result_fields(body.initial_mesh, body.final_mesh, result.model, lz, result.axis, mechanics)[1]
-        per_body.append(_gmsh_components(values) if gmsh else values)
+        per_body.append(split_components(values, fmt))
     names = [k for k in per_body[0] if all(k in v for v in per_body)] if per_body else []
     return {k: [v[k] for v in per_body] for k in names}
 

@@ -249,8 +249,10 @@ def solve_reference(
         A version-1 case (its section is built with
         :func:`~sectiondeform.section.build_section`); a version-2 assembly
         of one body (its ``material``, its law and the assembly's
-        ``revolution`` are used; several bodies are refused); or an already
-        built section, then ``target`` and ``law`` are required.
+        ``revolution`` are used; several bodies are refused:
+        :func:`~sectiondeform.reference.assembly.solve_assembly_reference`
+        solves those); or an already built section, then ``target`` and
+        ``law`` are required.
     target : Curve, optional
         Deformed lower curve (anything with ``at_fractions(s) -> (k, 2)``);
         by default the case's.
@@ -354,7 +356,8 @@ def _unpack(case, target, law):
         if len(case.bodies) != 1:
             names = ", ".join(repr(b.name) for b in case.bodies)
             raise CaseError("bodies", f"the finite-element reference solves one body; this assembly has "
-                            f"{len(case.bodies)} ({names}): give each body its own one-body case")
+                            f"{len(case.bodies)} ({names}): solve it with "
+                            "sectiondeform.reference.assembly.solve_assembly_reference")
         body = case.bodies[0]
         material = body.material_data or None
         axis = case.revolution
