@@ -259,8 +259,8 @@ class JointHyperelastic:
         then eliminates the bodies' own pressures at their shared vertices
         early (few neighbours each), where their diagonal is still the small
         −M/κ, and SuperLU pivots off the diagonal (a few hundred times on the
-        shared cases): 1.3 to 2.6 times the fill of COLAMD, which pivots on
-        the diagonal throughout.
+        shared cases): 1.2 to 2.2 times the fill of COLAMD there, which
+        pivots on the diagonal throughout.
         """
         return "MMD_AT_PLUS_A" if mesh.n_pressures == mesh.n_vertices else "COLAMD"
 
