@@ -15,8 +15,16 @@ Prints, on a shared machine (times are indicative only):
 3. Two blocks stacked (shear moduli 1 and 3, same bulk-to-shear ratio)
    stretched equibiaxially by 1.2, whose exact state is homogeneous:
    the largest node distance from the affine map over the layer height and
-   the median pressure of each body over the exact one (the pressure field
-   is continuous across the bonded interface, so it cannot jump there).
+   the median pressure of each body over the exact one (each body has its
+   own pressure field, so the pressure jumps at the bonded interface as
+   the exact one does).
+4. The thick ring of 3. in ``tests/test_stress_fields.py``, two bonded
+   layers of shear moduli 1 (inner) and 3 (outer), expanded radially: the
+   largest pressure error far from the ends, over the largest pressure,
+   per layer.
+5. The two shared assemblies against their finite-element reference (mesh
+   size 0.1): per body the Hausdorff distance of the hyperelastic model's
+   upper curve over its T, and its law correction over T.
 """
 
 from __future__ import annotations
@@ -93,7 +101,32 @@ def stacked() -> None:
               f"median pressure {p:.4f} of the exact")
 
 
+def layered_ring() -> None:
+    import test_stress_fields as t
+
+    for body, error in zip(("inner", "outer"), t.two_layer_ring_pressure_errors()):
+        print(f"two-layer ring, {body} layer: largest pressure error {error:.2e} of the largest pressure")
+
+
+def against_reference() -> None:
+    from sectiondeform.compare import hausdorff_distance
+    from sectiondeform.reference.assembly import solve_assembly_reference
+
+    for name in ("two-layer-strip", "tread-on-drum"):
+        assembly = assembly_from_dict(json.loads((DRUM.parent / f"{name}.json").read_text()))
+        reference = solve_assembly_reference(assembly, mesh_size=0.1)
+        deformer = AssemblyDeformer(assembly, model="hyperelastic")
+        result = deformer.deform()
+        for body, ref, prepared in zip(result.bodies, reference.bodies, deformer.bodies):
+            t = prepared.section.thickness
+            d = hausdorff_distance(body.upper, ref.upper)
+            print(f"{name} {body.name}: Hausdorff to the reference {100 * d / t:.2f} % T, "
+                  f"law correction {body.info.area_correction:.2e} T")
+
+
 if __name__ == "__main__":
     undertread()
     ring()
     stacked()
+    layered_ring()
+    against_reference()

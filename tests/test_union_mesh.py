@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 from sectiondeform.errors import MeshError
 from sectiondeform.fem.elements import geometry
-from sectiondeform.fem.union_mesh import union_mesh
+from sectiondeform.fem.union_mesh import body_pressure_cells, union_mesh
 
 
 def _box(x0, y0, x1, y1, n_bottom):
@@ -48,6 +48,27 @@ def test_two_stacked_boxes_share_the_nodes_of_their_interface(width, low, high, 
     assert np.abs(mesh.vertex_weights @ mesh.nodes - mesh.points).max() <= 1e-9 * width
     # The two rings meet in the interface's vertices only.
     assert len(np.intersect1d(mesh.rings[0], mesh.rings[1])) == n + 1
+    _check_pressure_cells(mesh)
+
+
+def _check_pressure_cells(mesh):
+    """One pressure unknown per (corner node, body): continuous within a body, split at the nodes bodies share."""
+    corner, pc = mesh.cells[:, :3], mesh.pressure_cells
+    pairs = np.unique(np.column_stack((corner.ravel(), np.repeat(mesh.body, 3), pc.ravel())), axis=0)
+    assert len(np.unique(pairs[:, :2], axis=0)) == len(pairs)  # a node of a body has one unknown: continuous in the body
+    assert len(np.unique(pairs[:, 2])) == len(pairs) == mesh.n_pressures  # distinct across bodies, all used
+    assert pairs[:, 2].min() == 0 and pairs[:, 2].max() == mesh.n_pressures - 1
+    shared = np.intersect1d(*(np.unique(corner[mesh.body == b]) for b in (0, 1)))
+    assert mesh.n_pressures == mesh.n_vertices + len(shared)
+    lone = mesh.body[:, None] == 0  # the lower body's unknowns are its own nodes
+    assert np.array_equal(pc[np.broadcast_to(lone, pc.shape)], corner[np.broadcast_to(lone, pc.shape)])
+
+
+def test_one_bodys_pressure_unknowns_are_its_corner_nodes():
+    mesh = union_mesh([_box(0.0, 0.0, 5.0, 2.0, 3)], [np.array([0, 3])], 0.7, 1e-9)
+    assert np.array_equal(mesh.pressure_cells, mesh.cells[:, :3]) and mesh.n_pressures == mesh.n_vertices
+    pc, count = body_pressure_cells(mesh.cells, mesh.body, mesh.n_vertices)
+    assert np.array_equal(pc, mesh.cells[:, :3]) and count == mesh.n_vertices
 
 
 @settings(max_examples=20, deadline=None)

@@ -4,7 +4,8 @@ Everything is the plane assembly's (:mod:`~sectiondeform.assembly_hyperelastic`:
 one union mesh, the support bonded to the target, shared pieces bonded by
 their shared nodes, one Newton solve) except two things:
 
-* the mechanics are axisymmetric
+* the mechanics are axisymmetric (the pressure one P1 field per body, as in
+  the plane case)
   (:class:`~sectiondeform.fem.axisymmetric.AxisymmetricNeoHooke` for
   neo-Hookean bodies, in closed form, else
   :class:`~sectiondeform.fem.axisymmetric.AxisymmetricRubber`: each body's
@@ -151,8 +152,10 @@ class JointRevolution(JointHyperelastic):
         self.stretches = self.stretches_of(tuple(body.law for body in a.bodies))
         ln_growth = np.log(self.stretches)[self.mesh.body]
         if all(type(m) is NeoHookean for m in self.materials):
-            return AxisymmetricNeoHooke(cells, self.mesh.nodes, geom, origin, normal, kappa, mu, ln_growth)
-        return AxisymmetricRubber(cells, self.mesh.nodes, geom, origin, normal, self.materials, self.mesh.body, ln_growth)
+            return AxisymmetricNeoHooke(cells, self.mesh.nodes, geom, origin, normal, kappa, mu, ln_growth,
+                                        self.mesh.pressure_cells)
+        return AxisymmetricRubber(cells, self.mesh.nodes, geom, origin, normal, self.materials, self.mesh.body, ln_growth,
+                                  self.mesh.pressure_cells)
 
     def _physics_for(self, stretches: tuple):
         physics = copy.copy(self.physics)

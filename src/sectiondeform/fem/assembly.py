@@ -80,12 +80,25 @@ class MixedNeoHooke:
         (in the units of ``mu``).
     mu : (E,) float64 ndarray, optional
         Shear modulus per element (several materials in one mesh); 1 by default.
+    pressure_cells : (E, 3) int64 ndarray, optional
+        The pressure unknown at each element's three corners; by default
+        the corner nodes themselves (``cells[:, :3]``: one pressure field,
+        continuous over the mesh). An assembly gives each body its own
+        unknowns at the vertices it shares with others
+        (:attr:`~.union_mesh.UnionMesh.pressure_cells`): the pressure is then
+        continuous within a body and free to jump across its interfaces.
+
+    Attributes
+    ----------
+    n_pressures : int
+        Number of pressure unknowns (``pressure_cells.max() + 1``).
 
     Notes
     -----
-    The unknown vector is ``z = [x (2 N, node-major), p (n_vertices)]`` with
+    The unknown vector is ``z = [x (2 N, node-major), p (n_pressures)]`` with
     ``x`` the deformed node positions; the element dofs are
-    ``(x0, y0, ..., x5, y5, p0, p1, p2)``.
+    ``(x0, y0, ..., x5, y5, p0, p1, p2)``, ``p_k`` the unknown
+    ``pressure_cells[e, k]``.
 
     The deformation gradients at all quadrature points are one sparse
     product ``B x`` (``B`` of shape ``(4 E q, 2 N)``, built once), and the
@@ -93,16 +106,19 @@ class MixedNeoHooke:
     scatter for the residual, the cheap part of a warm re-solve.
     """
 
-    def __init__(self, cells: np.ndarray, n_nodes: int, geom: Geometry, kappa, mu: np.ndarray | None = None):
+    def __init__(self, cells: np.ndarray, n_nodes: int, geom: Geometry, kappa, mu: np.ndarray | None = None,
+                 pressure_cells: np.ndarray | None = None):
         self.cells = cells
         self.n_nodes = n_nodes
         self.geom = geom
         e, q = geom.weight.shape
         self.kappa = float(kappa) if np.ndim(kappa) == 0 else np.asarray(kappa, dtype=np.float64).reshape(e, 1)
         self._mu = None if mu is None else np.asarray(mu, dtype=np.float64).reshape(e, 1)
-        self.n_vertices = int(cells[:, :3].max()) + 1
+        pc = cells[:, :3] if pressure_cells is None else np.asarray(pressure_cells, dtype=np.int64)
+        self.pressure_cells = pc
+        self.n_pressures = int(pc.max()) + 1
         xd = (2 * cells[:, :, None] + np.arange(2)).reshape(e, 12)
-        self.edofs = np.concatenate((xd, 2 * n_nodes + cells[:, :3]), axis=1)
+        self.edofs = np.concatenate((xd, 2 * n_nodes + pc), axis=1)
         G, w, M = geom.grad, geom.weight, geom.pvalues
         # B[(e, q, i, j), 2 node + i] = G[e, q, a, j]
         rows = (((np.arange(e)[:, None, None, None, None] * q + np.arange(q)[None, :, None, None, None]) * 2
@@ -116,9 +132,9 @@ class MixedNeoHooke:
         )
         self.Bt = self.B.T.tocsr()
         prow = np.broadcast_to(np.arange(e * q).reshape(e, q, 1), (e, q, 3)).ravel()
-        pcol = np.broadcast_to(cells[:, None, :3], (e, q, 3)).ravel()
+        pcol = np.broadcast_to(pc[:, None, :], (e, q, 3)).ravel()
         pval = np.broadcast_to(M[None], (e, q, 3)).ravel()
-        self.Mp = sp.csr_matrix((pval, (prow, pcol)), shape=(e * q, self.n_vertices))
+        self.Mp = sp.csr_matrix((pval, (prow, pcol)), shape=(e * q, self.n_pressures))
         self.Mpt = self.Mp.T.tocsr()
         self._wM = w[:, :, None] * M[None]  # (E, q, 3)
         self._Gt = np.ascontiguousarray(G.transpose(0, 2, 1, 3))  # (E, 6, q, 2)
@@ -161,7 +177,7 @@ class MixedNeoHooke:
         return (f.J - 1.0 - f.p / self.kappa) * self.geom.weight
 
     def residual(self, f: Fields) -> np.ndarray:
-        """Assembled residual ``(2 N + n_vertices,)``."""
+        """Assembled residual ``(2 N + n_pressures,)``."""
         rx = self.Bt @ self._stress(f).ravel()
         rp = self.Mpt @ self._pressure_residual(f).ravel()
         return np.concatenate((rx, rp))

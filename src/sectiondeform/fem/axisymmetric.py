@@ -96,7 +96,7 @@ class AxisymmetricNeoHooke:
 
     Same interface as :class:`~sectiondeform.fem.assembly.MixedNeoHooke`
     (what :class:`~sectiondeform.fem.newton.NewtonSolver` uses): the unknown
-    vector ``z = [x (2 N, node-major), p (n_vertices)]``, element dofs
+    vector ``z = [x (2 N, node-major), p (n_pressures)]``, element dofs
     ``(x0, y0, ..., x5, y5, p0, p1, p2)``, and the solver's scalar ``lz``
     read as the growth path parameter ``s``.
 
@@ -118,9 +118,15 @@ class AxisymmetricNeoHooke:
         Shear modulus.
     ln_growth : float or (E,) float64 ndarray
         ``ln v`` of each element's volume ratio (0: no growth).
+    pressure_cells : (E, 3) int64 ndarray, optional
+        The pressure unknown at each element's corners; ``cells[:, :3]`` by
+        default (one continuous field), one field per body in an assembly
+        (see :class:`~.assembly.MixedNeoHooke`).
 
     Attributes
     ----------
+    n_pressures : int
+        Number of pressure unknowns.
     radius : (E, q) float64 ndarray
         Initial distance of each quadrature point from the axis, units.
     ln_stretch : (E, 1) float64 ndarray
@@ -130,7 +136,8 @@ class AxisymmetricNeoHooke:
         problem, so an assembly's predictor reads both alike).
     """
 
-    def __init__(self, cells: np.ndarray, nodes: np.ndarray, geom: Geometry, origin, normal, kappa, mu, ln_growth=0.0):
+    def __init__(self, cells: np.ndarray, nodes: np.ndarray, geom: Geometry, origin, normal, kappa, mu, ln_growth=0.0,
+                 pressure_cells: np.ndarray | None = None):
         e, q = geom.weight.shape
         self.cells = cells
         self.n_nodes = len(nodes)
@@ -140,10 +147,12 @@ class AxisymmetricNeoHooke:
         column = lambda v: np.broadcast_to(np.asarray(v, dtype=np.float64).reshape(-1, 1), (e, 1)).copy()  # noqa: E731
         self.kappa, self.mu, self.ln_growth = column(kappa), column(mu), column(ln_growth)
         self.ln_stretch = -self.ln_growth
-        self.n_vertices = int(cells[:, :3].max()) + 1
-        self.n_dofs = 2 * self.n_nodes + self.n_vertices
+        pc = cells[:, :3] if pressure_cells is None else np.asarray(pressure_cells, dtype=np.int64)
+        self.pressure_cells = pc
+        self.n_pressures = int(pc.max()) + 1
+        self.n_dofs = 2 * self.n_nodes + self.n_pressures
         xd = (2 * cells[:, :, None] + np.arange(2)).reshape(e, 12)
-        self.edofs = np.concatenate((xd, 2 * self.n_nodes + cells[:, :3]), axis=1)
+        self.edofs = np.concatenate((xd, 2 * self.n_nodes + pc), axis=1)
         self.values = p2_values(QUAD_POINTS)  # (q, 6)
         self.radius = self._distance(np.einsum("qa,eai->eqi", self.values, nodes[cells]))
         if not self.radius.min() > 0:
@@ -171,7 +180,7 @@ class AxisymmetricNeoHooke:
         hoop = self._distance(np.einsum("qa,eai->eqi", self.values, x)) / self.radius
         if not (det.min() > 0 and hoop.min() > 0):
             return None
-        p = np.einsum("eb,qb->eq", z[2 * n :][self.cells[:, :3]], self.geom.pvalues)
+        p = np.einsum("eb,qb->eq", z[2 * n :][self.pressure_cells], self.geom.pvalues)
         i1 = np.einsum("eqij,eqij->eq", F, F) + hoop * hoop
         growth = np.exp(math.log(lz) * self.ln_growth)
         return AxisymmetricFields(F, det, hoop, hoop * det, i1, p, growth)
@@ -222,7 +231,7 @@ class AxisymmetricNeoHooke:
         return np.concatenate((rx, rp), axis=1)
 
     def residual(self, f: AxisymmetricFields) -> np.ndarray:
-        """Assembled residual ``(2 N + n_vertices,)``."""
+        """Assembled residual ``(2 N + n_pressures,)``."""
         return np.bincount(self.edofs.ravel(), weights=self.element_residuals(f).ravel(), minlength=self.n_dofs)
 
     def element_matrices(self, f: AxisymmetricFields) -> np.ndarray:
@@ -270,6 +279,8 @@ class AxisymmetricRubber(AxisymmetricNeoHooke):
         Index into ``materials`` of each element; all 0 by default.
     ln_growth : float or (E,) float64 ndarray
         ``ln v`` of each element's volume ratio (0: no growth).
+    pressure_cells : (E, 3) int64 ndarray, optional
+        As :class:`AxisymmetricNeoHooke`.
 
     Examples
     --------
@@ -284,13 +295,13 @@ class AxisymmetricRubber(AxisymmetricNeoHooke):
     """
 
     def __init__(self, cells: np.ndarray, nodes: np.ndarray, geom: Geometry, origin, normal, materials,
-                 body: np.ndarray | None = None, ln_growth=0.0):
+                 body: np.ndarray | None = None, ln_growth=0.0, pressure_cells: np.ndarray | None = None):
         self.materials = tuple(materials)
         e = len(cells)
         self.body = np.zeros(e, np.int64) if body is None else np.asarray(body, dtype=np.int64)
         kappa = np.array([m.kappa for m in self.materials], dtype=np.float64)[self.body]
         mu = np.array([m.shear_modulus for m in self.materials], dtype=np.float64)[self.body]
-        super().__init__(cells, nodes, geom, origin, normal, kappa, mu, ln_growth)
+        super().__init__(cells, nodes, geom, origin, normal, kappa, mu, ln_growth, pressure_cells)
         self._groups = [(m, np.flatnonzero(self.body == i)) for i, m in enumerate(self.materials)]
         self._groups = [(m, idx) for m, idx in self._groups if idx.size]
 

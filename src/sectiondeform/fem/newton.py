@@ -153,7 +153,7 @@ class NewtonSolver:
         # Pressure rows scaled by 1/length so the residual norm mixes like units.
         self.row_scale = np.where(self.free_x, 1.0, 1.0 / self.length)
         wm = physics._wM.sum(axis=1)  # (E, 3): integral of each pressure function
-        mp = np.bincount(physics.cells[:, :3].ravel(), weights=wm.ravel(), minlength=physics.cells[:, :3].max() + 1)
+        mp = np.bincount(physics.edofs[:, 12:].ravel() - 2 * n, weights=wm.ravel(), minlength=pattern.n_dofs - 2 * n)
         full = np.zeros(pattern.n_dofs)
         full[2 * n :] = mp
         self.dres_dlnlz = full[free]  # d R_f / d ln lz at J = 1 (R_p = J - 1 - p / kappa, J = lz det F)

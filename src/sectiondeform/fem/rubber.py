@@ -58,6 +58,10 @@ class MixedRubber(MixedNeoHooke):
         solver's ``lz`` is a path parameter ``s`` and element ``e`` has
         ``lz_e = exp(ln s * ln_stretch[e])`` (``s = e``: each body's own
         stretch); without it every element has ``lz``.
+    pressure_cells : (E, 3) int64 ndarray, optional
+        The pressure unknown at each element's corners (one field per body
+        in an assembly); ``cells[:, :3]`` by default (see
+        :class:`~.assembly.MixedNeoHooke`).
 
     Examples
     --------
@@ -72,12 +76,12 @@ class MixedRubber(MixedNeoHooke):
     """
 
     def __init__(self, cells: np.ndarray, n_nodes: int, geom: Geometry, materials, body: np.ndarray | None = None,
-                 ln_stretch: np.ndarray | None = None):
+                 ln_stretch: np.ndarray | None = None, pressure_cells: np.ndarray | None = None):
         e = len(cells)
         self.materials = tuple(materials)
         self.body = np.zeros(e, np.int64) if body is None else np.asarray(body, dtype=np.int64)
         kappa = np.array([m.kappa for m in self.materials], dtype=np.float64)[self.body]
-        super().__init__(cells, n_nodes, geom, kappa)
+        super().__init__(cells, n_nodes, geom, kappa, pressure_cells=pressure_cells)
         self._kappa_e = kappa[:, None]  # (E, 1)
         self._groups = [(m, np.flatnonzero(self.body == i)) for i, m in enumerate(self.materials)]
         self._groups = [(m, idx) for m, idx in self._groups if idx.size]
@@ -118,7 +122,7 @@ class MixedRubber(MixedNeoHooke):
 
     # -- the interface ----------------------------------------------------------
     def residual(self, f: Fields) -> np.ndarray:
-        """Assembled residual ``(2 N + n_vertices,)``."""
+        """Assembled residual ``(2 N + n_pressures,)``."""
         wP = self._points(f, False)[0] * self.geom.weight[..., None, None]
         rx = self.Bt @ wP.ravel()
         rp = self.Mpt @ self._constraint(f).ravel()

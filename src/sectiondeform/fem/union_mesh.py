@@ -20,6 +20,12 @@ are put on the chain (isoparametric edges).
 Every vertex (contour point) is located on a chain segment, so that
 :func:`~sectiondeform.fem.mapping.edge_weights` gives its image from the
 solved node positions: a vertex shared by two bodies has one image.
+
+The displacement is shared across the bodies' interfaces (bonded), the
+pressure is not: each body has its own P1 pressure unknowns
+(:func:`body_pressure_cells`), so the pressure is continuous within a body
+and jumps across an interface between bodies of different stiffness, as the
+exact one does.
 """
 
 from __future__ import annotations
@@ -39,7 +45,7 @@ from .elements import geometry
 from .mapping import edge_weights
 from .mesh import CONFORM_ITERATIONS, CORNER_DEG, PIECE_TURN_DEG, SMOOTH_ITERATIONS, _lattice, _signed_areas, _smooth
 
-__all__ = ["UnionMesh", "Chain", "union_mesh"]
+__all__ = ["UnionMesh", "Chain", "union_mesh", "body_pressure_cells"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -80,7 +86,7 @@ class UnionMesh:
     body : (E,) int64 ndarray
         The body of each cell.
     n_vertices : int
-        Number of corner nodes (the pressure unknowns).
+        Number of corner nodes.
     points : (V, 2) float64 ndarray
         The graph's vertices: the contour points, merged, units.
     rings : tuple of (k_b,) int64 ndarray
@@ -92,6 +98,12 @@ class UnionMesh:
         Image of every vertex from the node positions.
     size : float
         Target edge length h, units (the smallest body's).
+    pressure_cells : (E, 3) int64 ndarray
+        The pressure unknown at each cell's corners: one per body at each
+        corner node (:func:`body_pressure_cells`).
+    n_pressures : int
+        Number of pressure unknowns: ``n_vertices`` plus one for every
+        further body at a corner node shared by several.
     """
 
     nodes: np.ndarray
@@ -104,6 +116,8 @@ class UnionMesh:
     edge_chain: dict
     vertex_weights: sp.csr_matrix
     size: float
+    pressure_cells: np.ndarray
+    n_pressures: int
 
     def chain_of(self, u: int, w: int) -> int:
         """Index of the chain holding the graph edge ``u``-``w``."""
@@ -322,7 +336,58 @@ def union_mesh(rings, fixed, h, tol: float) -> UnionMesh:
         for u, w in zip(ch.vertices[:-1], ch.vertices[1:]):
             edge_chain[(min(int(u), int(w)), max(int(u), int(w)))] = c
     weights = _vertex_weights(nodes, cells, nv, points, chains, edge_cell)
-    return UnionMesh(nodes, cells, body.astype(np.int64), nv, points, tuple(ids), tuple(chains), edge_chain, weights, float(h))
+    body = body.astype(np.int64)
+    pressure_cells, n_pressures = body_pressure_cells(cells, body, nv)
+    return UnionMesh(nodes, cells, body, nv, points, tuple(ids), tuple(chains), edge_chain, weights, float(h),
+                     pressure_cells, n_pressures)
+
+
+def body_pressure_cells(cells: np.ndarray, body: np.ndarray, n_vertices: int) -> tuple[np.ndarray, int]:
+    """One P1 pressure unknown per body at each corner node: continuous within a body, not across bodies.
+
+    A corner node of one body keeps its own index as its pressure unknown; at
+    a node shared by several bodies the lowest-numbered body keeps it and
+    each other body gets a new unknown, numbered from ``n_vertices`` on in
+    the order of (node, body). A one-body mesh's unknowns are its corner
+    nodes, ``cells[:, :3]``.
+
+    Parameters
+    ----------
+    cells : (E, 6) int64 ndarray
+        P2 cells, their corner nodes first (numbered ``0 .. n_vertices - 1``).
+    body : (E,) int64 ndarray
+        The body of each cell.
+    n_vertices : int
+        Number of corner nodes.
+
+    Returns
+    -------
+    pressure_cells : (E, 3) int64 ndarray
+        The pressure unknown at each cell's corners.
+    n_pressures : int
+        Number of pressure unknowns.
+
+    Examples
+    --------
+    Two triangles of two bodies sharing the edge 1-2:
+
+    >>> cells = np.array([[0, 1, 2, 4, 5, 6], [1, 3, 2, 7, 8, 5]])
+    >>> pc, n = body_pressure_cells(cells, np.array([0, 1]), 4)
+    >>> pc.tolist(), n
+    ([[0, 1, 2], [4, 3, 5]], 6)
+    """
+    corner = np.asarray(cells, dtype=np.int64)[:, :3]
+    body = np.asarray(body, dtype=np.int64)
+    count = int(body.max()) + 1 if len(body) else 1
+    key = corner * count + body[:, None]
+    uniq, inverse = np.unique(key.ravel(), return_inverse=True)
+    node = uniq // count
+    first = np.ones(len(uniq), bool)
+    first[1:] = node[1:] != node[:-1]  # sorted by node then body: the node's lowest body
+    index = np.empty(len(uniq), np.int64)
+    index[first] = node[first]
+    index[~first] = n_vertices + np.arange(int((~first).sum()))
+    return index[inverse].reshape(-1, 3), int(n_vertices + (~first).sum())
 
 
 def _ring_nodes(ring, geo, chain_nodes) -> np.ndarray:
