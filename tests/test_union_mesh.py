@@ -73,8 +73,10 @@ def test_one_bodys_pressure_unknowns_are_its_corner_nodes():
 
 @settings(max_examples=20, deadline=None)
 @given(
-    a=st.floats(0.0, 0.45),
-    b=st.floats(0.55, 1.0),
+    # the upper body's corners at the lower one's ends, or clearly inside: an edge a few contact tolerances
+    # long (a = 1e-10: 3e-9 mm) is no narrower body but a sliver, refused with a MeshError
+    a=st.one_of(st.just(0.0), st.floats(0.01, 0.45)),
+    b=st.one_of(st.just(1.0), st.floats(0.55, 0.99)),
     low=st.floats(1.0, 6.0),
     high=st.floats(1.0, 12.0),
     through=st.floats(1.0, 3.0),
