@@ -55,7 +55,7 @@ import numpy as np
 from .errors import CaseError, LawError, MeshError
 from .fem.assembly import MixedNeoHooke, Pattern
 from .fem.elements import geometry
-from .fem.mapping import rigid_fit
+from .fem.mapping import offset_root, rigid_fit
 from .fem.newton import NewtonSolver, State
 from .fem.rubber import MixedRubber
 from .fem.union_mesh import union_mesh
@@ -130,14 +130,7 @@ def offset_to_area(ring: np.ndarray, movable: np.ndarray, signed_area: float) ->
     c2 = 0.5 * float(cross(v, nxt(v)).sum())
     if c1 == 0.0:
         raise LawError("law: no point of the upper curve is free to move to meet the area")
-    if abs(c2 * c0) <= 1e-12 * c1 * c1:
-        k = -c0 / c1
-    else:
-        disc = c1 * c1 - 4.0 * c2 * c0
-        if disc < 0:
-            raise LawError(f"law: no normal offset of the upper curve gives the area {abs(signed_area):.6g}")
-        q = -0.5 * (c1 + math.copysign(math.sqrt(disc), c1))
-        k = c0 / q
+    k = offset_root(c0, c1, c2, signed_area)
     return ring + k * v, float(k)
 
 

@@ -30,7 +30,7 @@ from ..errors import LawError
 from .elements import p2_gradients, p2_values
 from .mesh import CoarseMesh
 
-__all__ = ["boundary_weights", "edge_weights", "interpolation_matrix", "rigid_fit", "correct_area"]
+__all__ = ["boundary_weights", "edge_weights", "interpolation_matrix", "rigid_fit", "offset_root", "correct_area"]
 
 
 def _edge_curve(a, m, b, t):
@@ -156,6 +156,31 @@ def rigid_fit(src: np.ndarray, dst: np.ndarray, weights: np.ndarray | None = Non
     return q, cd - q @ cs
 
 
+def offset_root(c0: float, c1: float, c2: float, signed_area: float) -> float:
+    """The offset k nearest zero with c0 + c1 k + c2 k² = 0 (c1 ≠ 0), without cancellation.
+
+    The area of a contour whose movable points move by k along fixed
+    normals is quadratic in k; the wanted offset is the root of smaller
+    magnitude (the one that tends to -c0 / c1 as c2 vanishes).
+
+    Raises
+    ------
+    LawError
+        If the quadratic has no real root: no offset gives ``signed_area``.
+
+    Examples
+    --------
+    >>> offset_root(-1.0, 1.0, 0.0, 2.0), round(offset_root(-3.0, 2.0, 1.0, 2.0), 12)
+    (1.0, 1.0)
+    """
+    if abs(c2 * c0) <= 1e-12 * c1 * c1:
+        return -c0 / c1
+    disc = c1 * c1 - 4.0 * c2 * c0
+    if disc < 0:
+        raise LawError(f"law: no normal offset of the upper curve gives the area {abs(signed_area):.6g}")
+    return c0 / (-0.5 * (c1 + math.copysign(math.sqrt(disc), c1)))
+
+
 def correct_area(lower: np.ndarray, upper: np.ndarray, signed_area: float) -> tuple[np.ndarray, float]:
     """Offset the inner upper points along their normals so the contour has ``signed_area``.
 
@@ -200,14 +225,7 @@ def correct_area(lower: np.ndarray, upper: np.ndarray, signed_area: float) -> tu
     c2 = 0.5 * float(nrm[:-1, 0] @ nrm[1:, 1] - nrm[:-1, 1] @ nrm[1:, 0])
     if c1 == 0.0:
         raise LawError("law: the upper curve cannot be offset to meet the area (degenerate contour)")
-    if abs(c2 * c0) <= 1e-12 * c1 * c1:
-        k = -c0 / c1
-    else:
-        disc = c1 * c1 - 4.0 * c2 * c0
-        if disc < 0:
-            raise LawError(f"law: no normal offset of the upper curve gives the area {abs(signed_area):.6g}")
-        q = -0.5 * (c1 + math.copysign(math.sqrt(disc), c1))
-        k = c0 / q  # the root of smaller magnitude
+    k = offset_root(c0, c1, c2, signed_area)
     out = upper.copy()
     out[1:-1] = inner + k * nrm
     # Report the offset as positive when the area's magnitude grows.
