@@ -16,7 +16,6 @@ from __future__ import annotations
 from importlib import resources
 from pathlib import Path
 
-from .case import Case, case_from_dict, case_to_dict, load_case
 from .curves import Arc, BSpline, Chain, Curve, Polyline, curve_from_json
 from .deform import Deformer, deform
 from .errors import (
@@ -29,17 +28,20 @@ from .errors import (
     MissingExtraError,
     SectionDeformError,
 )
-from .laws import AreaRatio, Law
-from .result import Result
+from .io.case import case_from_dict, case_to_dict, load_case
+from .laws import AreaRatio, Law, VolumeRatio
+from .options import Options
+from .problem import Body, Problem, Revolution
+from .result import BodyResult, Result
 from .section import Section, build_section
 
 __version__ = "0.1.0"
 
 __all__ = [
-    "Arc", "AreaRatio", "BSpline", "Case", "CaseError", "Chain", "ConvergenceError", "Curve",
-    "Deformer", "GeometryError", "Law", "LawError", "LocateError", "MeshError", "MissingExtraError",
-    "Polyline", "Result", "Section", "SectionDeformError", "build_section", "case_from_dict",
-    "case_to_dict", "curve_from_json", "deform", "example_case_path", "load_case", "sweep",
+    "Arc", "AreaRatio", "BSpline", "Body", "BodyResult", "CaseError", "Chain", "ConvergenceError", "Curve",
+    "Deformer", "GeometryError", "Law", "LawError", "LocateError", "MeshError", "MissingExtraError", "Options",
+    "Polyline", "Problem", "Result", "Revolution", "Section", "SectionDeformError", "VolumeRatio", "build_section",
+    "case_from_dict", "case_to_dict", "curve_from_json", "deform", "example_case_path", "load_case", "sweep",
 ]
 
 

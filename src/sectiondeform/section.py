@@ -1,6 +1,7 @@
 """The section as the method sees it: discretised lower curve, upper points, checks.
 
-Paper §3.2-3.3. :func:`build_section` turns a :class:`~sectiondeform.case.Case`
+Paper §3.2-3.3. :func:`build_section` turns one body's curves
+(:class:`SectionCurves`, :meth:`~sectiondeform.problem.Problem.body_case`)
 into a :class:`Section`:
 
 1. the chordal error ``tol`` is ``options.chordal_error`` or, by default,
@@ -43,13 +44,12 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from .case import Case
 from .compare import section_height
 from .curves import DEFAULT_CHORDAL_FRACTION, Arc, Chain, Curve, polygon_area
 from .errors import GeometryError
 from .limits import MAX_LOWER_NODES, MAX_UPPER_POINTS, bounded
 
-__all__ = ["Section", "build_section", "polygon_area", "mesh_scale", "DEFAULT_CHORDAL_FRACTION"]
+__all__ = ["Section", "SectionCurves", "build_section", "polygon_area", "mesh_scale", "DEFAULT_CHORDAL_FRACTION"]
 
 JOIN_FRACTION = 1e-6
 AREA_FRACTION = 1e-5
@@ -73,6 +73,29 @@ def mesh_scale(area: float, lower_length: float) -> float:
     (4.0, 6.0)
     """
     return min(area / lower_length, math.sqrt(area))
+
+
+@dataclass(frozen=True, eq=False)
+class SectionCurves:
+    """One body's curves as the section stage reads them.
+
+    Attributes
+    ----------
+    lower : Curve
+        From A to B, on the body's foundation.
+    upper : Curve
+        From B back to A.
+    target : Curve
+        Where the lower curve goes, A' to B' (it guides the sampling of the
+        lower curve only).
+    options : Options
+        The problem's options (``chordal_error``, ``element_size``, ``refine``).
+    """
+
+    lower: Curve
+    upper: Curve
+    target: Curve
+    options: object
 
 
 @dataclass(frozen=True, eq=False)
@@ -213,12 +236,13 @@ def _sketch(curve: Curve) -> np.ndarray:
     return curve.at_fractions(np.linspace(0.0, 1.0, 65))
 
 
-def build_section(case: Case, element_size: float | None = None) -> Section:
-    """Discretise and check a case's section (see the module docstring for the rules).
+def build_section(case, element_size: float | None = None) -> Section:
+    """Discretise and check one body's section (see the module docstring for the rules).
 
     Parameters
     ----------
-    case : Case
+    case : SectionCurves or Problem
+        One body's curves, or a problem of one body.
     element_size : float, optional
         Element size in units; overrides ``case.options.element_size``.
 
@@ -231,6 +255,11 @@ def build_section(case: Case, element_size: float | None = None) -> Section:
     GeometryError
         If the ends do not meet, the contour crosses itself or has no area.
     """
+    if hasattr(case, "bodies"):  # a problem: its one body
+        if len(case.bodies) != 1:
+            raise GeometryError(f"section: the problem has {len(case.bodies)} bodies, one section each; "
+                                "build the section of problem.body_case(i)")
+        case = case.body_case(0)
     opts = case.options
     sketch = np.concatenate((_sketch(case.lower), _sketch(case.upper)))
     size = float(np.hypot(*np.ptp(sketch, axis=0)))

@@ -94,7 +94,7 @@ class AxisymmetricFields:
 class AxisymmetricNeoHooke:
     """Residual and tangent of the Taylor-Hood neo-Hookean problem of a body of revolution.
 
-    Same interface as :class:`~sectiondeform.fem.assembly.MixedNeoHooke`
+    Same interface as :class:`~sectiondeform.fem.neohooke.MixedNeoHooke`
     (what :class:`~sectiondeform.fem.newton.NewtonSolver` uses): the unknown
     vector ``z = [x (2 N, node-major), p (n_pressures)]``, element dofs
     ``(x0, y0, ..., x5, y5, p0, p1, p2)``, and the solver's scalar ``lz``

@@ -33,7 +33,7 @@ from scipy.sparse.linalg import splu
 
 from ..errors import ConvergenceError
 from ..limits import MAX_NEWTON_ITERATIONS, MAX_NEWTON_WORK, newton_budget
-from .assembly import MixedNeoHooke, Pattern
+from .neohooke import MixedNeoHooke, Pattern
 
 __all__ = ["State", "Tangent", "NewtonSolver", "MAX_HALVINGS"]
 

@@ -28,7 +28,7 @@ import math
 import numpy as np
 
 from ..materials.models import gradient_3d
-from .assembly import Fields, MixedNeoHooke
+from .neohooke import Fields, MixedNeoHooke
 from .elements import Geometry
 
 __all__ = ["MixedRubber"]

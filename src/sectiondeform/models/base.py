@@ -3,13 +3,15 @@
 A model works in two stages, so the interactive use (one section, many
 targets) redoes only the second:
 
-1. ``Model.prepare(section, options)`` -> :class:`Prepared`: everything that
-   depends on the section alone (its mesh, the location of the upper
-   points in it, factorisations); ``options`` is the model's own frozen
-   :class:`ModelOptions` subclass, declared as ``Model.options_type``;
-2. ``Prepared.place(target_nodes, law, start=None)`` -> :class:`Placement`:
-   the deformed mesh on the target and the images of the upper points,
-   meeting the law. A prepared object is never changed by ``place``: a
+1. ``Model.prepare(stack, options)`` -> :class:`Prepared`: everything that
+   depends on the bodies alone (their meshes, the location of the upper
+   points in them, factorisations), from the bodies' sections as they rest
+   on each other (:class:`~sectiondeform.stack.Stack`); ``options`` is the
+   model's own frozen :class:`ModelOptions` subclass, declared as
+   ``Model.options_type``;
+2. ``Prepared.place(target, laws, start=None)`` -> :class:`Placed`: per
+   body the deformed mesh on the target and the images of its upper
+   points, meeting its law. A prepared object is never changed by ``place``: a
    model that can start from an earlier solution takes it as ``start`` (a
    :attr:`Placement.state`), so the same arguments give the same answer,
    bit for bit, and one prepared object may serve several threads.
@@ -18,9 +20,9 @@ Quality and info figures are frozen dataclasses (:class:`MeshQuality`,
 :class:`FinalQuality`, :class:`Info` subclasses); ``to_json`` gives the keys
 of the result format, leaving out figures a model does not have.
 
-The lower nodes always go to ``target_nodes`` (the target at the lower
-nodes' arc-length fractions), so the deformed lower curve is the target
-itself; a model decides where the upper points go.
+The lower nodes resting on the support always go to the target at their
+arc-length fractions, so the deformed lower curve is the target itself; a
+model decides where the upper points go.
 """
 
 from __future__ import annotations
@@ -31,13 +33,12 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
-from ..laws import Law
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..section import Section
+    from ..stack import Stack
 
 __all__ = [
-    "MeshData", "Placement", "Prepared", "Model", "ModelOptions", "Figures", "MeshQuality",
+    "MeshData", "Placement", "Placed", "Prepared", "Model", "ModelOptions", "Figures", "MeshQuality",
     "FinalQuality", "Info",
 ]
 
@@ -205,28 +206,56 @@ class Placement:
     state: object = None
 
 
-class Prepared(ABC):
-    """A section made ready for deformation by one model."""
+@dataclass(frozen=True, eq=False)
+class Placed:
+    """One placement of a whole problem: per body its deformed curves and :class:`Placement`.
 
-    section: Section
-    initial_mesh: MeshData
-    quality: MeshQuality
+    Attributes
+    ----------
+    lowers : list of (n_b, 2) float64 ndarray
+        Each body's deformed lower nodes (its section's), units.
+    images : list of (m_b, 2) float64 ndarray
+        Each body's deformed upper points (its section's, with the nodes of
+        the bodies resting on it), B' to A', units.
+    placements : list of Placement
+    state : object, optional
+        The model's solved state of the whole problem, for a warm start.
+    """
+
+    lowers: list
+    images: list
+    placements: list
+    state: object = None
+
+
+class Prepared(ABC):
+    """A problem made ready for deformation by one model.
+
+    Attributes
+    ----------
+    bodies : tuple
+        Per body, an object with its ``initial_mesh`` (:class:`MeshData`)
+        and ``quality`` (:class:`MeshQuality`).
+    """
+
+    bodies: tuple
 
     @abstractmethod
-    def place(self, target_nodes: np.ndarray, law: Law, start=None) -> Placement:
-        """Deform onto ``target_nodes`` ((n, 2), the target at the lower fractions) under ``law``.
+    def place(self, target, laws: tuple, start=None) -> Placed:
+        """Deform onto ``target`` (a :class:`~sectiondeform.stack.Target`) under ``laws`` (one per body).
 
-        ``start`` is the :attr:`Placement.state` of an earlier placement to
-        start from (a model without a solver ignores it).
+        ``start`` is the :attr:`Placed.state` of an earlier placement to
+        start from (a model without a solver ignores it). Never changes the
+        prepared object: the same arguments give the same answer.
         """
 
-    def preview(self, target_nodes: np.ndarray, law: Law, start=None) -> Placement:
-        """A fast placement for dragging the target, meeting the law; by default :meth:`place`.
+    def preview(self, target, laws: tuple, start=None) -> Placed:
+        """A fast placement for dragging the target, meeting the laws; by default :meth:`place`.
 
         A model whose full placement is slow (the hyperelastic one) answers
         with a linearised step about ``start`` and says so in its info.
         """
-        return self.place(target_nodes, law, start)
+        return self.place(target, laws, start)
 
 
 class Model(ABC):
@@ -236,5 +265,5 @@ class Model(ABC):
     options_type: ClassVar[type[ModelOptions]] = ModelOptions
 
     @abstractmethod
-    def prepare(self, section: Section, options: ModelOptions) -> Prepared:
-        """Build what depends on the section alone (mesh, point locations)."""
+    def prepare(self, stack: Stack, options: ModelOptions) -> Prepared:
+        """Build what depends on the bodies alone (meshes, point locations, factorisations)."""

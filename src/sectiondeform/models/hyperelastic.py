@@ -1,62 +1,79 @@
-"""The section's mechanics on a coarse mesh: nearly incompressible neo-Hookean, generalised plane strain.
+"""The bodies' mechanics on a coarse mesh: nearly incompressible rubber, all bodies in one solve.
 
-Physics (the same as the fine reference): compressible neo-Hookean with
-bulk/shear ``options.bulk_to_shear`` (default 1000), generalised plane
-strain with the out-of-plane stretch ``lz = 1 / r`` of the area law (a
+Physics (the same as the fine reference): each body's rubber (its
+``material``: neo-Hookean in closed form, Mooney–Rivlin or Yeoh through
+:class:`~sectiondeform.fem.rubber.MixedRubber`; neo-Hookean with bulk/shear
+``options.bulk_to_shear`` by default), generalised plane strain with each
+body's out-of-plane stretch ``lz = 1 / r`` of its area law (a
 volume-preserving section stretched along its length shrinks in area by
-``r``), the lower curve bonded to the target by normalised arc length, the
-rest of the contour traction free.
+``r``), or an axisymmetric solve for a body of revolution
+(:mod:`.hyperelastic_revolution`); the lower nodes resting on the support
+bonded to the target by their arc-length fraction on the support, the rest
+of every contour traction free, bonded bodies sharing their nodes.
 
-Prepare (once per section, :class:`HyperelasticPrepared`):
+Prepare (once, :class:`HyperelasticPrepared`):
 
-* a coarse body-fitted P2 triangle mesh with about
-  ``options.elements_through_thickness`` (default
-  :data:`DEFAULT_THROUGH_THICKNESS`) elements across the mean thickness T
-  (:func:`~sectiondeform.fem.mesh.coarse_mesh`), every contour corner a node;
+* one P2 mesh of all bodies (:func:`~sectiondeform.fem.union_mesh.union_mesh`)
+  from the bodies' contours as the :class:`~sectiondeform.stack.Stack`
+  prepares them (on a shared piece both contours have exactly the same
+  points), so a shared piece has shared nodes; every cell carries its body;
+  each body's element size is its own thickness over
+  ``options.elements_through_thickness`` (a shared piece takes the smaller
+  of its two bodies');
 * Taylor-Hood elements (P2 displacement, P1 pressure), which do not lock;
-* the sparse pattern, the tangent at the undeformed state, factorised;
-* the upper points located on the coarse boundary edges
-  (:func:`~sectiondeform.fem.mapping.boundary_weights`).
+  the displacement is shared across the interfaces, the pressure is one P1
+  field per body (each body has its own unknown at a vertex it shares,
+  :attr:`~sectiondeform.fem.union_mesh.UnionMesh.pressure_cells`), so it
+  jumps across an interface between bodies of different stiffness as the
+  exact pressure does;
+* the sparse pattern, the tangent at the undeformed state, factorised.
 
-Place (once per target): the coarse lower nodes go to the target at their
-arc-length fractions; Newton follows the path from the ``start`` state given
-(a warm start: the :attr:`~.base.Placement.state` of an earlier placement)
-or, without one, from the undeformed section moved rigidly onto the target,
-whose tangent is the prepared one rotated, with a linear predictor,
-modified-Newton corrections with the factorisation at hand, full Newton
-when those stall, a line search and automatic load steps. The upper points
-are read off the solved field; a small normal offset (reported in
-``info["area_correction"]``, relative to T) then makes the area law exact.
+Place (once per target): Newton from the undeformed bodies moved rigidly
+onto the target (:class:`~sectiondeform.fem.newton.NewtonSolver`, the
+stretches following the same path as the target), or from the state of an
+earlier result solved under the same laws (a warm start, ``start=``; the
+state is carried by the result, never kept here). The drag preview is that
+path's linear predictor alone, with the factorisation at hand. The laws are
+given per call: the mesh, pattern and undeformed tangent serve any laws
+(every cell's stretch is 1 at the undeformed state). Every contour point has
+one image (a point shared by two bodies is one point of the mesh's graph);
+the points on the support go exactly to the target at their fractions.
 
-:meth:`HyperelasticPrepared.preview` is the drag preview: one linear step
-from the ``start`` state (or the rigidly moved undeformed one) with a
-factorisation that does not depend on the new target, as one dense
-matrix-vector product.
+**The exact law per body.** From the support up (the layout's order), each
+body's upper points are offset along their normals by one distance that
+makes its area exact (a quadratic solved in closed form), except the
+points that belong to a body already corrected (its foundations, or a body
+touching it at a point) and the points on the support. The points a body
+shares with the bodies resting on it move with it, and those bodies' lower
+curves are these very points: the interfaces stay bonded exactly, and each
+resting body then meets its own law by its own upper points. A body
+covered all over by others still meets its law. The offset, relative to
+the body's thickness, is ``info.area_correction``.
 """
 
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..checks import positive
-from ..fem.assembly import MixedNeoHooke, Pattern
+from ..errors import CaseError, LawError, MeshError
 from ..fem.elements import geometry
-from ..fem.mapping import boundary_weights, correct_area, interpolation_matrix, rigid_fit
-from ..fem.mesh import coarse_mesh
+from ..fem.mapping import offset_root, rigid_fit
+from ..fem.neohooke import MixedNeoHooke, Pattern
 from ..fem.newton import NewtonSolver, State
 from ..fem.rubber import MixedRubber
-from ..laws import Law
-from ..materials import NeoHookean
-from ..section import Section
-from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions, Placement, Prepared
+from ..fem.union_mesh import union_mesh
+from ..materials import NeoHookean, material_from_json
+from ..stack import SUPPORT, Stack, renamed
+from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions, Placed, Placement, Prepared
 
 __all__ = [
-    "HyperelasticModel", "HyperelasticPrepared", "HyperelasticOptions", "HyperelasticInfo", "PreviewInfo", "MODEL",
-    "DEFAULT_THROUGH_THICKNESS", "DEFAULT_BULK_TO_SHEAR",
+    "HyperelasticModel", "HyperelasticPrepared", "HyperelasticState", "HyperelasticOptions", "HyperelasticInfo",
+    "PreviewInfo", "MODEL", "offset_to_area", "DEFAULT_THROUGH_THICKNESS", "DEFAULT_BULK_TO_SHEAR",
 ]
 
 DEFAULT_THROUGH_THICKNESS = 4.0
@@ -126,241 +143,403 @@ class PreviewInfo(Info):
     preview: bool = True
 
 
-class HyperelasticPrepared(Prepared):
-    """A section meshed and factorised for the hyperelastic model.
+class _Stretches(MixedNeoHooke):
+    """The mixed neo-Hookean problem with one out-of-plane stretch per body.
+
+    The solver's scalar stretch ``s`` is a path parameter: cell ``e`` has
+    ``lz_e = exp(ln s * ln lz_b(e))``, so ``s = 1`` is the undeformed state
+    and ``s = e`` every body's own stretch.
+    """
+
+    def __init__(self, cells, n_nodes, geom, kappa, mu, ln_stretch, pressure_cells=None):
+        super().__init__(cells, n_nodes, geom, kappa, mu, pressure_cells)
+        self.ln_stretch = np.asarray(ln_stretch, dtype=np.float64)[:, None]  # (E, 1)
+
+    def fields(self, z, lz):
+        return super().fields(z, np.exp(math.log(lz) * self.ln_stretch))
+
+
+def offset_to_area(ring: np.ndarray, movable: np.ndarray, signed_area: float) -> tuple[np.ndarray, float]:
+    """Offset the movable points of a closed polyline along their normals so it has ``signed_area``.
 
     Parameters
     ----------
-    section : Section
-    through_thickness : float
-        Elements across the mean thickness T (the element size is T / this).
-    bulk_to_shear : float
-        Bulk modulus over shear modulus.
-    tol : float
-        Newton tolerance on the position increment, relative to T.
-    material : NeoHookean or MooneyRivlin or Yeoh, optional
-        The rubber (:mod:`sectiondeform.materials`); overrides ``bulk_to_shear``.
+    ring : (k, 2) float64 ndarray
+        Closed polyline (the closing edge implied), units.
+    movable : (k,) bool ndarray
+        The points that may move; each along the normal of the chord
+        between its two neighbours, by one common distance.
+    signed_area : float
+        Wanted signed (shoelace) area, units².
 
-    Attributes
-    ----------
-    mesh : CoarseMesh
-    solver : NewtonSolver
+    Returns
+    -------
+    ring : (k, 2) float64 ndarray
+    offset : float
+        The distance applied, units (positive: outward for a
+        counter-clockwise ring).
 
-    Notes
-    -----
-    Nothing here changes after ``__init__`` but a cache of the preview's
-    linear map (rebuilt identically when missing): the same ``place`` or
-    ``preview`` arguments give the same answer, bit for bit, whatever was
-    computed before, and one object may serve several threads (the
-    solver's work counters, reported in ``info``, may then mix).
+    Raises
+    ------
+    LawError
+        If no offset gives that area (no movable point, or a degenerate curve).
+
+    Examples
+    --------
+    >>> sq = np.array([[0.0, 0], [1, 0], [1, 1], [0, 1]])
+    >>> out, k = offset_to_area(sq, np.array([False, False, True, True]), 1.5)
+    >>> x, y = out.T
+    >>> round(0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)), 12), out[:2].tolist()
+    (1.5, [[0.0, 0.0], [1.0, 0.0]])
+    """
+    tang = np.roll(ring, -1, axis=0) - np.roll(ring, 1, axis=0)
+    length = np.hypot(tang[:, 0], tang[:, 1])
+    ok = movable & (length > 0)
+    v = np.zeros_like(ring)
+    v[ok] = np.column_stack((tang[ok, 1], -tang[ok, 0])) / length[ok, None]
+    cross = lambda a, b: a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]  # noqa: E731
+    nxt = lambda a: np.roll(a, -1, axis=0)  # noqa: E731
+    area = 0.5 * float(cross(ring, nxt(ring)).sum())
+    c0 = area - signed_area
+    c1 = 0.5 * float((cross(v, nxt(ring)) + cross(ring, nxt(v))).sum())
+    c2 = 0.5 * float(cross(v, nxt(v)).sum())
+    if c1 == 0.0:
+        raise LawError("law: no point of the upper curve is free to move to meet the area")
+    k = offset_root(c0, c1, c2, signed_area)
+    return ring + k * v, float(k)
+
+
+@dataclass(frozen=True, eq=False)
+class _BodyMesh:
+    """What the result reads of a prepared body: its part of the mesh and figures."""
+
+    initial_mesh: MeshData
+    quality: MeshQuality
+    cells: np.ndarray  # (e_b, 6) in the body's own node numbering
+    used: np.ndarray  # (n_b,) global node of each body node
+    elements: np.ndarray  # (e_b,) global cell indices
+
+
+@dataclass(frozen=True, eq=False)
+class HyperelasticState:
+    """A solved state of the whole problem and the out-of-plane stretches (one per body) it was solved for.
+
+    Also what the bodies' stresses need beyond their meshes
+    (:func:`~sectiondeform.strain_fields.result_mechanics`): ``materials``,
+    each body's rubber; ``pressure_dofs``, per body an ``(M_b, 3)`` int
+    array, the entries of ``state.z`` holding the pressure unknown at its
+    elements' corners (in the order of its final mesh's cells; the body's
+    own unknowns, so at a shared vertex each body reads its own pressure); ``growth``,
+    True when ``stretches`` are volumetric growths (bodies of revolution).
     """
 
-    def __init__(self, section: Section, through_thickness: float = DEFAULT_THROUGH_THICKNESS,
-                 bulk_to_shear: float = DEFAULT_BULK_TO_SHEAR, tol: float = DEFAULT_TOLERANCE, material=None):
-        self.section = section
-        T = section.mesh_scale
-        n_low = len(section.lower)
-        mesh = coarse_mesh(section.contour, np.array([0, n_low - 1]), T / through_thickness)
+    state: State
+    stretches: tuple
+    materials: tuple = ()
+    pressure_dofs: tuple = ()
+    growth: bool = False
+
+
+class HyperelasticPrepared(Prepared):
+    """Every body of a problem meshed as one and factorised for the hyperelastic model.
+
+    Parameters
+    ----------
+    stack : Stack
+        The bodies' sections (with the resting nodes in their foundations'
+        upper polylines) and node sources.
+    options : HyperelasticOptions
+
+    Raises
+    ------
+    CaseError
+        For a body whose material is invalid.
+    MeshError
+        If the bodies cannot be meshed.
+    """
+
+    def __init__(self, stack: Stack, options: HyperelasticOptions):
+        a = stack.problem
+        self.problem = a
+        self.layout = stack.layout
+        bodies = stack.bodies
+        self.sections = [b.section for b in bodies]
+        materials = []
+        for i, body in enumerate(a.bodies):
+            materials.append(material_from_json(body.material_data, f"bodies[{i}].material", default_bulk_to_shear=options.bulk_to_shear))
+        self.materials = tuple(materials)
+        thickness = min(s.mesh_scale for s in self.sections)
+        self.sizes = np.array([s.mesh_scale for s in self.sections]) / options.elements_through_thickness
+        rings = [s.contour for s in self.sections]
+        fixed = [np.array([0, len(s.lower) - 1]) for s in self.sections]
+        mesh = union_mesh(rings, fixed, self.sizes, self.layout.tolerance)
         self.mesh = mesh
-        geom = geometry(mesh.nodes, mesh.cells)
-        if material is None or type(material) is NeoHookean:  # the closed form, else any rubber
-            ratio = bulk_to_shear if material is None else material.kappa / material.shear_modulus
-            self.physics = MixedNeoHooke(mesh.cells, len(mesh.nodes), geom, ratio)
-        else:
-            self.physics = MixedRubber(mesh.cells, len(mesh.nodes), geom, [material])
-        ring = mesh.ring
-        s_lower = ring.s[:n_low]
-        ids, s = mesh.boundary_nodes_between(0.0, float(s_lower[-1]))
-        self.lower_ids = ids
-        self.lower_interp = interpolation_matrix(np.interp(s, s_lower, section.fractions), section.fractions)
+        n_low = [len(s.lower) for s in self.sections]
+        self.lower_ids = [r[:n] for r, n in zip(mesh.rings, n_low)]
+        self.upper_ids = [np.concatenate(([r[n - 1]], r[n:], [r[0]])) for r, n in zip(mesh.rings, n_low)]
+        # The support's points: each vertex's fraction, and the chains bonded to the target.
+        V = len(mesh.points)
+        vfrac = np.full(V, np.nan)
+        support_chains = set()
+        for b, body in enumerate(bodies):
+            sup = body.source == SUPPORT
+            ids = self.lower_ids[b]
+            new = sup & np.isnan(vfrac[ids])
+            vfrac[ids[new]] = body.where[new]
+            for i in np.flatnonzero(sup[:-1] & sup[1:]):
+                if ids[i] != ids[i + 1]:
+                    support_chains.add(mesh.chain_of(int(ids[i]), int(ids[i + 1])))
+        self.support_vertices = np.flatnonzero(~np.isnan(vfrac))
+        self.support_fractions = vfrac[self.support_vertices]
+        node_ids, node_frac = [], []
+        for c in sorted(support_chains):
+            ch = mesh.chains[c]
+            f = vfrac[ch.vertices]
+            node_ids += [ch.nodes, ch.mids]
+            node_frac += [np.interp(ch.node_s, ch.s, f), np.interp(0.5 * (ch.node_s[:-1] + ch.node_s[1:]), ch.s, f)]
+        ids, first = np.unique(np.concatenate(node_ids), return_index=True)
+        self.fixed_ids = ids
+        self.fixed_fractions = np.concatenate(node_frac)[first]
+        # Physics: per-cell moduli and stretches.
+        cells = mesh.cells
+        geom = geometry(mesh.nodes, cells)
+        mu = np.array([m.shear_modulus for m in materials])[mesh.body]
+        kappa = np.array([m.kappa for m in materials])[mesh.body]
+        self.physics = self._physics(cells, geom, kappa, mu)
         n = len(mesh.nodes)
         fixed = (2 * ids[:, None] + np.arange(2)).ravel()
-        pattern = Pattern(self.physics.edofs, 2 * n + mesh.n_vertices, fixed)
-        self.solver = NewtonSolver(self.physics, pattern, T, tol)
-        # The upper points on the coarse boundary.
-        m = len(section.upper)
-        s_up = ring.s[n_low - 1 : n_low - 1 + m].copy()
-        s_up[-1] = ring.perimeter
-        self.upper_weights = boundary_weights(mesh, s_up, section.upper)
-        # The undeformed state and its factorised tangent.
-        self.z_ref = np.concatenate((mesh.nodes.ravel(), np.zeros(mesh.n_vertices)))
-        fields = self.physics.fields(self.z_ref, 1.0)
-        self.reference = State(self.z_ref, 1.0, self.solver.tangent(fields))
-        self._preview_cache = None  # (state, _PreviewBase), replaced whole, never mutated
-        self.initial_mesh = MeshData(mesh.nodes, mesh.cells, "triangle6")
-        self.quality = MeshQuality(
-            elements=int(len(mesh.cells)),
-            element_size=float(mesh.size),
-            nodes=int(n),
-            unknowns=int(len(pattern.free)),
-            through_thickness=float(through_thickness),
-            jacobian_ratio_min=float(geom.detj_ratio.min()),
-        )
+        pattern = Pattern(self.physics.edofs, 2 * n + mesh.n_pressures, fixed)
+        self.solver = NewtonSolver(self.physics, pattern, thickness, options.newton_tolerance, permc_spec=self._ordering(mesh))
+        self.solver.dres_dlnlz = self._dres_dlns(self.physics)
+        z_ref = np.concatenate((mesh.nodes.ravel(), np.zeros(mesh.n_pressures)))
+        self.reference = State(z_ref, 1.0, self.solver.tangent(self.physics.fields(z_ref, 1.0)))
+        self.bodies = tuple(self._body_mesh(b, geom, len(pattern.free), options.elements_through_thickness)
+                                 for b in range(len(a.bodies)))
+        self.pressure_dofs = tuple(2 * n + mesh.pressure_cells[bm.elements] for bm in self.bodies)
 
-    # -- helpers -----------------------------------------------------------
-    def _fixed_values(self, target_nodes: np.ndarray) -> np.ndarray:
-        return self.lower_interp @ target_nodes  # (k, 2)
+    @staticmethod
+    def _ordering(mesh) -> str:
+        """SuperLU's column order for the joint tangent.
 
-    def _rigid_start(self, xd: np.ndarray) -> tuple[State, np.ndarray, np.ndarray]:
-        nodes = self.mesh.nodes
-        q, t = rigid_fit(nodes[self.lower_ids], xd)
-        z = np.concatenate(((nodes @ q.T + t).ravel(), np.zeros(self.mesh.n_vertices)))
-        return State(z, 1.0, self.reference.tangent.rotated(q)), q, t
+        One pressure field (no vertex shared by bodies): a minimum-degree
+        order of K + Kᵀ, less fill and faster factorisations than COLAMD on
+        these meshes. A pressure per body: COLAMD. The minimum-degree order
+        then eliminates the bodies' own pressures at their shared vertices
+        early (few neighbours each), where their diagonal is still the small
+        −M/κ, and SuperLU pivots off the diagonal (a few hundred times on the
+        shared cases): 1.2 to 2.2 times the fill of COLAMD there, which
+        pivots on the diagonal throughout.
+        """
+        return "MMD_AT_PLUS_A" if mesh.n_pressures == mesh.n_vertices else "COLAMD"
 
-    def _finish(self, target_nodes: np.ndarray, law: Law, upper: np.ndarray):
-        sec = self.section
-        upper[0], upper[-1] = target_nodes[-1], target_nodes[0]
-        wanted = sec.orientation * law.target_area(sec.area)
-        upper, offset = correct_area(target_nodes, upper, wanted)
-        return upper, offset / sec.thickness
+    plane = True
+    """Plane sections: ``stretches`` are the bodies' out-of-plane stretches (else growths, reported as 1)."""
 
-    # -- the model's interface --------------------------------------------
-    def place(self, target_nodes: np.ndarray, law: Law, start: State | None = None) -> Placement:
-        """Solve the section's equilibrium on ``target_nodes`` ((n, 2), units) under ``law``.
+    def _physics(self, cells, geom, kappa, mu):
+        """The mixed problem on the union mesh, per cell its body's moduli and out-of-plane stretch; sets ``stretches``."""
+        self.stretches = self.stretches_of(tuple(body.law for body in self.problem.bodies))
+        ln_stretch = np.log(self.stretches)[self.mesh.body]
+        if all(type(m) is NeoHookean for m in self.materials):  # the closed form, else any rubber
+            return _Stretches(cells, len(self.mesh.nodes), geom, kappa, mu, ln_stretch, self.mesh.pressure_cells)
+        return MixedRubber(cells, len(self.mesh.nodes), geom, self.materials, self.mesh.body, ln_stretch,
+                           self.mesh.pressure_cells)
 
-        ``start`` is the solved state of an earlier placement of this object
-        (its ``Placement.state``) to follow the path from; None starts from
-        the undeformed section moved rigidly onto the target. The returned
-        placement's ``state`` is the solution, for the next call.
+    def _physics_for(self, stretches: tuple):
+        """A copy of the prepared physics under other per-body ``stretches`` (same mesh and moduli)."""
+        physics = copy.copy(self.physics)
+        physics.ln_stretch = np.log(np.asarray(stretches))[self.mesh.body][:, None]
+        return physics
+
+    def _law_offset(self, b: int, ring: np.ndarray, movable: np.ndarray, law) -> tuple[np.ndarray, float]:
+        """Body ``b``'s contour ``ring`` with its movable points offset to meet ``law`` exactly (:func:`offset_to_area`)."""
+        sec = self.sections[b]
+        return offset_to_area(ring, movable, sec.orientation * law.target_area(sec.area))
+
+    def _body_mesh(self, b: int, geom, unknowns: int, through: float) -> _BodyMesh:
+        mesh = self.mesh
+        elements = np.flatnonzero(mesh.body == b)
+        used, local = np.unique(mesh.cells[elements], return_inverse=True)
+        cells = local.reshape(-1, 6).astype(np.int64)
+        quality = MeshQuality(elements=int(len(elements)), element_size=float(self.sizes[b]), nodes=int(len(used)),
+                              unknowns=int(unknowns), through_thickness=float(through),
+                              jacobian_ratio_min=float(geom.detj_ratio[elements].min()))
+        return _BodyMesh(MeshData(mesh.nodes[used], cells, "triangle6"), quality, cells, used, elements)
+
+    def stretches_of(self, laws) -> tuple:
+        """Each body's out-of-plane stretch ``lz`` under ``laws`` (one :class:`~sectiondeform.laws.Law` per body)."""
+        return tuple(float(law.out_of_plane_stretch(sec.area)) for law, sec in zip(laws, self.sections))
+
+    def _problem(self, stretches: tuple) -> tuple[_Stretches, NewtonSolver]:
+        """The physics and solver for other stretches than the prepared ones (same mesh, pattern, reference tangent).
+
+        At the undeformed state (path parameter 1) every cell's stretch is 1
+        whatever the laws, so the prepared reference tangent serves all.
+        """
+        if stretches == self.stretches:
+            return self.physics, self.solver
+        physics = self._physics_for(stretches)
+        solver = copy.copy(self.solver)
+        solver.physics = physics
+        solver.dres_dlnlz = self._dres_dlns(physics)
+        return physics, solver
+
+    def _dres_dlns(self, physics: _Stretches) -> np.ndarray:
+        """The derivative d R_free / d ln s at J = 1: each cell's pressure rows times its body's ln lz."""
+        mesh, pattern = self.mesh, self.solver.pattern
+        wm = (physics._wM * physics.ln_stretch[:, :, None]).sum(axis=1)
+        full = np.zeros(pattern.n_dofs)
+        full[2 * len(mesh.nodes) :] = np.bincount(mesh.pressure_cells.ravel(), weights=wm.ravel(), minlength=mesh.n_pressures)
+        return full[pattern.free]
+
+    def _base(self, xd: np.ndarray, start: HyperelasticState | None, stretches: tuple) -> State:
+        """The state a solve or a preview starts from.
+
+        ``start``'s, if it was solved under the same stretches; else (no
+        start, or other laws: no path to follow) the undeformed bodies
+        moved rigidly onto ``xd``.
+        """
+        if start is not None:
+            if not isinstance(start, HyperelasticState) or start.state.z.shape != self.reference.z.shape:
+                raise CaseError("start", "give an earlier result of this problem's deformer (its state is of another problem or model)")
+            if start.stretches == stretches:
+                return start.state
+        mesh = self.mesh
+        q, t = rigid_fit(mesh.nodes[self.fixed_ids], xd)
+        z0 = np.concatenate(((mesh.nodes @ q.T + t).ravel(), np.zeros(mesh.n_pressures)))
+        return State(z0, 1.0, self.reference.tangent.rotated(q))
+
+    def place(self, curve, laws: tuple, start: HyperelasticState | None = None) -> Placed:
+        """Solve the bodies on the target ``curve``; per body its lower nodes, upper points and placement.
+
+        Parameters
+        ----------
+        curve : Curve
+            The target, A' to B', units.
+        laws : tuple of Law
+            Each body's law (the prepared mesh and tangent serve any laws).
+        start : HyperelasticState, optional
+            The solved state of an earlier result of this problem (its
+            ``Result.state``) to follow the path from (a warm start);
+            None, or a state solved under other laws, starts from the
+            undeformed bodies moved rigidly onto the target. The answer
+            depends on the arguments alone.
+
+        Returns
+        -------
+        lowers : list of (n_b, 2) float64 ndarray
+            Each body's deformed lower nodes (its section's), units.
+        images : list of (m_b, 2) float64 ndarray
+            Each body's deformed upper points (its section's, with the
+            resting nodes), B' to A', units.
+        placements : list of Placement
+        state : HyperelasticState
+            The solution, for the next warm start.
 
         Raises
         ------
         ConvergenceError
             If Newton fails even with small load steps.
         LawError
-            If the area cannot be corrected to the law.
+            Naming the body whose area cannot be corrected.
+        MeshError
+            Naming the body with an inverted element.
+        CaseError
+            If ``start`` is not a state of this problem.
         """
-        target_nodes = np.asarray(target_nodes, dtype=np.float64)
-        lz = law.out_of_plane_stretch(self.section.area)
-        xd = self._fixed_values(target_nodes)
-        warm = start is not None
-        start = start if warm else self._rigid_start(xd)[0]
-        a0, f0 = self.solver.assemblies, self.solver.factorisations
-        state = self.solver.solve(start, xd.ravel(), lz)
-        n = len(self.mesh.nodes)
-        x = state.z[: 2 * n].reshape(n, 2)
-        upper, correction = self._finish(target_nodes, law, self.upper_weights @ x)
-        quality = self._quality(state)
-        info = HyperelasticInfo(
-            newton_full=int(state.iterations[0]),
-            newton_modified=int(state.iterations[1]),
-            load_steps=int(state.iterations[2]),
-            factorisations=int(self.solver.factorisations - f0),
-            assemblies=int(self.solver.assemblies - a0),
-            warm_start=warm,
-            area_correction=float(abs(correction)),
-            out_of_plane_stretch=float(lz),
-        )
-        warnings = ()
-        if abs(correction) > CORRECTION_WARNING:
-            warnings = (
-                f"hyperelastic: the area correction moved the upper curve by {abs(correction):.3g} T; the coarse "
-                "mesh misses this deformation's physics (refine with options.elements_through_thickness)",
+        xd = curve.at_fractions(self.fixed_fractions)
+        stretches = self.stretches_of(laws)
+        physics, solver = self._problem(stretches)
+        base = self._base(xd, start, stretches)
+        a0, f0 = solver.assemblies, solver.factorisations
+        state = solver.solve(base, xd.ravel(), math.e)
+        f = state.fields if state.fields is not None else physics.fields(state.z, state.lz)
+
+        def info(b, correction):
+            return HyperelasticInfo(
+                newton_full=int(state.iterations[0]), newton_modified=int(state.iterations[1]),
+                load_steps=int(state.iterations[2]), factorisations=int(solver.factorisations - f0),
+                assemblies=int(solver.assemblies - a0), warm_start=start is not None and base is start.state,
+                area_correction=float(correction), out_of_plane_stretch=float(stretches[b]) if self.plane else 1.0,
             )
-        return Placement(upper, MeshData(x.copy(), self.mesh.cells, "triangle6"), quality, info, warnings, state)
 
-    def _quality(self, state: State) -> FinalQuality:
-        f = state.fields if state.fields is not None else self.physics.fields(state.z, state.lz)
-        det = f.det
-        return FinalQuality(area_stretch_min=float(det.min()), area_stretch_max=float(det.max()))
+        return Placed(*self._finish(curve, laws, state.z, f, info), HyperelasticState(state, stretches, self.materials, self.pressure_dofs, not self.plane))
 
-    def preview(self, target_nodes: np.ndarray, law: Law, start: State | None = None) -> Placement:
-        """Drag preview: one linear step from the ``start`` state, no new factorisation.
+    def preview(self, curve, laws: tuple, start: HyperelasticState | None = None) -> Placed:
+        """Drag preview: one linear step from ``start`` (or the undeformed bodies), no new factorisation.
 
-        The first call after a solve builds the linear map from the target to
-        the upper points (one back-substitution per prescribed dof, with the
-        factorisation the solve left); later calls are one dense
-        matrix-vector product and the area correction. Before any solve, the
-        step starts from the undeformed section moved rigidly onto the target
-        (best-fit rotation; the map is the undeformed one, rotated). The
-        result meets the area law exactly but is only first-order accurate in
-        the change of target: call :meth:`place` when the drag ends.
-
-        Parameters
-        ----------
-        target_nodes : (n, 2) float64 ndarray
-            The target at the lower fractions, units.
-        law : Law
-        start : State, optional
-            The solved state to linearise about (a ``Placement.state``).
-
-        Returns
-        -------
-        Placement
-            ``final_mesh`` is the base state's mesh (not updated);
-            ``info.preview`` is True; ``state`` is ``start``.
+        The step is the Newton predictor: one back-substitution with the
+        factorisation ``start`` carries, for the change of the support's
+        nodes (and, from the undeformed bodies, of the out-of-plane
+        stretches). Every body's law is then met exactly and the interfaces
+        stay bonded (the same correction as :meth:`place`); the shape is
+        first-order in the change of target: call :meth:`place` when the
+        drag ends. Arguments and returns as :meth:`place` (the state
+        returned is ``start``).
         """
-        target_nodes = np.asarray(target_nodes, dtype=np.float64)
-        xd = self._fixed_values(target_nodes)
-        cached = self._preview_cache
-        if cached is not None and cached[0] is start:
-            base = cached[1]
-        else:
-            base = self._build_preview(start)
-            self._preview_cache = (start, base)
-        upper0, xd0, q = base.upper, base.xd, None
-        if base.rigid:  # before any solve: linearise about the rigid fit of this target
-            q, t = rigid_fit(self.mesh.nodes[self.lower_ids], xd)
-            upper0, xd0 = upper0 @ q.T + t, xd0 @ q.T + t
-        dxd = xd - xd0
-        if q is not None:
-            dxd = dxd @ q  # back to the unrotated frame
-        dlnl = math.log(law.out_of_plane_stretch(self.section.area)) - math.log(base.lz)
-        du = (base.h_d @ dxd.ravel() + base.h_lz * dlnl).reshape(-1, 2)
-        if q is not None:
-            du = du @ q.T
-        upper, correction = self._finish(target_nodes, law, upper0 + du)
-        final = MeshData(base.nodes, self.mesh.cells, "triangle6")
-        return Placement(upper, final, FinalQuality(), PreviewInfo(area_correction=float(abs(correction))), (), start)
+        xd = curve.at_fractions(self.fixed_fractions)
+        stretches = self.stretches_of(laws)
+        physics, solver = self._problem(stretches)
+        z = solver.predict(self._base(xd, start, stretches), xd.ravel(), math.e)
+        f = physics.fields(z, math.e)
+        if f is None:
+            raise MeshError("preview: an element is inverted in the linear step; the target moved too far from the "
+                            "start for a preview (deform instead)")
+        return Placed(*self._finish(curve, laws, z, f, lambda b, correction: PreviewInfo(area_correction=float(correction))), start)
 
-    def _build_preview(self, start: State | None) -> _PreviewBase:
-        solver, pat = self.solver, self.solver.pattern
-        n = len(self.mesh.nodes)
-        state = start if start is not None else self.reference
-        tan = state.tangent
-        k = len(pat.fixed)
-        # Sensitivity of the free dofs to each fixed dof and to ln lz: -K_ff^-1 [K_fd, dR/dln lz].
-        rhs = np.column_stack([tan.kfd_dot(e) for e in np.eye(k)] + [solver.dres_dlnlz])
-        sens = -(tan.solve(rhs) if tan.rotation is None else np.column_stack([tan.solve(c) for c in rhs.T]))
-        wx = sp.kron(self.upper_weights, sp.eye(2), format="csr")  # (2m, 2N) on position dofs
-        free_x = pat.free[solver.free_x]
-        resp = wx[:, free_x] @ sens[: len(free_x)]
-        resp[:, :-1] += wx[:, pat.fixed].toarray()
-        x = state.z[: 2 * n].reshape(n, 2)
-        return _PreviewBase(
-            upper=self.upper_weights @ x, xd=state.z[pat.fixed].reshape(-1, 2), lz=state.lz,
-            h_d=np.ascontiguousarray(resp[:, :-1]), h_lz=resp[:, -1].copy(), nodes=x.copy(),
-            rigid=start is None,
-        )
-
-
-@dataclass(frozen=True, eq=False)
-class _PreviewBase:
-    """The linear map of a preview: upper points ``upper + h_d (xd - xd0) + h_lz d(ln lz)``."""
-
-    upper: np.ndarray  # (m, 2) upper points at the base state
-    xd: np.ndarray  # (k, 2) prescribed positions at the base state
-    lz: float
-    h_d: np.ndarray  # (2m, 2k)
-    h_lz: np.ndarray  # (2m,)
-    nodes: np.ndarray  # (N, 2) base state's node positions
-    rigid: bool  # the base is the undeformed state, to be moved rigidly onto each target
+    def _finish(self, curve, laws: tuple, z: np.ndarray, f, info) -> tuple[list, list, list]:
+        """Per body its lower nodes, upper points (each law made exact) and placement, from the solved ``z``."""
+        mesh = self.mesh
+        n = len(mesh.nodes)
+        x = z[: 2 * n].reshape(n, 2)
+        img = self.mesh.vertex_weights @ x
+        img[self.support_vertices] = curve.at_fractions(self.support_fractions)
+        fixed = np.zeros(len(img), bool)
+        fixed[self.support_vertices] = True
+        corrections = [0.0] * len(self.sections)
+        for b in self.layout.order:
+            sec = self.sections[b]
+            ring = mesh.rings[b]
+            n_low = len(sec.lower)
+            movable = np.zeros(len(ring), bool)
+            movable[n_low:] = ~fixed[ring[n_low:]]
+            try:
+                new, k = self._law_offset(b, img[ring], movable, laws[b])
+            except LawError as exc:
+                raise renamed(exc, self.problem.label(b)) from None
+            img[ring[movable]] = new[movable]
+            fixed[ring] = True
+            corrections[b] = abs(k) / sec.thickness
+        lowers, images, placements = [], [], []
+        for b, bm in enumerate(self.bodies):
+            lowers.append(img[self.lower_ids[b]])
+            images.append(img[self.upper_ids[b]])
+            det = f.det[bm.elements]
+            if not det.min() > 0:
+                raise renamed(MeshError(f"an element is inverted after deformation (area stretch "
+                                f"{det.min():.3g}); the target or the laws are too severe for these bodies"), self.problem.label(b))
+            warnings = ()
+            if corrections[b] > CORRECTION_WARNING:
+                warnings = (f"hyperelastic: the area correction moved the upper curve by {corrections[b]:.3g} T; the coarse "
+                            "mesh misses this deformation's physics (refine with options.elements_through_thickness)",)
+            final = MeshData(x[bm.used].copy(), bm.cells, "triangle6")
+            quality = FinalQuality(area_stretch_min=float(det.min()), area_stretch_max=float(det.max()))
+            placements.append(Placement(images[-1], final, quality, info(b, corrections[b]), warnings, None))
+        return lowers, images, placements
 
 
 class HyperelasticModel(Model):
-    """The hyperelastic model: ``options.elements_through_thickness``, ``options.bulk_to_shear``."""
+    """The bodies' mechanics on a coarse mesh, all bodies in one solve."""
 
     name = "hyperelastic"
     options_type = HyperelasticOptions
 
-    def prepare(self, section: Section, options: HyperelasticOptions | None = None) -> HyperelasticPrepared:
-        options = options if options is not None else HyperelasticOptions()
-        return HyperelasticPrepared(
-            section,
-            through_thickness=options.elements_through_thickness,
-            bulk_to_shear=options.bulk_to_shear,
-            tol=options.newton_tolerance,
-        )
+    def prepare(self, stack: Stack, options: HyperelasticOptions | None = None) -> HyperelasticPrepared:
+        options = options or HyperelasticOptions()
+        if stack.problem.revolution is not None:
+            from .hyperelastic_revolution import RevolutionPrepared
+
+            return RevolutionPrepared(stack, options)
+        return HyperelasticPrepared(stack, options)
 
 
 MODEL = HyperelasticModel()

@@ -43,7 +43,7 @@ from ..applicability import (
     stretch_range,
 )
 from ..curves import cross as _cross
-from ..errors import LawError, MeshError
+from ..errors import GeometryError, LawError, MeshError, SectionDeformError
 from ..laws import Law
 from ..layers import (
     SMOOTHING_WEIGHTS,
@@ -56,14 +56,15 @@ from ..layers import (
 )
 from ..locate import locate
 from ..section import Section
-from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions, Placement, Prepared
+from ..stack import Stack, Target, renamed
+from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions, Placed, Placement, Prepared
 
 # Weights tried, in turn, on the target's normal field; the largest ones
 # make it nearly linear along the target (fine meshes need them: the
 # smoothing length grows as the fourth root of the weight, in nodes).
 TARGET_SMOOTHING = (0.0,) + SMOOTHING_WEIGHTS + (5e6, 5e7, 5e8, 5e9, 5e10)
 
-__all__ = ["PaperModel", "PaperPrepared", "PaperOptions", "PaperInfo", "MODEL", "solve_scale", "scale_roots"]
+__all__ = ["PaperModel", "PaperPrepared", "PaperSection", "PaperOptions", "PaperInfo", "MODEL", "solve_scale", "scale_roots"]
 
 DENSE_MAP_MAX = 2**21  # entries of each (upper points x columns) placement matrix kept dense
 
@@ -197,8 +198,8 @@ def _frames_from_normals(normals: np.ndarray, orientation: int) -> tuple[np.ndar
     return t, n
 
 
-class PaperPrepared(Prepared):
-    """A section ready for the paper's model: initial mesh, locations, frame offsets."""
+class PaperSection:
+    """One body's section ready for the paper's model: initial mesh, locations, frame offsets."""
 
     def __init__(self, section: Section):
         self.section = section
@@ -395,14 +396,55 @@ class PaperInfo(Info):
     aspect_change: float | None = None
 
 
+class PaperPrepared(Prepared):
+    """Every body of a problem ready for the paper's model, placed from the support up.
+
+    Each body's lower nodes go where their sources send them (the target at
+    their support fractions; a foundation's image of the point they rest
+    on), then the body's own placement meets its own law. A point of a
+    shared piece therefore has one image, the same for both bodies, bit for
+    bit.
+    """
+
+    def __init__(self, stack: Stack):
+        self.stack = stack
+        problem = stack.problem
+        bodies = [None] * len(stack.bodies)
+        for b in stack.layout.order:
+            try:
+                bodies[b] = PaperSection(stack.bodies[b].section)
+            except SectionDeformError as exc:
+                raise renamed(exc, problem.label(b)) from None
+        self.bodies = tuple(bodies)
+
+    def place(self, target: Target, laws: tuple, start=None) -> Placed:
+        """Place every body from the support up (``start`` is ignored: the placement is closed-form)."""
+        stack = self.stack
+        n = len(self.bodies)
+        lowers, images, placements = [None] * n, [None] * n, [None] * n
+        for b in stack.layout.order:
+            fixed = stack.fixed_parts[b]
+            nodes = np.empty((len(stack.bodies[b].source), 2))
+            nodes[fixed["support_nodes"]] = target.nodes[fixed["support_index"]]
+            for j, on, where in fixed["on_foundations"]:
+                nodes[on] = images[j][where]
+            try:
+                with np.errstate(all="ignore"):
+                    placement = self.bodies[b].place(nodes, laws[b])
+            except (MeshError, LawError, GeometryError) as exc:
+                raise renamed(exc, stack.problem.label(b)) from exc
+            lowers[b], images[b], placements[b] = nodes, placement.upper, placement
+        return Placed(lowers, images, placements)
+
+
 class PaperModel(Model):
-    """The paper's geometric method (the default model)."""
+    """The paper's geometric method."""
 
     name = "paper"
     options_type = PaperOptions
 
-    def prepare(self, section: Section, options: PaperOptions | None = None) -> PaperPrepared:
-        return PaperPrepared(section)
+    def prepare(self, stack: Stack, options: PaperOptions | None = None) -> PaperPrepared:
+        return PaperPrepared(stack)
 
 
 MODEL = PaperModel()

@@ -1,6 +1,6 @@
-"""The hyperelastic model of an assembly of bodies of revolution: all bodies in one axisymmetric solve.
+"""The hyperelastic model of bodies of revolution: all bodies in one axisymmetric solve.
 
-Everything is the plane assembly's (:mod:`~sectiondeform.assembly_hyperelastic`:
+Everything is the plane problem's (:mod:`~sectiondeform.models.hyperelastic`:
 one union mesh, the support bonded to the target, shared pieces bonded by
 their shared nodes, one Newton solve) except two things:
 
@@ -30,13 +30,13 @@ import copy
 
 import numpy as np
 
-from .assembly_hyperelastic import JointHyperelastic
-from .errors import LawError
-from .fem.axisymmetric import AxisymmetricNeoHooke, AxisymmetricRubber
-from .materials import NeoHookean
-from .pappus import axis_frame, signed_distance
+from ..errors import LawError
+from ..fem.axisymmetric import AxisymmetricNeoHooke, AxisymmetricRubber
+from ..materials import NeoHookean
+from ..pappus import axis_frame, signed_distance
+from .hyperelastic import HyperelasticPrepared
 
-__all__ = ["JointRevolution", "offset_to_law"]
+__all__ = ["RevolutionPrepared", "offset_to_law"]
 
 
 def _normals(ring: np.ndarray, movable: np.ndarray) -> np.ndarray:
@@ -117,13 +117,13 @@ def offset_to_law(ring: np.ndarray, movable: np.ndarray, law, wanted: float) -> 
     return ring + k * v, float(k)
 
 
-class JointRevolution(JointHyperelastic):
-    """An assembly of bodies of revolution meshed as one and factorised for the hyperelastic model.
+class RevolutionPrepared(HyperelasticPrepared):
+    """Bodies of revolution meshed as one and factorised for the hyperelastic model.
 
     Parameters
     ----------
-    deformer : AssemblyDeformer
-        Of an assembly with a ``revolution`` axis.
+    stack : Stack
+        Of a problem with a ``revolution`` axis.
     options : HyperelasticOptions
 
     Notes
@@ -144,7 +144,7 @@ class JointRevolution(JointHyperelastic):
 
     def _physics(self, cells, geom, kappa, mu):
         """The axisymmetric problem: neo-Hookean bodies in closed form, any other rubber through the materials."""
-        a = self.assembly
+        a = self.problem
         axis = a.revolution.axis
         origin, rot = axis_frame(axis)
         side = signed_distance(np.concatenate([s.contour for s in self.sections]), axis)

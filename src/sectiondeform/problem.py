@@ -1,0 +1,260 @@
+"""The problem: bodies resting on a support that moves to a target, each under its law.
+
+A :class:`Problem` is the one problem type of the library: one body or
+several bonded ones, a plane section or a section of revolution. A
+``section-case/1`` file is a problem of one body whose lower curve is the
+support (its :attr:`Problem.dialect` says so, and it is written back in that
+form); a ``section-case/2`` file gives any number of bodies. Reading and
+writing the files is :mod:`sectiondeform.io.case`; building a problem runs
+its checks (:func:`~sectiondeform.layout.layout`): a problem that exists is
+one whose bodies rest on the support or on each other as the format says.
+
+>>> import sectiondeform as sd
+>>> problem = sd.load_case(sd.example_case_path())
+>>> len(problem.bodies), problem.dialect
+(1, 'section-case/1')
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from dataclasses import dataclass
+from functools import cached_property
+
+from .curves import Curve
+from .errors import CaseError
+from .laws import Law
+from .layout import Layout, check_axis, layout, problem_size
+from .options import Options, options_from_json
+from .section import SectionCurves
+
+__all__ = ["Problem", "Body", "Revolution", "DIALECTS", "V1", "V2"]
+
+V1 = "section-case/1"
+V2 = "section-case/2"
+DIALECTS = (V1, V2)
+
+
+@dataclass(frozen=True)
+class Revolution:
+    """The axis of a body of revolution: the line through two points of the section's plane.
+
+    Attributes
+    ----------
+    axis : ((float, float), (float, float))
+        Two distinct points, units.
+    """
+
+    axis: tuple
+
+    def to_json(self) -> dict:
+        """The ``revolution`` object."""
+        return {"axis": [list(p) for p in self.axis]}
+
+
+@dataclass(frozen=True, eq=False)
+class Body:
+    """One deformable body.
+
+    Attributes
+    ----------
+    name : str
+        Unique within the problem.
+    lower : Curve
+        From the body's A to its B, lying on its foundation (the support or
+        other bodies' upper curves).
+    upper : Curve
+        From B back to A.
+    law : Law
+    material : str
+        The ``material`` object as canonical JSON (:attr:`material_data`);
+        ``"{}"`` for none (the model's default rubber).
+    """
+
+    name: str
+    lower: Curve
+    upper: Curve
+    law: Law
+    material: str = "{}"
+
+    @property
+    def material_data(self) -> dict:
+        """The ``material`` object (a new dict each time)."""
+        return json.loads(self.material)
+
+    def to_json(self) -> dict:
+        """The body's object of the case format."""
+        out = {"name": self.name, "lower": self.lower.to_json(), "upper": self.upper.to_json(), "law": self.law.to_json()}
+        if self.material != "{}":
+            out["material"] = self.material_data
+        return out
+
+
+@dataclass(frozen=True, eq=False)
+class Problem:
+    """Bodies on a support that goes to a target; immutable, hashable, equal to another with the same case object.
+
+    Attributes
+    ----------
+    support : Curve
+        The curve the bodies rest on, A to B.
+    target : Curve
+        Where the support goes, A' to B'.
+    bodies : tuple of Body
+    name, units : str
+    options : Options
+        A dict is accepted and checked (:func:`~sectiondeform.options.options_from_json`).
+    revolution : Revolution or None
+    dialect : str
+        The case format it is written in: ``"section-case/1"`` for one body
+        whose lower curve is the support (the paper's own form), else
+        ``"section-case/2"``.
+    layout : Layout
+        How the bodies rest on each other, checked when the problem is built.
+    """
+
+    support: Curve
+    target: Curve
+    bodies: tuple
+    name: str = "section"
+    units: str = "mm"
+    options: Options = Options()
+    revolution: Revolution | None = None
+    dialect: str = V2
+    layout: Layout = dataclasses.field(init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        if not isinstance(self.options, Options):
+            object.__setattr__(self, "options", options_from_json(self.options))
+        object.__setattr__(self, "bodies", tuple(self.bodies))
+        if not self.bodies:
+            raise CaseError("bodies", "a problem needs at least one body")
+        if self.dialect not in DIALECTS:
+            raise CaseError("format", f"unknown case format {self.dialect!r}; use one of {', '.join(DIALECTS)}")
+        if self.dialect == V1 and (len(self.bodies) != 1 or self.revolution is not None or self.bodies[0].material != "{}"
+                                   or self.bodies[0].lower.to_json() != self.support.to_json()):
+            raise CaseError("format", "section-case/1 holds one body on its own lower curve, without revolution or material; "
+                                      "write it as section-case/2")
+        seen: dict[str, int] = {}
+        for i, body in enumerate(self.bodies):
+            if body.name in seen:
+                raise CaseError(f"bodies[{i}].name", f"{body.name!r} is also the name of bodies[{seen[body.name]}]; give every body its own name")
+            seen[body.name] = i
+        object.__setattr__(self, "bodies", tuple(self._bound(i, b) for i, b in enumerate(self.bodies)))
+        object.__setattr__(self, "layout", layout(self))
+        if self.revolution is not None:
+            check_axis(self)
+
+    @classmethod
+    def single(cls, lower: Curve, upper: Curve, target: Curve, law: Law, name: str = "section", units: str = "mm",
+               options: Options | dict | None = None) -> Problem:
+        """The paper's problem: one body whose lower curve is the support (``section-case/1``).
+
+        Examples
+        --------
+        >>> from sectiondeform import AreaRatio, Polyline
+        >>> p = Problem.single(Polyline([[0, 0], [2, 0]]), Polyline([[2, 0], [2, 1], [0, 1], [0, 0]]),
+        ...                    Polyline([[0, 0], [2, 0]]), AreaRatio(0.9))
+        >>> p.dialect, p.bodies[0].name
+        ('section-case/1', 'section')
+        """
+        body = Body(name=name, lower=lower, upper=upper, law=law)
+        return cls(support=lower, target=target, bodies=(body,), name=name, units=units,
+                   options=options if options is not None else Options(), dialect=V1)
+
+    def _bound(self, i: int, body: Body) -> Body:
+        """``body`` with a law of bodies of revolution bound to the axis; refused without one."""
+        law = body.law
+        if not law.needs_axis:
+            return body
+        if self.revolution is None:
+            raise CaseError(f"bodies[{i}].law.{law.key}", "only valid for a body of revolution; give the case a "
+                            "revolution axis or use area_ratio")
+        if law.axis == self.revolution.axis:
+            return body
+        return dataclasses.replace(body, law=law.about(self.revolution.axis))
+
+    @property
+    def model(self) -> str:
+        """Name of the deformation model the case asks for."""
+        return self.options.model
+
+    @property
+    def law(self) -> Law:
+        """The law of a one-body problem.
+
+        Raises
+        ------
+        CaseError
+            For a problem of several bodies (each has its own law).
+        """
+        return self._only("law").law
+
+    @property
+    def lower(self) -> Curve:
+        """The lower curve of a one-body problem (see :attr:`law`)."""
+        return self._only("lower").lower
+
+    @property
+    def upper(self) -> Curve:
+        """The upper curve of a one-body problem (see :attr:`law`)."""
+        return self._only("upper").upper
+
+    def _only(self, what: str) -> Body:
+        if len(self.bodies) != 1:
+            raise CaseError(what, f"the problem has {len(self.bodies)} bodies, each with its own {what}; use problem.bodies[i].{what}")
+        return self.bodies[0]
+
+    @cached_property
+    def size(self) -> float:
+        """Bounding-box diagonal of the support and every body, units."""
+        return problem_size(self.support, self.bodies)
+
+    def label(self, i: int) -> str:
+        """``bodies[i] 'name'`` for messages; empty for the body of a ``section-case/1`` problem."""
+        return "" if self.dialect == V1 else f"bodies[{i}] {self.bodies[i].name!r}"
+
+    def body_case(self, i: int, upper: Curve | None = None) -> SectionCurves:
+        """Body ``i``'s curves as the section stage reads them (:func:`~sectiondeform.section.build_section`).
+
+        The target is the problem's target where the body's lower curve is
+        the support itself (so the lower curve is sampled for it), else the
+        body's own lower curve; it only guides the sampling of the lower curve.
+        """
+        body = self.bodies[i]
+        on_support = body.lower.to_json() == self.support.to_json()
+        return SectionCurves(lower=body.lower, upper=upper or body.upper, target=self.target if on_support else body.lower,
+                             options=self.options)
+
+    def replace(self, **changes) -> Problem:
+        """The problem with ``changes`` (fields of :class:`Problem`; ``law``, ``lower``, ``upper`` for one body).
+
+        A one-body problem accepts ``law``, ``lower`` and ``upper`` (a
+        ``section-case/1`` one keeps its lower curve as the support).
+        """
+        body_changes = {k: changes.pop(k) for k in ("law", "lower", "upper", "material") if k in changes}
+        if body_changes:
+            body = dataclasses.replace(self._only(next(iter(body_changes))), **body_changes)
+            changes["bodies"] = (body,)
+            if self.dialect == V1 and "lower" in body_changes:
+                changes.setdefault("support", body.lower)
+        return dataclasses.replace(self, **changes)
+
+    def _key(self) -> str:
+        key = self.__dict__.get("_json_key")
+        if key is None:
+            whole = [self.dialect, self.name, self.units, self.support.to_json(), self.target.to_json(),
+                     [b.to_json() for b in self.bodies], self.options.to_json(),
+                     self.revolution.to_json() if self.revolution is not None else None]
+            key = json.dumps(whole, sort_keys=True)
+            object.__setattr__(self, "_json_key", key)
+        return key
+
+    def __eq__(self, other):
+        if not isinstance(other, Problem):
+            return NotImplemented
+        return self._key() == other._key()
+
+    def __hash__(self):
+        return hash(self._key())
