@@ -8,9 +8,10 @@ import pytest
 import shapely
 
 import sectiondeform as sd
-from sectiondeform.assembly import Assembly, assembly_from_dict
-from sectiondeform.assembly_deform import AssemblyDeformer
-from sectiondeform.case import load_case
+from sectiondeform.problem import Problem
+from sectiondeform.io.case import case_from_dict
+from sectiondeform.deform import Deformer
+from sectiondeform.io.case import load_case
 from sectiondeform.curves import Polyline
 from sectiondeform.laws import AreaRatio
 
@@ -37,18 +38,19 @@ def strip():
     return load_case(STRIP)
 
 
-def test_a_v2_file_reads_as_an_assembly_and_a_v1_file_as_a_case(strip):
-    assert isinstance(strip, Assembly)
+def test_a_v2_file_reads_as_a_problem_of_its_bodies_and_a_v1_file_as_a_problem_of_one(strip):
+    assert isinstance(strip, Problem)
     assert [b.name for b in strip.bodies] == ["backing", "cover"]
     assert strip.layout.order == (0, 1) and strip.layout.foundations == ((), (0,))
     assert strip.layout.on_support == (True, False)
     v1 = load_case(sd.example_case_path())
-    assert isinstance(v1, sd.Case)
+    assert isinstance(v1, Problem) and len(v1.bodies) == 1 and v1.dialect == "section-case/1"
     assert sd.deform(v1).to_json()["format"] == "section-result/1"
+    assert sd.case_to_dict(v1)["format"] == "section-case/1" and sd.case_from_dict(sd.case_to_dict(v1)) == v1
 
 
 def test_two_layer_strip_meets_each_law_and_stays_bonded(strip):
-    result = AssemblyDeformer(strip).deform()
+    result = Deformer(strip).deform()
     size = strip.size
     for body, case_body in zip(result.bodies, strip.bodies):
         assert abs(body.area_final - case_body.law.ratio * body.area_initial) <= 1e-9 * body.area_target
@@ -73,7 +75,7 @@ def test_two_layer_strip_meets_each_law_and_stays_bonded(strip):
 
 @pytest.mark.parametrize("ratios", [(0.7, 1.3), (1.2, 0.6), (1.0, 1.0), (0.5, 0.5)])
 def test_per_body_laws_hold_to_1e9_for_any_ratios(strip, ratios):
-    result = AssemblyDeformer(with_ratios(strip, *ratios)).deform()
+    result = Deformer(with_ratios(strip, *ratios)).deform()
     for body, r in zip(result.bodies, ratios):
         assert abs(body.area_final / body.area_initial - r) <= 1e-9 * r
         assert abs(body.relative_error) <= 1e-9
@@ -81,7 +83,7 @@ def test_per_body_laws_hold_to_1e9_for_any_ratios(strip, ratios):
 
 def test_identity_reproduces_every_body(strip):
     still = with_ratios(strip, 1.0, 1.0)
-    result = AssemblyDeformer(still).deform(still.support)
+    result = Deformer(still).deform(still.support)
     for body in result.bodies:
         assert np.abs(body.upper - body.initial_upper).max() <= 1e-9 * strip.size
         assert np.abs(body.contour - body.initial_contour).max() <= 1e-9 * strip.size
@@ -92,14 +94,14 @@ def test_a_rigid_motion_of_the_target_moves_every_body_rigidly(strip, angle, off
     still = with_ratios(strip, 1.0, 1.0)
     rot, off = rotation(angle), np.array(offset)
     moved = Polyline(still.support.vertices @ rot.T + off)
-    result = AssemblyDeformer(still).deform(moved)
+    result = Deformer(still).deform(moved)
     for body in result.bodies:
         assert np.abs(body.upper - (body.initial_upper @ rot.T + off)).max() <= 1e-9 * strip.size
         assert np.abs(body.contour - (body.initial_contour @ rot.T + off)).max() <= 1e-9 * strip.size
 
 
 def test_the_deformer_re_deforms_onto_new_targets(strip):
-    deformer = AssemblyDeformer(strip)
+    deformer = Deformer(strip)
     first = deformer.deform()
     flat = deformer.deform(strip.support)
     again = deformer.deform()
@@ -109,12 +111,12 @@ def test_the_deformer_re_deforms_onto_new_targets(strip):
 
 
 def test_result_json_is_section_result_2(strip):
-    out = AssemblyDeformer(strip).deform().to_json(meshes=False)
+    out = Deformer(strip).deform().to_json(meshes=False)
     assert out["format"] == "section-result/2" and out["name"] == "two-layer-strip"
     for i, body in enumerate(out["bodies"]):
         assert set(body) >= {"name", "lower", "upper", "contour", "area"}
         assert set(body["area"]) == {"initial", "target", "final", "relative_error"}
-        assert np.array_equal(AssemblyDeformer(strip).deform().bodies[i].initial_upper, sd.build_section(strip.body_case(i)).upper)
+        assert np.array_equal(Deformer(strip).deform().bodies[i].initial_upper, sd.build_section(strip.body_case(i)).upper)
         assert len(body["upper"]) == len(sd.build_section(strip.body_case(i)).upper)
     json.dumps(out, allow_nan=False)
 
@@ -125,7 +127,7 @@ def test_one_body_on_the_support_gives_the_version_1_result():
     v2 = {"format": "section-case/2", "name": data["name"], "units": data["units"], "support": data["lower"],
           "target": data["target"], "bodies": [{"name": "only", "lower": data["lower"], "upper": data["upper"], "law": data["law"]}],
           "options": data.get("options", {})}
-    one = AssemblyDeformer(assembly_from_dict(v2)).deform().bodies[0]
+    one = Deformer(case_from_dict(v2)).deform().bodies[0]
     ref = sd.deform(v1)
     assert np.array_equal(one.lower, ref.lower) and np.array_equal(one.upper, ref.upper)
     assert one.area_final == ref.area_final

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 import shapely
 
-from sectiondeform.assembly import assembly_from_dict
-from sectiondeform.assembly_deform import AssemblyDeformer
-from sectiondeform.assembly_hyperelastic import offset_to_area
-from sectiondeform.case import case_from_dict
+from sectiondeform.io.case import case_from_dict
+from sectiondeform.deform import Deformer
+from sectiondeform.models.hyperelastic import offset_to_area
+from sectiondeform.io.case import case_from_dict
 from sectiondeform.cli import main
 from sectiondeform.curves import Polyline
 from sectiondeform.deform import Deformer
@@ -35,7 +35,7 @@ def strip_dict(ratios=None, moduli=None, through=THROUGH, target=None):
 
 
 def solve(data):
-    return AssemblyDeformer(assembly_from_dict(data)).deform()
+    return Deformer(case_from_dict(data)).deform()
 
 
 def rotation(angle):
@@ -52,7 +52,7 @@ def bonded_gap(result):
 @pytest.fixture(scope="module")
 def strip_result():
     data = strip_dict()
-    return assembly_from_dict(data), solve(data)
+    return case_from_dict(data), solve(data)
 
 
 def test_two_layer_strip_deforms_meeting_each_law_bonded_and_simple(strip_result):
@@ -88,7 +88,7 @@ def test_result_json_is_section_result_2_with_one_mesh_per_body(strip_result):
 
 def test_shared_nodes_are_one_point_of_the_mesh(strip_result):
     assembly, _ = strip_result
-    joint = AssemblyDeformer(assembly).joint
+    joint = Deformer(assembly).joint
     mesh = joint.mesh
     backing_nodes = np.unique(mesh.cells[mesh.body == 0])
     cover_nodes = np.unique(mesh.cells[mesh.body == 1])
@@ -104,7 +104,7 @@ def test_each_body_is_meshed_at_its_own_thickness_over_elements_through_thicknes
     # The 4 mm backing and the 13 mm cover: element sizes 4 / 2 and 12.8 / 2, the shared piece at the
     # finer one. Every cell of a body has edges near its own size (the mean edge over the size).
     assembly, result = strip_result
-    deformer = AssemblyDeformer(assembly)
+    deformer = Deformer(assembly)
     sections = [b.section for b in deformer.bodies]
     for body, section in zip(result.bodies, sections):
         h = section.mesh_scale / THROUGH
@@ -117,8 +117,8 @@ def test_each_body_is_meshed_at_its_own_thickness_over_elements_through_thicknes
 
 def test_identity_and_rigid_motion_are_reproduced_per_body():
     data = strip_dict(ratios=(1.0, 1.0))
-    assembly = assembly_from_dict(data)
-    deformer = AssemblyDeformer(assembly)
+    assembly = case_from_dict(data)
+    deformer = Deformer(assembly)
     same = deformer.deform(assembly.support)
     q, t = rotation(0.7), np.array([12.0, -5.0])
     support = assembly.support.at_fractions(np.linspace(0.0, 1.0, 2))
@@ -153,7 +153,7 @@ def test_equal_materials_in_two_stacked_bodies_give_the_shape_of_their_union():
     # by those corrections plus the discretisation error, estimated from the change of the assembly's
     # result when h is halved (4/3 of it for a second-order method), and by at most 0.2 % of the height.
     ratio, through = 0.9, 2.0
-    deformers = [AssemblyDeformer(assembly_from_dict(strip_dict(ratios=(ratio, ratio), moduli=(1.0, 1.0), through=t)))
+    deformers = [Deformer(case_from_dict(strip_dict(ratios=(ratio, ratio), moduli=(1.0, 1.0), through=t)))
                  for t in (through, 2 * through)]
     coarse, fine = (d.deform() for d in deformers)
     assembly = deformers[0].assembly

@@ -18,8 +18,8 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from sectiondeform.assembly import assembly_from_dict
-from sectiondeform.assembly_deform import OVERLAP_TOLERANCE, AssemblyDeformer, _no_overlap, _Prepared, _sliver
+from sectiondeform.io.case import case_from_dict
+from sectiondeform.deform import OVERLAP_TOLERANCE, Deformer, _no_overlap, _Prepared, _sliver
 from sectiondeform.curves import polygon_area
 from sectiondeform.errors import GeometryError
 
@@ -33,7 +33,7 @@ def box(name, x0, x1, y0, y1, ratio=1.0):
 
 def side_by_side(depth):
     """Two boxes on a flat support, 0.2 apart; the target folds up by ``depth`` at the gap."""
-    return assembly_from_dict({
+    return case_from_dict({
         "format": "section-case/2", "support": {"polyline": [[0, 0], [10, 0]]},
         "target": {"polyline": [[0, depth], [5, 0], [10, depth]]},
         "bodies": [box("left", 0, 4.9, 0, 3), box("right", 5.1, 10, 0, 3)]})
@@ -43,7 +43,7 @@ def bridge():
     """A bridge resting on three bodies (two blocks and the base between them), the base on a bent support."""
     x = np.linspace(0.0, 10.0, 41)
     target = np.column_stack((x, 0.5 * (1.0 - (x / 5.0 - 1.0) ** 2)))
-    return assembly_from_dict({
+    return case_from_dict({
         "format": "section-case/2", "support": {"polyline": [[0, 0], [10, 0]]}, "target": {"polyline": target.tolist()},
         "bodies": [box("base", 0, 10, 0, 1, 0.95), box("left", 1, 4, 1, 2), box("right", 6, 9, 1, 2),
                    {"name": "bridge", "lower": {"polyline": [[2, 2], [4, 2], [4, 1], [6, 1], [6, 2], [8, 2]]},
@@ -52,16 +52,16 @@ def bridge():
 
 
 def shared_cases():
-    return {"two-layer-strip": assembly_from_dict(json.loads((CASES_DIR / "v2" / "two-layer-strip.json").read_text())),
-            "tread-on-drum": assembly_from_dict(json.loads((CASES_DIR / "v2" / "tread-on-drum.json").read_text())),
+    return {"two-layer-strip": case_from_dict(json.loads((CASES_DIR / "v2" / "two-layer-strip.json").read_text())),
+            "tread-on-drum": case_from_dict(json.loads((CASES_DIR / "v2" / "tread-on-drum.json").read_text())),
             "bridge": bridge()}
 
 
 @pytest.mark.parametrize("depth, overlap", [(0.2, 0.00982), (1.0, 1.18), (4.0, 3.81)])
 def test_bodies_folded_into_each_other_are_refused_with_the_overlap_area(depth, overlap):
     with pytest.raises(GeometryError, match=rf"'left' and .*'right': the deformed bodies overlap \(area {overlap}\)"):
-        AssemblyDeformer(side_by_side(depth)).deform()
-    AssemblyDeformer(side_by_side(0.0)).deform()  # flat: no overlap
+        Deformer(side_by_side(depth)).deform()
+    Deformer(side_by_side(0.0)).deform()  # flat: no overlap
 
 
 @pytest.mark.parametrize("name", ["two-layer-strip", "tread-on-drum", "bridge"])
@@ -70,7 +70,7 @@ def test_a_contour_is_its_prepared_polygon_with_points_put_in_within_rounding(na
     and those points lie on the resting body's deformed lower polyline (their slivers vanish).
     """
     a = shared_cases()[name]
-    d = AssemblyDeformer(a, "paper")
+    d = Deformer(a, "paper")
     result = d.deform()
     assert sum(len(f["inserted"]) for f in d.fixed_parts) > 0  # some foundation gave points away
     for r, f in zip(result.bodies, d.fixed_parts):

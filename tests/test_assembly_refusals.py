@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from sectiondeform.assembly import assembly_from_dict
+from sectiondeform.io.case import case_from_dict
 from sectiondeform.cli import main
 from sectiondeform.errors import CaseError, GeometryError
 
@@ -31,7 +31,7 @@ BASE = body("base", [(0, 0), (2, 0)], [(2, 0), (2, 1), (0, 1), (0, 0)])
 
 def refused(data, error=GeometryError):
     with pytest.raises(error) as info:
-        assembly_from_dict(data)
+        case_from_dict(data)
     message = str(info.value)
     assert "\n" not in message
     return message
@@ -120,9 +120,9 @@ def test_cli_refusals_on_assemblies_exit_2_and_write_nothing(tmp_path, capsys, e
 def test_a_target_of_zero_length_is_named_as_for_one_body():
     import numpy as np
 
-    from sectiondeform.assembly_deform import AssemblyDeformer
+    from sectiondeform.deform import Deformer
 
-    deformer = AssemblyDeformer(assembly_from_dict(json.loads((CASES_DIR / "v2" / "two-layer-strip.json").read_text())))
+    deformer = Deformer(case_from_dict(json.loads((CASES_DIR / "v2" / "two-layer-strip.json").read_text())))
     for nodes in (np.array([[1.0, 1.0], [1.0, 1.0]]), np.array([[1.0, 1.0], [1.0 + 1e-13, 1.0]])):
         with pytest.raises(CaseError, match=r"^target: the target has zero length$"):
             deformer.deform(nodes)

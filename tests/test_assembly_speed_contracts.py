@@ -12,8 +12,8 @@ import json
 import numpy as np
 import pytest
 
-from sectiondeform.assembly import assembly_from_dict
-from sectiondeform.assembly_deform import AssemblyDeformer
+from sectiondeform.io.case import case_from_dict
+from sectiondeform.deform import Deformer
 from sectiondeform.curves import Polyline
 from sectiondeform.errors import CaseError, MeshError
 
@@ -29,7 +29,7 @@ def strip(model="hyperelastic", through=THROUGH, ratios=None):
     if ratios is not None:
         for body, r in zip(data["bodies"], ratios):
             body["law"] = {"area_ratio": r}
-    return assembly_from_dict(data)
+    return case_from_dict(data)
 
 
 def bumped(assembly, height):
@@ -62,7 +62,7 @@ def gap(result):
 @pytest.fixture(scope="module")
 def solved():
     a = strip()
-    d = AssemblyDeformer(a)
+    d = Deformer(a)
     return a, d, d.deform()
 
 
@@ -131,14 +131,14 @@ def test_a_preview_meets_every_law_stays_bonded_and_is_first_order(solved):
 
 def test_a_cold_preview_meets_every_law():
     a = strip(ratios=[0.97, 0.95])
-    p = AssemblyDeformer(a).preview()
+    p = Deformer(a).preview()
     assert all(abs(b.relative_error) <= 1e-9 and b.info.preview for b in p.bodies)
     assert p.state is None
 
 
 def test_a_start_of_another_assembly_or_kind_is_refused(solved):
     a, d, first = solved
-    other = AssemblyDeformer(strip(through=1.0)).deform()
+    other = Deformer(strip(through=1.0)).deform()
     with pytest.raises(CaseError, match="start"):
         d.deform(start=other)
     with pytest.raises(CaseError, match="start"):
@@ -147,7 +147,7 @@ def test_a_start_of_another_assembly_or_kind_is_refused(solved):
 
 def test_the_paper_model_ignores_start():
     a = strip("paper")
-    d = AssemblyDeformer(a)
+    d = Deformer(a)
     first = d.deform()
     assert first.state is None
     assert same(d.deform(bumped(a, 0.5), start=first), d.deform(bumped(a, 0.5)))
@@ -159,8 +159,8 @@ def test_a_paper_re_deformation_depends_on_the_target_alone_whatever_ran_before(
     the same target gives the same answer bit for bit after other targets, refused ones included.
     """
     a = strip("paper")
-    d = AssemblyDeformer(a)
-    fresh = AssemblyDeformer(a).deform(bumped(a, 0.5))
+    d = Deformer(a)
+    fresh = Deformer(a).deform(bumped(a, 0.5))
     d.deform(bumped(a, -2.0))
     result = d.deform(bumped(a, 0.5))
     for body in result.bodies:  # writing into a result must not reach the deformer

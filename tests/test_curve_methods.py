@@ -159,7 +159,7 @@ def test_a_new_curve_kind_is_one_class(tmp_path):
     pytest.importorskip("svgelements")
     from dataclasses import dataclass
 
-    from sectiondeform.case import Case
+    from sectiondeform.problem import Problem
     from sectiondeform.io import read_case, write_case
     from sectiondeform.laws import AreaRatio
 
@@ -198,7 +198,7 @@ def test_a_new_curve_kind_is_one_class(tmp_path):
 
     lower = Parabola(-5.0, 5.0)
     upper = Polyline([[5.0, 2.5], [0.0, 6.0], [-5.0, 2.5]])
-    case = Case(lower=lower, upper=upper, target=Polyline([[-6.0, 0.0], [6.0, 0.0]]), law=AreaRatio(0.9), name="p")
+    case = Problem.single(lower, upper, Polyline([[-6.0, 0.0], [6.0, 0.0]]), AreaRatio(0.9), name="p")
     for ext in (".svg", ".dxf"):
         write_case(tmp_path / f"p{ext}", case)
         back = read_case(tmp_path / f"p{ext}")

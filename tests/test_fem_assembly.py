@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from sectiondeform.fem.assembly import MixedNeoHooke, Pattern
+from sectiondeform.fem.neohooke import MixedNeoHooke, Pattern
 from sectiondeform.fem.axisymmetric import AxisymmetricNeoHooke, AxisymmetricRubber
 from sectiondeform.fem.elements import geometry
 from sectiondeform.fem.mesh import coarse_mesh

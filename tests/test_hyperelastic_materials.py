@@ -16,9 +16,9 @@ import pytest
 import shapely
 
 import sectiondeform as sd
-from sectiondeform.assembly import assembly_from_dict
-from sectiondeform.assembly_deform import AssemblyDeformer
-from sectiondeform.fem.assembly import MixedNeoHooke, Pattern
+from sectiondeform.io.case import case_from_dict
+from sectiondeform.deform import Deformer
+from sectiondeform.fem.neohooke import MixedNeoHooke, Pattern
 from sectiondeform.fem.elements import geometry
 from sectiondeform.fem.mesh import coarse_mesh
 from sectiondeform.fem.rubber import MixedRubber
@@ -160,7 +160,7 @@ def _strip(materials, stretch=1.2):
     for body, material in zip(data["bodies"], materials):
         body["law"] = {"area_ratio": 1.0}
         body["material"] = material.to_json()
-    return AssemblyDeformer(assembly_from_dict(data)).deform()
+    return Deformer(case_from_dict(data)).deform()
 
 
 def _top_stretch(result):

@@ -20,9 +20,9 @@ import numpy as np
 import pytest
 import shapely
 
-from sectiondeform.assembly import assembly_from_dict
-from sectiondeform.assembly_deform import AssemblyDeformer
-from sectiondeform.assembly_hyperelastic_revolution import offset_to_law
+from sectiondeform.io.case import case_from_dict
+from sectiondeform.deform import Deformer
+from sectiondeform.models.hyperelastic_revolution import offset_to_law
 from sectiondeform.errors import LawError
 from sectiondeform.fem.axisymmetric import AxisymmetricNeoHooke
 from sectiondeform.fem.elements import geometry
@@ -145,7 +145,7 @@ def test_thick_ring_keeps_area_times_radius_of_every_annular_strip(v):
     wall), at 11 walls 1.3e-5 t, at 15 walls 4e-6 t.
     """
     length = 24 * T
-    result = AssemblyDeformer(assembly_from_dict(ring_case(v, length))).deform()
+    result = Deformer(case_from_dict(ring_case(v, length))).deform()
     body = result.bodies[0]
     P0, P1 = body.initial_mesh.points, body.final_mesh.points
     mid = np.abs(P0[:, 0] - length / 2) <= T
@@ -163,7 +163,7 @@ def test_thick_ring_keeps_area_times_radius_of_every_annular_strip(v):
 
 @pytest.fixture(scope="module")
 def drum_result():
-    return AssemblyDeformer(assembly_from_dict(json.loads(DRUM.read_text())), model="hyperelastic").deform()
+    return Deformer(case_from_dict(json.loads(DRUM.read_text())), model="hyperelastic").deform()
 
 
 def test_the_tread_on_drum_meets_each_volume_law_with_its_interfaces_bonded(drum_result):
@@ -188,7 +188,7 @@ def test_the_tread_on_drum_meets_each_volume_law_with_its_interfaces_bonded(drum
 
 
 def test_the_hyperelastic_drum_is_not_the_paper_models(drum_result):
-    paper = AssemblyDeformer(assembly_from_dict(json.loads(DRUM.read_text())), model="paper").deform()
+    paper = Deformer(case_from_dict(json.loads(DRUM.read_text())), model="paper").deform()
     tread_h, tread_p = drum_result.body("tread"), paper.body("tread")
     assert drum_result.model == "hyperelastic" and paper.model == "paper"
     assert tread_h.volume_final == pytest.approx(tread_p.volume_final, rel=1e-9)
@@ -199,7 +199,7 @@ def test_a_body_under_an_area_law_in_a_revolution_case_meets_its_area():
     data = json.loads(DRUM.read_text())
     data = copy.deepcopy(data)
     data["bodies"][1]["law"] = {"area_ratio": 0.95}
-    result = AssemblyDeformer(assembly_from_dict(data), model="hyperelastic").deform()
+    result = Deformer(case_from_dict(data), model="hyperelastic").deform()
     tread = result.body("tread")
     assert tread.measure == "area" and abs(tread.relative_error) <= 1e-9
     assert abs(result.body("undertread").relative_error) <= 1e-9
@@ -225,11 +225,11 @@ def test_the_undertread_alone_lies_near_the_reference_and_nearer_as_the_mesh_is_
 
     data = json.loads(DRUM.read_text())
     data["bodies"] = data["bodies"][:1]
-    reference = solve_reference(assembly_from_dict(data), mesh_size=0.2)
+    reference = solve_reference(case_from_dict(data), mesh_size=0.2)
     distances = []
     for through in (2.0, 4.0):
         data["options"] = {**data["options"], "elements_through_thickness": through}
-        body = AssemblyDeformer(assembly_from_dict(data), model="hyperelastic").deform().bodies[0]
+        body = Deformer(case_from_dict(data), model="hyperelastic").deform().bodies[0]
         distances.append(np.hypot(*(body.upper - reference.upper).T).max() / 3.0)
     assert distances[1] < 2e-3
     assert distances[0] > 2.0 * distances[1]
@@ -287,11 +287,11 @@ def test_the_rubber_problem_with_a_neo_hookean_material_is_the_closed_form_and_i
 
 def test_a_mooney_rivlin_drum_with_c01_zero_is_the_neo_hookean_drum():
     data = json.loads(DRUM.read_text())
-    nh = AssemblyDeformer(assembly_from_dict(data), model="hyperelastic").deform()
+    nh = Deformer(case_from_dict(data), model="hyperelastic").deform()
     for body in data["bodies"]:
         mu = body["material"]["shear_modulus"]
         body["material"] = {"model": "mooney-rivlin", "c10": mu / 2.0, "c01": 0.0}
-    mr = AssemblyDeformer(assembly_from_dict(data), model="hyperelastic").deform()
+    mr = Deformer(case_from_dict(data), model="hyperelastic").deform()
     for a, b in zip(nh.bodies, mr.bodies):
         assert np.abs(a.upper - b.upper).max() <= 1e-10 * 150.0
         assert np.abs(a.final_mesh.points - b.final_mesh.points).max() <= 1e-10 * 150.0
@@ -320,11 +320,11 @@ def test_a_mooney_rivlin_or_yeoh_undertread_lies_near_the_reference(material):
     data = json.loads(DRUM.read_text())
     data["bodies"] = data["bodies"][:1]
     data["bodies"][0]["material"] = material
-    reference = solve_reference(assembly_from_dict(data), mesh_size=0.2)
+    reference = solve_reference(case_from_dict(data), mesh_size=0.2)
     distances = []
     for through in (2.0, 4.0):
         data["options"] = {**data["options"], "elements_through_thickness": through}
-        body = AssemblyDeformer(assembly_from_dict(data), model="hyperelastic").deform().bodies[0]
+        body = Deformer(case_from_dict(data), model="hyperelastic").deform().bodies[0]
         distances.append(np.hypot(*(body.upper - reference.upper).T).max() / 3.0)
     assert distances[1] < 2e-3
     assert distances[0] > 2.0 * distances[1]
@@ -353,8 +353,8 @@ def test_the_mooney_rivlin_effect_on_a_short_expanded_ring_is_the_references():
         case["target"] = {"polyline": [[0.0, 14.0], [3 * T, 14.0]]}
         for through in (2.0, 4.0):
             case["options"]["elements_through_thickness"] = through
-            model[name, through] = AssemblyDeformer(assembly_from_dict(case)).deform().bodies[0].upper
-        reference[name] = solve_reference(assembly_from_dict(case), mesh_size=0.12).upper
+            model[name, through] = Deformer(case_from_dict(case)).deform().bodies[0].upper
+        reference[name] = solve_reference(case_from_dict(case), mesh_size=0.12).upper
     effect = reference["mr"] - reference["nh"]
     size = np.hypot(*effect.T).max()
     assert size > 5e-3 * T

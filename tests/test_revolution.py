@@ -15,9 +15,9 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from sectiondeform.assembly import assembly_from_dict
-from sectiondeform.assembly_deform import deform_assembly
-from sectiondeform.case import case_from_dict
+from sectiondeform.io.case import case_from_dict
+from sectiondeform.deform import deform
+from sectiondeform.io.case import case_from_dict
 from sectiondeform.cli import main
 from sectiondeform.errors import CaseError, GeometryError, LawError
 from sectiondeform.laws import AreaRatio, VolumeRatio, law_from_json
@@ -129,7 +129,7 @@ def test_volume_ratio_law_reads_and_writes_its_key_and_needs_an_axis():
 
 
 def test_the_tread_on_drum_deforms_with_each_volume_exact():
-    result = deform_assembly(assembly_from_dict(json.loads(DRUM.read_text())))
+    result = deform(case_from_dict(json.loads(DRUM.read_text())))
     ratios = {"undertread": 1.0, "tread": 0.98}
     drum = ((0.0, -250.0), (1.0, -250.0))
     for body in result.bodies:
@@ -160,7 +160,7 @@ def test_the_cli_writes_the_volumes_of_the_tread_on_drum(tmp_path, capsys):
 def test_area_laws_in_a_revolution_case_carry_the_volume_without_target():
     data = json.loads(DRUM.read_text())
     data["bodies"][0]["law"] = {"area_ratio": 0.9}
-    result = deform_assembly(assembly_from_dict(data))
+    result = deform(case_from_dict(data))
     under = result.body("undertread").to_json(meshes=False)
     assert set(under["volume"]) == {"initial", "final"} and under["area"]["target"] == pytest.approx(405.0)
 
@@ -173,7 +173,7 @@ def test_an_incompressible_rectangle_moved_radially_keeps_area_times_radius(shif
     w, h, radius = 10.0, 2.0, 50.0
     lower, upper = rectangle(0.0, w, radius, radius + h)
     target = [(0.0, radius + shift), (w, radius + shift)]
-    result = deform_assembly(assembly_from_dict(one_body(lower, upper, {"volume_ratio": 1.0}, target)))
+    result = deform(case_from_dict(one_body(lower, upper, {"volume_ratio": 1.0}, target)))
     body = result.bodies[0]
     r1 = radius + shift
     k = (-r1 + math.sqrt(r1**2 + 2 * h * (radius + h / 2))) / h
@@ -208,7 +208,7 @@ def test_the_volume_law_holds_to_1e_9_on_generated_sections_and_targets(params):
     c, s = math.cos(turn), math.sin(turn)
     target = [(0.0, radius + move), (w * c, radius + move + w * s)]
     case = one_body(lower, upper, {"volume_ratio": ratio}, target)
-    body = deform_assembly(assembly_from_dict(case)).bodies[0]
+    body = deform(case_from_dict(case)).bodies[0]
     v0 = pappus_by_geos(body.initial_contour)
     assert abs(pappus_by_geos(body.contour) - ratio * v0) <= 1e-9 * ratio * v0
 
@@ -222,12 +222,12 @@ def test_the_physical_root_is_taken_when_the_body_grows_towards_the_axis():
     lower = [(w, radius), (0.0, radius)]  # drawn right to left: the body lies below, towards the axis
     upper = [(0.0, radius), (0.0, radius - h), (w, radius - h), (w, radius)]
     v0 = 2 * math.pi * w * h * (radius - h / 2)
-    body = deform_assembly(assembly_from_dict(one_body(lower, upper, {"volume_ratio": 2.5}))).bodies[0]
+    body = deform(case_from_dict(one_body(lower, upper, {"volume_ratio": 2.5}))).bodies[0]
     kh = radius - math.sqrt(radius**2 - 2 * 2.5 * v0 / (2 * math.pi * w))  # the smaller root of the quadratic
     assert body.upper[1:3, 1] == pytest.approx(radius - kh, abs=1e-9)
     assert (body.contour[:, 1] >= 0).all()
     with pytest.raises(LawError, match=r"^bodies\[0\] 'ring': law: no height scale gives the volume"):
-        deform_assembly(assembly_from_dict(one_body(lower, upper, {"volume_ratio": 3.0})))
+        deform(case_from_dict(one_body(lower, upper, {"volume_ratio": 3.0})))
 
 
 # -- refusals ------------------------------------------------------------------
@@ -237,7 +237,7 @@ def test_a_volume_law_without_revolution_is_refused():
     data = json.loads(DRUM.read_text())
     del data["revolution"]
     with pytest.raises(CaseError, match=r"^bodies\[0\]\.law\.volume_ratio: only valid for a body of revolution"):
-        assembly_from_dict(data)
+        case_from_dict(data)
     v1 = {"format": "section-case/1", "lower": {"polyline": [[0, 0], [1, 0]]},
           "upper": {"polyline": [[1, 0], [1, 1], [0, 1], [0, 0]]}, "target": {"polyline": [[0, 0], [1, 0]]},
           "law": {"volume_ratio": 1.0}}
@@ -248,20 +248,20 @@ def test_a_volume_law_without_revolution_is_refused():
 def test_bodies_on_both_sides_of_the_axis_or_crossed_by_it_are_refused():
     lower, upper = rectangle(0.0, 4.0, -1.0, 1.0)
     with pytest.raises(GeometryError, match=r"^bodies\[0\] 'ring': the revolution axis crosses it"):
-        assembly_from_dict(one_body(lower, upper, {"volume_ratio": 1.0}))
+        case_from_dict(one_body(lower, upper, {"volume_ratio": 1.0}))
     data = json.loads(DRUM.read_text())
     data["revolution"]["axis"] = [[0, 8], [1, 8]]  # between the undertread and the tread's top
     with pytest.raises(GeometryError, match=r"^bodies\[1\] 'tread': the revolution axis crosses it"):
-        assembly_from_dict(data)
+        case_from_dict(data)
     data["revolution"]["axis"] = [[0, 3], [1, 3]]  # along the shared line: undertread below, tread above
     with pytest.raises(GeometryError, match=r"^bodies\[1\] 'tread': it lies on the other side of the revolution axis"):
-        assembly_from_dict(data)
+        case_from_dict(data)
 
 
 def test_a_target_that_brings_the_body_across_the_axis_is_refused():
     lower, upper = rectangle(0.0, 4.0, 1.0, 2.0)
     target = [(0.0, -1.0), (4.0, -1.0)]  # the support moved to the other side of the axis
     with pytest.raises(GeometryError, match=r"^bodies\[0\] 'ring': the deformed body crosses the revolution axis"):
-        deform_assembly(assembly_from_dict(one_body(lower, upper, {"area_ratio": 1.0}, target)))
+        deform(case_from_dict(one_body(lower, upper, {"area_ratio": 1.0}, target)))
 
 

@@ -19,6 +19,7 @@ from ..checks import number
 from ..curves import curve_from_json
 from ..errors import CaseError
 from ..laws import law_from_json
+from ..materials import MATERIAL_MODELS as RUBBERS
 from ..options import is_user_key, options_from_json, unknown_key
 from ..problem import V1, V2, Body, Problem, Revolution
 from .units import mm_per_unit
@@ -32,7 +33,7 @@ V1_KEYS = ("format", "name", "units", "lower", "upper", "target", "law", "option
 V2_KEYS = ("format", "name", "units", "support", "target", "revolution", "bodies", "options", "note")
 BODY_KEYS = ("name", "lower", "upper", "law", "material", "note")
 MATERIAL_KEYS = ("model", "shear_modulus", "bulk_to_shear", "bulk_modulus", "c10", "c01", "c20", "c30")
-MATERIAL_MODELS = ("neo-hookean", "mooney-rivlin", "yeoh")
+MATERIAL_MODELS = tuple(RUBBERS)
 
 
 def case_from_dict(data) -> Problem:

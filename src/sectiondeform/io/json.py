@@ -7,7 +7,8 @@ import os
 import tempfile
 from pathlib import Path
 
-from ..case import Case, case_to_dict, load_case
+from ..problem import Problem
+from .case import case_to_dict, load_case
 
 __all__ = ["read_case", "write_case", "write_result", "atomic_write", "dumps"]
 
@@ -55,16 +56,14 @@ def _dump(obj, path: Path) -> None:
     path.write_text(dumps(obj) + "\n", encoding="utf-8")
 
 
-def read_case(path) -> Case:
-    """Read a case JSON file (see :func:`sectiondeform.case.load_case`)."""
+def read_case(path) -> Problem:
+    """Read a case JSON file (see :func:`sectiondeform.io.case.load_case`)."""
     return load_case(path)
 
 
-def write_case(path, case: Case) -> None:
-    """Write a case JSON file atomically (an assembly as ``section-case/2``)."""
-    from ..assembly import Assembly, assembly_to_dict
-
-    data = assembly_to_dict(case) if isinstance(case, Assembly) else case_to_dict(case)
+def write_case(path, case: Problem) -> None:
+    """Write a case JSON file atomically, in the problem's dialect."""
+    data = case_to_dict(case)
     atomic_write(path, lambda tmp: _dump(data, tmp))
 
 
