@@ -12,7 +12,7 @@ FRACTIONS = np.linspace(0.0, 1.0, 201)
 
 def shared_case(name: str):
     """A case from ``tests/data/cases``, parsed; raises if the file is absent."""
-    from sectiondeform.case import load_case
+    from sectiondeform.io.case import load_case
 
     return load_case(data_case_path(name))
 

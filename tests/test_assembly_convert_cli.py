@@ -8,8 +8,8 @@ import pytest
 
 ezdxf = pytest.importorskip("ezdxf")
 
-from sectiondeform.case import load_case  # noqa: E402
 from sectiondeform.cli import main  # noqa: E402
+from sectiondeform.io.case import load_case  # noqa: E402
 from sectiondeform.laws import AreaRatio  # noqa: E402
 
 from io_helpers import CASES_DIR, same_curve  # noqa: E402

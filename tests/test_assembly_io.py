@@ -7,18 +7,19 @@ import pytest
 
 ezdxf = pytest.importorskip("ezdxf")
 
-from sectiondeform.assembly import Assembly, assembly_from_dict  # noqa: E402
 from sectiondeform.errors import CaseError, SectionDeformError  # noqa: E402
 from sectiondeform.io import read_case, write_case  # noqa: E402
+from sectiondeform.io.case import case_from_dict  # noqa: E402
 from sectiondeform.io.dxf import _add_curve  # noqa: E402
 from sectiondeform.laws import AreaRatio  # noqa: E402
+from sectiondeform.problem import Problem  # noqa: E402
 
 from io_helpers import same_curve, shared_case  # noqa: E402
 
 STRIP = "v2/two-layer-strip"
 
 
-def plain_assembly(**changes) -> Assembly:
+def plain_assembly(**changes) -> Problem:
     """Two stacked polyline bodies on a straight support, a polyline target: every coordinate exact in a drawing."""
     data = {
         "format": "section-case/2", "name": "blocks", "units": "mm",
@@ -35,7 +36,7 @@ def plain_assembly(**changes) -> Assembly:
         "options": {"chordal_error": 0.01, "contact_tolerance": 1e-5},
     }
     data.update(changes)
-    return assembly_from_dict(data)
+    return case_from_dict(data)
 
 
 def new_doc():
@@ -52,7 +53,7 @@ def test_polyline_assembly_round_trip_is_exact(tmp_path, ext):
     case = plain_assembly()
     write_case(tmp_path / f"a{ext}", case)
     back = read_case(tmp_path / f"a{ext}")
-    assert isinstance(back, Assembly)
+    assert isinstance(back, Problem) and back.dialect == "section-case/2"
     assert back == case  # every curve, law, material, option and the name, to the bit
     assert [b.name for b in back.bodies] == ["base", "Top Layer"]
 
@@ -114,7 +115,7 @@ def test_units_option_scales_everything(tmp_path):
 # ---------------------------------------------------------------- contours
 
 
-def contour_drawing(path, case: Assembly, order=None, layer=lambda b: f"BODY-{b.name}"):
+def contour_drawing(path, case: Problem, order=None, layer=lambda b: f"BODY-{b.name}"):
     """Each body of ``case`` drawn as one closed contour (its lower then upper curve) on its own layer, no stored data."""
     doc, msp = new_doc()
     _add_curve(msp, case.support, "SUPPORT", 1e-3)
@@ -299,10 +300,10 @@ def test_names_that_cannot_be_layers(tmp_path):
 
 @pytest.fixture(scope="module")
 def strip_result():
-    from sectiondeform.assembly_deform import AssemblyDeformer
+    from sectiondeform.deform import Deformer
 
     case = shared_case(STRIP)
-    return case, AssemblyDeformer(case).deform()
+    return case, Deformer(case).deform()
 
 
 def test_result_dxf_one_layer_per_body(tmp_path, strip_result):
@@ -339,9 +340,23 @@ def test_result_svg_groups(tmp_path, strip_result):
         assert {f"DEFORMED-{b.name}-LOWER", f"DEFORMED-{b.name}-UPPER", f"INITIAL-{b.name}-UPPER",
                 f"MESH-FINAL-{b.name}", f"MESH-INITIAL-{b.name}"} <= ids
     assert "SUPPORT" not in ids  # only drawn when the case is given
-    with pytest.raises(CaseError) as exc:
-        write_result(tmp_path / "s.dxf", result, spline=True)
-    assert one_line(exc).startswith("spline:") and not (tmp_path / "s.dxf").exists()
+
+
+def test_result_dxf_splines_follow_each_bodys_deformed_curves(tmp_path, strip_result):
+    import shapely
+
+    from sectiondeform.io import write_result
+
+    case, result = strip_result
+    tol = 1e-3
+    write_result(tmp_path / "s.dxf", result, spline=True, chordal_error=tol)
+    msp = ezdxf.readfile(tmp_path / "s.dxf").modelspace()
+    for b in result.bodies:
+        for side, pts in (("LOWER", b.lower), ("UPPER", b.upper)):
+            (e,) = msp.query(f"SPLINE[layer=='DEFORMED-{b.name}-{side}']")
+            curve = shapely.LineString([(p[0], p[1]) for p in e.construction_tool().flattening(tol / 100)])
+            assert shapely.distance(shapely.points(pts), curve).max() <= 1.01 * tol
+        assert not msp.query(f"LWPOLYLINE[layer=='DEFORMED-{b.name}-LOWER']")
 
 
 @pytest.mark.parametrize("ext", [".vtu", ".vtk", ".msh"])
@@ -373,7 +388,7 @@ def test_mesh_tags_each_body(tmp_path, strip_result, ext):
 
 def test_mesh_inp_element_sets(tmp_path, strip_result):
     meshio = pytest.importorskip("meshio")
-    from sectiondeform.io.assembly import write_mesh
+    from sectiondeform.io.meshes import write_mesh
 
     case, result = strip_result
     write_mesh(tmp_path / "r.inp", result, "initial")

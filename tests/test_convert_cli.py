@@ -10,8 +10,8 @@ import pytest
 pytest.importorskip("ezdxf")
 pytest.importorskip("meshio")
 
-from sectiondeform.case import load_case  # noqa: E402
 from sectiondeform.cli import main  # noqa: E402
+from sectiondeform.io.case import load_case  # noqa: E402
 
 from io_helpers import CASES_DIR, same_curve, shared_case  # noqa: E402
 

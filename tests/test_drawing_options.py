@@ -14,7 +14,6 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from sectiondeform.case import Case
 from sectiondeform.cli import main
 from sectiondeform.curves import Arc, Polyline
 from sectiondeform.errors import CaseError, MeshError
@@ -23,6 +22,7 @@ from sectiondeform.io.drawing import DrawingOptions, case_from_drawing
 from sectiondeform.io.pieces import Drawing, Piece
 from sectiondeform.io.units import mm_per_unit
 from sectiondeform.laws import AreaRatio
+from sectiondeform.problem import Problem
 
 DATA = Path(__file__).parent / "data"
 SEAL = DATA / "real" / "vr6000_seal_scan.dxf"
@@ -30,10 +30,10 @@ SEAL_OPTIONS = dict(bbox=(-21, -1, -12, 10), snap=0.05, close_gap=2.5, split=((-
                     target_arc=0.05, law=AreaRatio(0.8))
 
 
-def box_case(name="box") -> Case:
+def box_case(name="box") -> Problem:
     lower = Polyline([[0.0, 0.0], [10.0, 0.0]])
     upper = Polyline([[10.0, 0.0], [10.0, 4.0], [0.0, 4.0], [0.0, 0.0]])
-    return Case(lower=lower, upper=upper, target=Polyline([[0.0, 0.0], [10.0, 0.0]]), law=AreaRatio(0.9), name=name)
+    return Problem.single(lower, upper, Polyline([[0.0, 0.0], [10.0, 0.0]]), AreaRatio(0.9), name=name)
 
 
 def contour_drawing(path="square.svg") -> Drawing:
@@ -189,7 +189,7 @@ def test_figures_leave_the_users_backend_alone(tmp_path):
     script = f"""
 import sys, matplotlib
 matplotlib.use("pdf")
-from sectiondeform.case import load_case
+from sectiondeform.io.case import load_case
 from sectiondeform.deform import Deformer
 from sectiondeform.plot import save_figure
 import sectiondeform, pathlib

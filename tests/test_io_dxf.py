@@ -219,7 +219,7 @@ def test_no_law_and_no_target_errors(tmp_path):
     msp.add_line((0, 0), (10, 0), dxfattribs={"layer": "LOWER"})
     msp.add_lwpolyline([(10, 0), (10, 5), (0, 5), (0, 0)], dxfattribs={"layer": "UPPER"})
     doc.saveas(tmp_path / "p.dxf")
-    with pytest.raises(CaseError, match="gives no law"):
+    with pytest.raises(CaseError, match="stores no law"):
         read_case(tmp_path / "p.dxf", target_arc=1.0)
     with pytest.raises(CaseError, match="no target"):
         read_case(tmp_path / "p.dxf", law=AreaRatio(0.8))

@@ -11,10 +11,9 @@ meshio = pytest.importorskip("meshio")
 pytest.importorskip("h5py")  # meshio's XDMF writer imports it even for inline data
 pytest.importorskip("skfem")
 
-from sectiondeform.assembly import assembly_from_dict  # noqa: E402
-from sectiondeform.assembly_deform import AssemblyDeformer  # noqa: E402
-from sectiondeform.cli import main  # noqa: E402
 from sectiondeform.deform import Deformer  # noqa: E402
+from sectiondeform.io import write_result  # noqa: E402
+from sectiondeform.io.case import case_from_dict  # noqa: E402
 from sectiondeform.io.meshes import split_components, write_mesh  # noqa: E402
 
 from conftest import data_case_path  # noqa: E402
@@ -28,11 +27,11 @@ def _whole(cell_data: dict, name: str) -> np.ndarray:
 def test_a_hyperelastic_result_in_xdmf_carries_its_stresses_as_the_json_does(tmp_path):
     case = json.loads(data_case_path("paper-example").read_text())
     case["options"] = {**case.get("options", {}), "model": "hyperelastic"}
-    src = tmp_path / "case.json"
-    src.write_text(json.dumps(case))
+    result = Deformer(case_from_dict(case)).deform()
     out, xdmf = tmp_path / "r.json", tmp_path / "final.xdmf"
-    assert main(["deform", str(src), "-o", str(out), "--fields", "--mesh-out", str(xdmf)]) == 0
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["case.json", "final.xdmf", "r.json"]  # no HDF5 file beside it
+    write_result(out, result, fields=True)
+    write_mesh(xdmf, result, "final", fields=True)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["final.xdmf", "r.json"]  # no HDF5 file beside it
     fields = json.loads(out.read_text())["fields"]
     mesh = meshio.read(xdmf)
     assert mesh.cells[0].type == "triangle6" and len(mesh.cells[0].data) == len(fields["J"])
@@ -47,7 +46,7 @@ def test_a_hyperelastic_result_in_xdmf_carries_its_stresses_as_the_json_does(tmp
 def test_an_assemblys_bodies_are_one_block_tagged_by_body_with_each_bodys_fields(tmp_path):
     case = json.loads(data_case_path("v2/two-layer-strip").read_text())
     case["options"] = {**case.get("options", {}), "model": "hyperelastic"}
-    result = AssemblyDeformer(assembly_from_dict(case)).deform()
+    result = Deformer(case_from_dict(case)).deform()
     path = tmp_path / "strip.xdmf"
     write_mesh(path, result, "final", fields=True)
     mesh = meshio.read(path)

@@ -1,25 +1,28 @@
 """File formats, one module each, chosen by file extension.
 
-:data:`CASE_READERS` maps an extension to a function ``(path, **options) -> Case``;
-:data:`CASE_WRITERS` maps one to ``(path, case) -> None``;
-:data:`RESULT_WRITERS` maps one to ``(path, result, **options) -> None``. Optional
-formats register themselves here with the module that implements them.
+:data:`FORMATS` maps an extension to the module implementing it; a module
+gives what its format can do, under the same names: ``read_case(path,
+**options) -> Problem``, ``write_case(path, problem)``, ``write_result(path,
+result, **options)``, ``read_drawing(path, chordal_error) -> Drawing``.
+Format modules are leaves: none imports another; what they share is in
+:mod:`.layers` (the layers of bodies in drawings), :mod:`.files` (atomic
+writing), :mod:`.drawing` (a drawing's pieces to a problem) and
+:mod:`.case` (the case object).
 
-=========  ======================  ==========================================
-extension  case in / out           result out
-=========  ======================  ==========================================
-``.json``  section-case/1 (may     section-result/1
-           name a drawing)
-``.dxf``   layers LOWER, UPPER,    layers DEFORMED, INITIAL, TARGET,
-           TARGET (or a contour)   MESH_INITIAL, MESH_FINAL
-``.svg``   ids/classes lower,      groups deformed, initial, target,
-           upper, target           mesh-initial, mesh-final
-``.vtu``,  --                      the final mesh, initial coordinates as
-``.msh``,                          point data (see :mod:`.meshes`)
+=========  ==========================================  ==========================================
+extension  case in / out                               result out
+=========  ==========================================  ==========================================
+``.json``  section-case/1 and /2 (may name a drawing)  section-result/1 and /2
+``.dxf``   layers (:mod:`.layers`): LOWER, UPPER,      DEFORMED, INITIAL, TARGET, MESH_INITIAL,
+           TARGET (or a contour); or SUPPORT,          MESH_FINAL; or per body DEFORMED-<name>-...,
+           TARGET, BODY-<name>-LOWER, -UPPER           INITIAL-<name>-..., MESH-FINAL-<name>...
+``.svg``   the same names as ids or classes            groups with the same names
+``.vtu``,  --                                          every body's mesh, one cell block each
+``.msh``,                                              (see :mod:`.meshes`)
 ``.inp``,
 ``.vtk``,
 ``.xdmf``
-=========  ======================  ==========================================
+=========  ==========================================  ==========================================
 """
 
 from __future__ import annotations
@@ -32,58 +35,52 @@ from ..errors import CaseError
 
 __all__ = [
     "read_case",
+    "read_drawing",
     "write_case",
     "write_result",
+    "FORMATS",
     "CASE_READERS",
     "CASE_WRITERS",
     "RESULT_WRITERS",
+    "DRAWING_READERS",
     "check_output_path",
     "check_figure_path",
     "MESH_FORMATS",
     "FIGURE_FORMATS",
 ]
 
-# extension -> (module, function); modules are imported on first use.
-CASE_READERS = {
-    ".json": (".drawing", "read_json_case"),
-    ".dxf": (".dxf", "read_case"),
-    ".svg": (".svg", "read_case"),
-}
-CASE_WRITERS = {
-    ".json": (".json", "write_case"),
-    ".dxf": (".dxf", "write_case"),
-    ".svg": (".svg", "write_case"),
-}
-RESULT_WRITERS = {
-    ".json": (".json", "write_result"),
-    ".dxf": (".dxf", "write_result"),
-    ".svg": (".svg", "write_result"),
-    ".vtu": (".meshes", "write_result"),
-    ".vtk": (".meshes", "write_result"),
-    ".msh": (".meshes", "write_result"),
-    ".xdmf": (".meshes", "write_result"),
-    ".inp": (".meshes", "write_result"),
-}
+# extension -> format module; modules are imported on first use.
+FORMATS = {".json": ".json", ".dxf": ".dxf", ".svg": ".svg", ".vtu": ".meshes", ".vtk": ".meshes", ".msh": ".meshes",
+           ".xdmf": ".meshes", ".inp": ".meshes"}
+CASE_READERS = (".json", ".dxf", ".svg")
+CASE_WRITERS = (".json", ".dxf", ".svg")
+DRAWING_READERS = (".dxf", ".svg")
+RESULT_WRITERS = tuple(FORMATS)
 
 
-def _resolve(table: dict, path: Path, what: str):
+def _resolve(table, path: Path, what: str, func: str):
     ext = path.suffix.lower()
     if ext not in table:
         raise CaseError(str(path), f"unknown {what} format {ext or '(none)'!r}; use one of {', '.join(sorted(table))}")
-    module, func = table[ext]
-    return getattr(importlib.import_module(module, __name__), func)
+    return getattr(importlib.import_module(FORMATS[ext], __name__), func)
 
 
 def read_case(path, **options):
-    """Read a case from any supported input format, chosen by extension."""
+    """Read a case (a :class:`~sectiondeform.problem.Problem`) from any supported input format, chosen by extension."""
     path = Path(path)
-    return _resolve(CASE_READERS, path, "case")(path, **options)
+    return _resolve(CASE_READERS, path, "case", "read_case")(path, **options)
+
+
+def read_drawing(path, chordal_error: float | None = None):
+    """The pieces of a drawing file (.dxf, .svg), chosen by extension."""
+    path = Path(path)
+    return _resolve(DRAWING_READERS, path, "drawing", "read_drawing")(path, chordal_error)
 
 
 def write_case(path, case) -> None:
-    """Write a case in the format its extension names (.json, .dxf, .svg), atomically."""
+    """Write a case in the format its extension names (.json, .dxf, .svg), atomically, in the problem's dialect."""
     path = Path(path)
-    _resolve(CASE_WRITERS, path, "case output")(path, case)
+    _resolve(CASE_WRITERS, path, "case output", "write_case")(path, case)
 
 
 def write_result(path, result, **options) -> None:
@@ -94,8 +91,9 @@ def write_result(path, result, **options) -> None:
     path : str or Path
     result : Result
     **options
-        Keywords of that format's writer (``meshes`` for JSON; ``spline``,
-        ``chordal_error`` for DXF; none for SVG and the mesh formats).
+        Keywords of that format's writer (``meshes``, ``fields`` for JSON;
+        ``spline``, ``chordal_error``, ``case`` for DXF; ``case`` for SVG;
+        ``fields`` for the mesh formats).
 
     Raises
     ------
@@ -103,7 +101,7 @@ def write_result(path, result, **options) -> None:
         For an unknown extension, or an option the format's writer does not take.
     """
     path = Path(path)
-    writer = _resolve(RESULT_WRITERS, path, "output")
+    writer = _resolve(RESULT_WRITERS, path, "output", "write_result")
     known = list(inspect.signature(writer).parameters)[2:]  # after (path, result)
     for key in options:
         if key not in known:

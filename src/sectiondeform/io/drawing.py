@@ -1,484 +1,63 @@
-"""From the pieces of a drawing (DXF or SVG) to a case.
+"""From a drawing (DXF or SVG), or a case JSON naming one, to a :class:`~sectiondeform.problem.Problem`.
 
-Two ways to name the section's curves:
+A drawing holds either dialect of the case format, by its layers
+(:mod:`.layers`; DXF layer names, SVG ids or classes, matched without
+regard to case):
 
-*Layers* (the default): the pieces tagged ``LOWER`` form the lower curve,
-``UPPER`` the upper one, ``TARGET`` the target (DXF layer names, SVG ids or
-classes; other names with ``layers={"lower": ..., ...}``, matched without
-regard to case). Each is chained by its end points. The lower curve runs
-A -> B so that the section lies on its left (the contour lower + upper is
-counter-clockwise), the upper one from B back to A; the target runs the
-same general way as A -> B (its chord points along B - A). A DXF or SVG
-written by this package stores A and A' and restores them exactly.
+- ``section-case/1``, the paper's one body: its lower and upper curves on
+  ``LOWER`` and ``UPPER`` (or one closed contour split at two points), the
+  target on ``TARGET`` (:mod:`.outline` says how, with every option);
+- ``section-case/2``, when it stores that format or has a ``SUPPORT`` or a
+  ``BODY-...`` layer: the support, the target and the bodies on their
+  layers or as contours resting on each other (:mod:`.stacking`).
 
-*One closed contour* (``split=(A, B)``): the pieces tagged ``CONTOUR`` (or,
-if there is no such name, every piece that is not on the target) must form
-one closed loop. It is turned into a polyline within the chordal error; A
-and B are the points of the loop nearest to the two points given (inserted
-as vertices; a point farther than ``split_tol`` from the loop is an error); the lower curve is the way round from A to B named by
-``lower_side`` (``"shorter"``, the default, ``"longer"``, ``"ccw"`` or
-``"cw"`` around the section) and the upper curve the rest, from B to A.
-
-The target is the ``TARGET`` pieces if there are any, else
-``target_arc=S``: a circular arc as long as the lower curve, tangent to the
-chord AB at its midpoint; S is its sagitta (depth over its own chord):
-S > 0 bends its ends towards the section, so the section's base becomes
-concave, as in the paper's example; S < 0 bends them away; S = 0 is the
-chord's direction, stretched to the lower curve's length. ``|S|`` must be
-below length / π (a half circle).
-
-Messy drawings: ``bbox`` keeps only the pieces with both ends inside it;
-``snap`` snaps free ends closer than it; ``close_gap`` closes gaps up to it
-with a straight piece; ``simplify`` simplifies polylines within that
-distance (Douglas-Peucker, shapely; A and B kept). Every such change is
-reported. All lengths are in drawing units; ``units`` converts the case
-to other units at the end. The options are a :class:`DrawingOptions`.
+Both are read by :func:`case_from_drawing` along one path: the pieces are
+chained into the bodies' curves, the target is drawn or built
+(``target_arc``), each body's law is ``law=`` or the one the drawing
+stores, and ``units`` converts the problem at the end. The options are a
+:class:`DrawingOptions`.
 """
 
 from __future__ import annotations
 
-import difflib
-import math
-from collections.abc import Mapping
-from dataclasses import dataclass, fields, replace
+from dataclasses import replace
 from pathlib import Path
-from types import MappingProxyType
 
 import numpy as np
 
-from ..case import Case, case_from_dict, read_json
-from ..curves import (
-    DEFAULT_CHORDAL_FRACTION,
-    Arc,
-    Curve,
-    Polyline,
-    curve_from_json,
-    polygon_area,
-)
+from ..curves import DEFAULT_CHORDAL_FRACTION, curve_from_json
 from ..errors import CaseError
-from ..laws import Law, law_from_json
-from .chaining import fmt_point, one_chain
-from .pieces import Drawing, Piece, pin_ends
+from ..laws import law_from_json
+from ..options import is_user_key, unknown_key
+from ..problem import V1, V2, Body, Problem, Revolution
+from .case import case_from_dict, load_case, material_from_json, read_json, revolution_from_json
+from .layers import AXIS, SUPPORT, TARGET, is_bodies_drawing
+from .outline import (
+    JSON_KEYS,
+    ROLES,
+    SIDES,
+    SPLIT_FRACTION,
+    Context,
+    DrawingOptions,
+    curves_from_contour,
+    curves_from_layers,
+    find_target,
+    inside_bbox,
+    make_target_arc,
+    say,
+)
+from .pieces import Drawing
+from .stacking import bodies_from_drawing, check_options, revolution_from_drawing, stored_bodies
 from .units import mm_per_unit
 
 __all__ = [
-    "DrawingOptions",
-    "case_from_drawing",
-    "convert_units",
-    "make_target_arc",
-    "read_json_case",
-    "ROLES",
-    "SIDES",
-    "SPLIT_FRACTION",
+    "DrawingOptions", "case_from_drawing", "convert_units", "make_target_arc", "read_json_case", "read_drawing_file",
+    "ROLES", "SIDES", "SPLIT_FRACTION",
 ]
 
-ROLES = ("lower", "upper", "target", "contour")
-SIDES = ("shorter", "longer", "ccw", "cw")
-# Largest distance of a split point from the contour, as a fraction of the contour's diagonal.
-SPLIT_FRACTION = 0.02
-# The options a case JSON's "drawing" object may give (the others come from the case itself).
-JSON_KEYS = ("layers", "split", "split_tol", "lower_side", "target_arc", "bbox", "snap", "close_gap", "join_tol",
-             "simplify", "units")
 
-
-def _say(report, line: str) -> None:
-    if report is not None:
-        report.append(line)
-
-
-def _length(value, name: str, allow_none: bool = True) -> float | None:
-    """A finite length >= 0 (or None), else a one-line error naming ``name``."""
-    if value is None and allow_none:
-        return None
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
-        raise CaseError(name, f"must be a finite number >= 0, got {value!r}")
-    return float(value)
-
-
-def _points(value, name: str, count: int) -> tuple:
-    try:
-        arr = np.array(value, dtype=np.float64).reshape(count, 2)
-    except (TypeError, ValueError, OverflowError):
-        raise CaseError(name, f"expected {count} points [x, y], got {value!r}") from None
-    if not np.isfinite(arr).all():
-        raise CaseError(name, f"coordinates must be finite numbers, got {value!r}")
-    return tuple(tuple(p) for p in arr.tolist())
-
-
-@dataclass(frozen=True)
-class DrawingOptions:
-    """How the pieces of a drawing become a case (see the module docstring).
-
-    Every length is in drawing units. Unknown keys are refused by
-    :meth:`from_mapping`, naming the nearest known one.
-
-    Attributes
-    ----------
-    layers : Mapping, optional
-        Role (``lower``, ``upper``, ``target``, ``contour``) -> name.
-    split : ((2,), (2,)), optional
-        Points near A and B on a single closed contour.
-    split_tol : float, optional
-        Largest distance of a split point from the contour; default
-        :data:`SPLIT_FRACTION` of the contour's diagonal.
-    lower_side : str
-        ``"shorter"`` (default), ``"longer"``, ``"ccw"`` or ``"cw"``.
-    target_arc : float, optional
-        Sagitta of the built-in target arc.
-    bbox : (4,) float, optional
-        ``xmin, ymin, xmax, ymax``: keep pieces with both ends inside.
-    snap, close_gap : float
-        Gap snapping and closing distances (0: never).
-    join_tol : float, optional
-        End points closer than this are one point; default 1e-6 of the
-        selection's diagonal.
-    simplify : float, optional
-        Simplify polylines within this distance.
-    chordal_error : float, optional
-        Chordal error of the polylines made from curves; also written to
-        the case's options.
-    units : str, optional
-        Convert the case to these units (``"mm"``, ``"in"``...).
-    law : Law, optional
-        Overrides the law stored in the drawing.
-    name : str, optional
-    target : Curve, optional
-        Target given elsewhere (a case JSON), drawing units.
-    """
-
-    layers: Mapping | None = None
-    split: tuple | None = None
-    split_tol: float | None = None
-    lower_side: str = "shorter"
-    target_arc: float | None = None
-    bbox: tuple | None = None
-    snap: float = 0.0
-    close_gap: float = 0.0
-    join_tol: float | None = None
-    simplify: float | None = None
-    chordal_error: float | None = None
-    units: str | None = None
-    law: Law | None = None
-    name: str | None = None
-    target: Curve | None = None
-
-    def __post_init__(self):
-        set_ = lambda key, value: object.__setattr__(self, key, value)  # noqa: E731 - frozen
-        if self.layers is not None:
-            if not isinstance(self.layers, Mapping):
-                raise CaseError("layers", f"expected a mapping of role to name, got {type(self.layers).__name__}")
-            for role, value in self.layers.items():
-                if role not in ROLES:
-                    raise CaseError("layers", f"unknown role {role!r}; use {', '.join(ROLES)}")
-                if not isinstance(value, str) or not value:
-                    raise CaseError(f"layers.{role}", f"expected a name, got {value!r}")
-            set_("layers", MappingProxyType(dict(self.layers)))
-        if self.split is not None:
-            set_("split", _points(self.split, "split", 2))
-        if self.bbox is not None:
-            box = _points(self.bbox, "bbox", 2)
-            (x0, y0), (x1, y1) = box
-            if not (x0 < x1 and y0 < y1):
-                raise CaseError("bbox", f"expected xmin, ymin, xmax, ymax with xmin < xmax and ymin < ymax, got {list(self.bbox)}")
-            set_("bbox", (x0, y0, x1, y1))
-        if self.lower_side not in SIDES:
-            raise CaseError("lower_side", f"unknown side {self.lower_side!r}; use one of {', '.join(SIDES)}")
-        for key in ("snap", "close_gap"):
-            set_(key, _length(getattr(self, key) or 0.0, key, allow_none=False))
-        for key in ("split_tol", "join_tol", "simplify", "chordal_error"):
-            set_(key, _length(getattr(self, key), key))
-        if self.target_arc is not None:
-            t = self.target_arc
-            if isinstance(t, bool) or not isinstance(t, (int, float)) or not math.isfinite(t):
-                raise CaseError("target_arc", f"must be a finite number, got {t!r}")
-            set_("target_arc", float(t))
-        if self.units is not None:
-            mm_per_unit(self.units, "units")
-
-    @classmethod
-    def from_mapping(cls, mapping: Mapping, field: str = "", allowed=None) -> DrawingOptions:
-        """Options from a mapping of names to values; an unknown name is an error naming the nearest one.
-
-        Parameters
-        ----------
-        mapping : Mapping
-            Keys among the attributes of this class; None values are left out.
-        field : str
-            Where the mapping sits (``"drawing"`` in a case JSON), for messages.
-        allowed : sequence of str, optional
-            The keys accepted there; default every attribute.
-
-        Raises
-        ------
-        CaseError
-            An unknown key, or a value out of range.
-
-        Examples
-        --------
-        >>> DrawingOptions.from_mapping({"snapp": 0.1})
-        Traceback (most recent call last):
-        ...
-        sectiondeform.errors.CaseError: snapp: unknown drawing option; did you mean snap?
-        """
-        known = tuple(allowed or (f.name for f in fields(cls)))
-        for key in mapping:
-            if key not in known:
-                close = difflib.get_close_matches(str(key), known, n=1)
-                hint = f"did you mean {close[0]}?" if close else f"use one of {', '.join(known)}"
-                raise CaseError(f"{field}.{key}" if field else str(key), f"unknown drawing option; {hint}")
-        return cls(**{k: v for k, v in mapping.items() if v is not None})
-
-
-def make_target_arc(a, b, length: float, sagitta: float, section_side: float) -> Curve:
-    """The built-in target: an arc as long as the lower curve, tangent to AB at its midpoint.
-
-    Parameters
-    ----------
-    a, b : (2,) array_like
-        Ends A and B of the lower curve, units.
-    length : float
-        Length of the lower curve (and of the arc), units.
-    sagitta : float
-        Depth of the arc over its own chord, units; > 0 bends the ends
-        towards the section, < 0 away, 0 gives a straight target.
-    section_side : float
-        +1 if the section lies left of A -> B, -1 if right.
-
-    Returns
-    -------
-    Curve
-        An :class:`~sectiondeform.curves.Arc` from A' (A's side) to B', or
-        a two-point polyline when ``sagitta`` is 0.
-
-    Raises
-    ------
-    CaseError
-        If A = B, or ``|sagitta|`` >= length / π.
-
-    Examples
-    --------
-    >>> t = make_target_arc([0, 0], [110, 0], 110.0, 12.9, +1)
-    >>> round(t.length, 9), np.round(t.at_fractions(np.array([0.5])), 9).tolist()
-    (110.0, [[55.0, 0.0]])
-    >>> bool(t.start[1] > 0)
-    True
-    """
-    from scipy.optimize import brentq
-
-    a, b = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
-    chord = b - a
-    c = math.hypot(*chord)
-    if c == 0:
-        raise CaseError("target_arc", "A and B coincide; the lower curve has no chord")
-    u = chord / c
-    mid = 0.5 * (a + b)
-    if sagitta == 0:
-        return Polyline(np.vstack((mid - 0.5 * length * u, mid + 0.5 * length * u)))
-    ratio = abs(sagitta) / length
-    if ratio >= 1.0 / math.pi:
-        raise CaseError("target_arc", f"the sagitta {sagitta} is too deep for an arc of length {length:.6g}; keep it below {length / math.pi:.6g} (a half circle)")
-    theta = brentq(lambda t: (1.0 - math.cos(t)) / (2.0 * t) - ratio, 1e-12, math.pi)
-    radius = length / (2.0 * theta)
-    towards = section_side * np.array([-u[1], u[0]])
-    center = mid + math.copysign(1.0, sagitta) * radius * towards
-    phi = math.degrees(math.atan2(mid[1] - center[1], mid[0] - center[0]))
-    half = math.degrees(theta)
-    arc = Arc(center, radius, phi - half, phi + half)
-    if np.dot(arc.end - arc.start, u) < 0:
-        arc = arc.reversed()
-    return arc
-
-
-def _nearest_on_ring(ring: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, int, float]:
-    """``ring`` ((N, 2), closed implicitly) with the point nearest ``p`` inserted; its index and distance."""
-    s0, s1 = ring, np.roll(ring, -1, axis=0)
-    d = s1 - s0
-    dd = np.einsum("ij,ij->i", d, d)
-    t = np.clip(np.einsum("ij,ij->i", p - s0, d) / np.where(dd > 0, dd, 1.0), 0.0, 1.0)
-    proj = s0 + t[:, None] * d
-    dist = np.hypot(*(proj - p).T)
-    i = int(np.argmin(dist))
-    q = proj[i]
-    if np.array_equal(q, s0[i]):
-        return ring, i, float(dist[i])
-    if np.array_equal(q, s1[i]):
-        return ring, (i + 1) % len(ring), float(dist[i])
-    return np.insert(ring, i + 1, q, axis=0), i + 1, float(dist[i])
-
-
-@dataclass(frozen=True)
-class _Context:
-    """What the steps of :func:`case_from_drawing` share: names and tolerances."""
-
-    what: str  # "layer" (DXF) or "id/class" (SVG)
-    roles: Mapping  # role -> name as given
-    tol: float  # join tolerance
-    chord: float  # chordal error of polylines made from curves
-    diag: float  # diagonal of the pieces' ends
-    options: DrawingOptions
-
-    def where(self, role: str) -> str:
-        return f"{self.what} {self.roles[role]}"
-
-    def has(self, pieces, role: str) -> bool:
-        key = self.roles[role].upper()
-        return any(key in p.tags for p in pieces)
-
-    def select(self, pieces, role: str) -> list[Piece]:
-        key = self.roles[role].upper()
-        chosen = [p for p in pieces if key in p.tags]
-        bad = [p for p in chosen if p.curve is None]
-        if bad:
-            raise CaseError(self.where(role), f"unsupported entity {bad[0].source}; use LINE, ARC, CIRCLE, LWPOLYLINE, POLYLINE, SPLINE or ELLIPSE (paths, lines, polylines, polygons, circles in SVG)")
-        return chosen
-
-    def chain(self, pieces, where: str, closed: bool, report):
-        o = self.options
-        path, rep = one_chain(pieces, where, self.tol, o.snap, o.close_gap, closed=closed)
-        for line in rep.lines(where):
-            _say(report, line)
-        return path.curve
-
-
-def _inside_bbox(pieces, bbox, report) -> list[Piece]:
-    """The pieces with both ends inside ``bbox`` (pieces without a curve are kept, to be refused if used)."""
-    x0, y0, x1, y1 = bbox
-
-    def inside(p):
-        e = np.vstack(p.curve.ends)
-        return np.all((e[:, 0] >= x0) & (e[:, 0] <= x1) & (e[:, 1] >= y0) & (e[:, 1] <= y1))
-
-    kept = [p for p in pieces if p.curve is None or inside(p)]
-    _say(report, f"bbox: kept {sum(p.curve is not None for p in kept)} of {sum(p.curve is not None for p in pieces)} pieces")
-    return kept
-
-
-def _split_ring(ring: np.ndarray, pa: np.ndarray, pb: np.ndarray, lower_side: str, limit: float, where: str):
-    """Lower and upper point runs of a closed ring split at the points nearest ``pa`` and ``pb``.
-
-    Returns ``(lower, upper, lower_length)``; the lower run goes A -> B, the
-    upper one B -> A. A split point farther than ``limit`` from the ring is
-    an error naming the distance.
-    """
-    ring, ia, da = _nearest_on_ring(ring, pa)
-    ring = np.roll(ring, -ia, axis=0)
-    ring, ib, db = _nearest_on_ring(ring, pb)
-    for label, p, d in (("A", pa, da), ("B", pb, db)):
-        if d > limit:
-            raise CaseError("split", f"{label} {fmt_point(p)} is {d:.4g} from the {where}, more than split_tol={limit:.4g}; "
-                                     "give a point on the contour")
-    if ib == 0:
-        raise CaseError("split", f"A {fmt_point(pa)} and B {fmt_point(pb)} fall on the same contour point")
-    forward = ring[: ib + 1]
-    backward = np.vstack((ring[ib:], ring[:1]))[::-1]
-    ccw = polygon_area(ring) > 0
-    lens = [float(np.hypot(*np.diff(w, axis=0).T).sum()) for w in (forward, backward)]
-    pick = {"shorter": int(lens[1] < lens[0]), "longer": int(lens[1] >= lens[0]),
-            "ccw": 0 if ccw else 1, "cw": 1 if ccw else 0}[lower_side]
-    return (forward, backward)[pick], (backward, forward)[pick][::-1], lens[pick]
-
-
-def _from_contour(pieces, ctx: _Context, report) -> tuple[Curve, Curve]:
-    """Lower and upper curves from one closed contour split at ``options.split``."""
-    if ctx.has(pieces, "contour"):
-        where = ctx.where("contour")
-        chosen = ctx.select(pieces, "contour")
-    else:
-        where = "contour"
-        target_key = ctx.roles["target"].upper()
-        chosen = [p for p in pieces if target_key not in p.tags]
-        bad = [p for p in chosen if p.curve is None]
-        if bad:
-            raise CaseError(where, f"unsupported entity {bad[0].source}; restrict the contour with layers={{contour: NAME}} or bbox=(XMIN, YMIN, XMAX, YMAX)")
-    ring = ctx.chain(chosen, where, True, report).characteristic_points(ctx.chord)[:-1]
-    pa, pb = (np.asarray(p, dtype=np.float64) for p in ctx.options.split)
-    size = float(np.hypot(*np.ptp(ring, axis=0))) or 1.0
-    limit = ctx.options.split_tol if ctx.options.split_tol is not None else SPLIT_FRACTION * size
-    lower_pts, upper_pts, length = _split_ring(ring, pa, pb, ctx.options.lower_side, limit, where)
-    _say(report, f"{where}: A {fmt_point(lower_pts[0])}, B {fmt_point(lower_pts[-1])}; lower {len(lower_pts)} points "
-                 f"(length {length:.6g}), upper {len(upper_pts)} points")
-    return Polyline(lower_pts), Polyline(upper_pts)
-
-
-def _fit_upper(lower: Curve, upper: Curve) -> tuple[Curve, float]:
-    """``upper`` turned to run from the lower curve's end back to its start; the gap left."""
-    a, b = lower.ends
-    s, e = upper.ends
-    same = np.hypot(*(s - b)) + np.hypot(*(e - a))
-    swap = np.hypot(*(e - b)) + np.hypot(*(s - a))
-    return (upper, same) if same <= swap else (upper.reversed(), swap)
-
-
-def _from_layers(pieces, ctx: _Context, meta: dict, path: Path, report) -> tuple[Curve, Curve]:
-    """Lower and upper curves from their own layers (ids/classes), oriented counter-clockwise."""
-    missing = [ctx.roles[r] for r in ("lower", "upper") if not ctx.has(pieces, r)]
-    if missing:
-        found = sorted({t for p in pieces for t in p.tags if t})
-        raise CaseError(
-            str(path),
-            f"{ctx.what} {' and '.join(repr(m) for m in missing)} not found (the drawing has: {', '.join(found) or 'none'}); "
-            "name them with layers={lower: NAME, upper: NAME}, or give split=(A, B) for one closed contour",
-        )
-    lower = ctx.chain(ctx.select(pieces, "lower"), ctx.where("lower"), False, report)
-    upper = ctx.chain(ctx.select(pieces, "upper"), ctx.where("upper"), False, report)
-    upper, gap = _fit_upper(lower, upper)
-    if gap > max(2 * ctx.tol, 2 * ctx.options.snap):
-        a, b = lower.ends
-        s, e = upper.ends
-        where_gap = a if np.hypot(*(e - a)) > np.hypot(*(s - b)) else b
-        raise CaseError(
-            ctx.where("upper"),
-            f"does not meet the ends of {ctx.where('lower')}: a gap of {gap:.4g} near {fmt_point(where_gap)}; "
-            "lower and upper must together make one closed contour",
-        )
-    hint = meta.get("lower_start")
-    if hint is not None:
-        a, b = lower.ends
-        h = np.asarray(hint, dtype=np.float64)
-        flip = np.hypot(*(b - h)) < np.hypot(*(a - h))
-    else:
-        ring = np.vstack((lower.characteristic_points(ctx.chord), upper.characteristic_points(ctx.chord)[1:-1]))
-        flip = polygon_area(ring) < 0
-    if flip:
-        lower, upper = lower.reversed(), upper.reversed()
-    a, b = lower.ends
-    return lower, pin_ends(upper, b, a, ctx.diag)
-
-
-def _orient_target(target: Curve, a, b, hint) -> Curve:
-    s, e = target.ends
-    if hint is not None:
-        h = np.asarray(hint, dtype=np.float64)
-        flip = np.hypot(*(e - h)) < np.hypot(*(s - h))
-    else:
-        flip = np.dot(e - s, np.asarray(b) - np.asarray(a)) < 0
-    return target.reversed() if flip else target
-
-
-def _target(pieces, lower: Curve, upper: Curve, ctx: _Context, meta: dict, path: Path, report) -> Curve:
-    """The target: drawn, the built-in arc, or given; else an error saying how to give one."""
-    o = ctx.options
-    a, b = lower.ends
-    if ctx.has(pieces, "target") and o.target_arc is None:
-        drawn = ctx.chain(ctx.select(pieces, "target"), ctx.where("target"), False, None)
-        return _orient_target(drawn, a, b, meta.get("target_start"))
-    if o.target_arc is not None:
-        inner = np.vstack((upper.characteristic_points(ctx.chord), lower.characteristic_points(ctx.chord)))
-        u = b - a
-        side = 1.0 if (u[0] * (inner[:, 1].mean() - a[1]) - u[1] * (inner[:, 0].mean() - a[0])) >= 0 else -1.0
-        _say(report, f"target: arc of length {lower.length:.6g}, sagitta {o.target_arc:g}")
-        return make_target_arc(a, b, lower.length, o.target_arc, side)
-    if o.target is not None:
-        return o.target
-    raise CaseError(
-        str(path),
-        f"no target: draw it on {ctx.where('target')!r}, give target_arc=SAGITTA (an arc target), "
-        "or a target in the case JSON",
-    )
-
-
-def convert_units(case: Case, units: str, report=None) -> Case:
-    """The case in other length units: curves scaled, lengths among its options too.
+def convert_units(case: Problem, units: str, report=None) -> Problem:
+    """The problem in other length units: curves, axis and lengths among its options scaled.
 
     Raises
     ------
@@ -488,16 +67,20 @@ def convert_units(case: Case, units: str, report=None) -> Case:
     if units == case.units:
         return case
     k = mm_per_unit(case.units, "units") / mm_per_unit(units, "units")
-    scaled = {key: getattr(case.options, key) * k for key in ("chordal_error", "element_size")
-              if getattr(case.options, key) is not None}
-    options = case.options.replace(**scaled) if scaled else case.options
-    _say(report, f"units: {case.units} -> {units} (x {k:g})")
-    return replace(case, lower=case.lower.scaled(k), upper=case.upper.scaled(k), target=case.target.scaled(k),
-                   units=units, options=options)
+    o = case.options
+    scaled = {key: getattr(o, key) * k for key in ("chordal_error", "element_size", "contact_tolerance")
+              if getattr(o, key) is not None}
+    rev = case.revolution
+    if rev is not None:
+        rev = Revolution(tuple(tuple(float(v) * k for v in p) for p in rev.axis))
+    bodies = tuple(replace(b, lower=b.lower.scaled(k), upper=b.upper.scaled(k)) for b in case.bodies)
+    say(report, f"units: {case.units} -> {units} (x {k:g})")
+    return case.replace(support=case.support.scaled(k), target=case.target.scaled(k), bodies=bodies, units=units,
+                        options=o.replace(**scaled) if scaled else o, revolution=rev)
 
 
-def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *, report=None, **keywords) -> Case:
-    """Build a case from the pieces of a drawing (see the module docstring).
+def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *, report=None, **keywords) -> Problem:
+    """Build a problem from the pieces of a drawing (see the module docstring).
 
     Parameters
     ----------
@@ -513,104 +96,135 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
 
     Returns
     -------
-    Case
+    Problem
+        ``section-case/1`` from a one-body drawing, else ``section-case/2``.
 
     Raises
     ------
     CaseError
         A missing layer, a gap, a branch, an unsupported entity, no law,
         no target, an unknown option; each names where.
+    GeometryError
+        If the bodies do not rest on each other as the format says.
     """
     if options is None:
         options = DrawingOptions.from_mapping(keywords)
     elif keywords:
         raise CaseError(next(iter(keywords)), "give the options either as DrawingOptions or as keywords, not both")
     o = options
-    from .assembly import assembly_from_drawing, is_assembly_drawing
-
-    if is_assembly_drawing(drawing):
-        return assembly_from_drawing(drawing, o, report)
     meta = dict(drawing.meta or {})
-    roles = {"lower": "LOWER", "upper": "UPPER", "target": "TARGET", "contour": "CONTOUR", **(o.layers or {})}
+    dialect = V2 if is_bodies_drawing(drawing) else V1
+    if dialect == V2:
+        check_options(o)
+        roles = {"support": SUPPORT, "target": (o.layers or {}).get("target", TARGET), "axis": AXIS}
+    else:
+        roles = {"lower": "LOWER", "upper": "UPPER", "target": TARGET, "contour": "CONTOUR", **(o.layers or {})}
+    pieces, ctx = _selection(drawing, o, roles, report)
+    revolution = None
+    if dialect == V2:
+        support, found = bodies_from_drawing(pieces, ctx, drawing, meta, report)
+        revolution = revolution_from_drawing(pieces, ctx, meta, report)
+    else:
+        lower, upper = (curves_from_contour(pieces, ctx, report) if o.split is not None
+                        else curves_from_layers(pieces, ctx, meta, drawing.path, report))
+        found = [(None, lower, upper)]
+    found = [_simplified(f, o.simplify, dialect, report) for f in found] if o.simplify else found
+    support = found[0][1] if dialect == V1 else support
+    target = find_target(pieces, support, [c for _, lo, up in found for c in (lo, up)], ctx, meta, drawing.path, report)
+    name = o.name or meta.get("name") or drawing.path.stem
+    case_options = {**(meta.get("options") or {}), **({"chordal_error": o.chordal_error} if o.chordal_error else {})}
+    if dialect == V1:
+        _, lower, upper = found[0]
+        case = Problem.single(lower, upper, target, o.law or _stored_law(meta, "law", ""), name=name,
+                              units=drawing.units, options=case_options)
+    else:
+        case = Problem(support=support, target=target, bodies=_bodies(found, meta, o, revolution), name=name,
+                       units=drawing.units, options=case_options, revolution=revolution, dialect=V2)
+        say(report, f"bodies: {len(found)} ({', '.join(b.name for b in case.bodies)}), resting order "
+                    f"{' < '.join(case.bodies[k].name for k in case.layout.order)}")
+    return convert_units(case, o.units, report) if o.units else case
+
+
+def _selection(drawing: Drawing, o: DrawingOptions, roles: dict, report) -> tuple[list, Context]:
+    """The pieces read (inside ``bbox``) and the context of their chaining: names and tolerances."""
     pieces = list(drawing.pieces)
     if o.bbox is not None:
-        pieces = _inside_bbox(pieces, o.bbox, report)
+        pieces = inside_bbox(pieces, o.bbox, report)
     if drawing.unitless:
-        _say(report, f"the drawing declares no units ($INSUNITS): taken as {drawing.units}")
+        say(report, f"the drawing declares no units ($INSUNITS): taken as {drawing.units}")
     curves = [p for p in pieces if p.curve is not None]
     if not curves:
         raise CaseError(str(drawing.path), "the drawing has no curves" + (" inside the bbox" if o.bbox is not None else ""))
     ends = np.concatenate([np.vstack(p.curve.ends) for p in curves])
     diag = float(np.hypot(*np.ptp(ends, axis=0))) or 1.0
-    ctx = _Context(what="layer" if drawing.path.suffix.lower() == ".dxf" else "id/class", roles=roles,
-                   tol=o.join_tol if o.join_tol is not None else 1e-6 * diag,
-                   chord=o.chordal_error or DEFAULT_CHORDAL_FRACTION * diag, diag=diag, options=o)
-    if o.split is not None:
-        lower, upper = _from_contour(pieces, ctx, report)
-    else:
-        lower, upper = _from_layers(pieces, ctx, meta, drawing.path, report)
-    if o.simplify:
-        before = lower.point_count + upper.point_count
-        lower, upper = lower.simplified(o.simplify), upper.simplified(o.simplify)
-        _say(report, f"simplified within {o.simplify:g}: {before} -> {lower.point_count + upper.point_count} points "
-                     f"(lower {lower.point_count}, upper {upper.point_count})")
-    target = _target(pieces, lower, upper, ctx, meta, drawing.path, report)
-    law = o.law
-    if law is None:
-        if "law" not in meta:
-            raise CaseError("law", "the drawing gives no law; give law=AreaRatio(R) (final area = R x initial area)")
-        law = law_from_json(meta["law"])
-    case_options = {**(meta.get("options") or {}), **({"chordal_error": o.chordal_error} if o.chordal_error else {})}
-    case = Case(lower=lower, upper=upper, target=target, law=law,
-                name=o.name or meta.get("name") or drawing.path.stem, units=drawing.units, options=case_options)
-    return convert_units(case, o.units, report) if o.units else case
+    ctx = Context(what="layer" if drawing.path.suffix.lower() == ".dxf" else "id/class", roles=roles,
+                  tol=o.join_tol if o.join_tol is not None else 1e-6 * diag,
+                  chord=o.chordal_error or DEFAULT_CHORDAL_FRACTION * diag, diag=diag, options=o)
+    return pieces, ctx
+
+
+def _simplified(found: tuple, tol: float, dialect: str, report) -> tuple:
+    """A body's (name, lower, upper) with its curves simplified within ``tol``, reported."""
+    name, lower, upper = found
+    before = lower.point_count + upper.point_count
+    lower, upper = lower.simplified(tol), upper.simplified(tol)
+    who = "" if dialect == V1 else f"body {name!r}: "
+    say(report, f"{who}simplified within {tol:g}: {before} -> {lower.point_count + upper.point_count} points "
+                f"(lower {lower.point_count}, upper {upper.point_count})")
+    return name, lower, upper
+
+
+def _stored_law(data: dict, field: str, who: str, axis=None):
+    """The law a drawing stores (``data["law"]``); an error saying how to give one if it stores none."""
+    if "law" not in data:
+        raise CaseError("law", f"{who}the drawing stores no law; give law=AreaRatio(R) (final area = R x initial area)"
+                        + (", or the bodies' laws in a case JSON" if who else ""))
+    return law_from_json(data["law"], field, axis)
+
+
+def _bodies(found: list, meta: dict, o: DrawingOptions, revolution) -> tuple:
+    """The bodies of a ``section-case/2`` drawing: curves found, laws and materials given or stored."""
+    stored = stored_bodies(meta)
+    axis = revolution.axis if revolution is not None else None
+    out = []
+    for i, (name, lower, upper) in enumerate(found):
+        data = stored.get(name.upper(), {})
+        law = o.law or _stored_law(data, f"bodies[{i}].law", f"body {name!r}: ", axis)
+        material = material_from_json(data.get("material"), f"bodies[{i}].material")
+        out.append(Body(name=name, lower=lower, upper=upper, law=law, material=material))
+    return tuple(out)
 
 
 # --------------------------------------------------------------------------
 # Case JSON that names a drawing
 
 
-def read_drawing_file(path, chordal_error=None):
-    """The pieces of a DXF or SVG file, by extension."""
-    path = Path(path)
-    ext = path.suffix.lower()
-    if ext == ".dxf":
-        from .dxf import read_drawing
-    elif ext == ".svg":
-        from .svg import read_drawing
-    else:
-        raise CaseError(str(path), f"unknown drawing format {ext!r}; use .dxf or .svg")
+def read_drawing_file(path, chordal_error=None) -> Drawing:
+    """The pieces of a drawing file, by extension (the formats :func:`sectiondeform.io.read_drawing` knows)."""
+    from . import read_drawing
+
     return read_drawing(path, chordal_error)
 
 
-def _plain_case(path: Path, options: DrawingOptions, given, report) -> Case:
-    """A case JSON without a drawing, with the options that apply to any case (units, law, chordal error)."""
-    from .json import read_case as read_plain
-
+def _plain_case(path: Path, options: DrawingOptions, given, report) -> Problem:
+    """A case JSON without a drawing, with the options that apply to any case (units, law, chordal error, name)."""
     drawing_only = [k for k in given if k not in ("units", "law", "chordal_error", "name")]
     if drawing_only:
         raise CaseError(drawing_only[0], f"applies to drawings (DXF, SVG) only, and {path.name} is a case JSON without one")
-    case = read_plain(path)
-    if not isinstance(case, Case):  # an assembly (section-case/2): one law per body
-        from .assembly import convert_assembly_units
-
-        if "law" in given:
-            raise CaseError("law", "an assembly case does not take this option; set each body's law in the case")
-        if options.name is not None:
-            case = case.replace(name=options.name)
-        if options.chordal_error:
-            case = case.replace(options=case.options.replace(chordal_error=options.chordal_error))
-        return convert_assembly_units(case, options.units, report) if options.units else case
+    case = load_case(path)
     if options.law is not None:
-        case = replace(case, law=options.law)
+        if len(case.bodies) != 1:
+            raise CaseError("law", f"the case has {len(case.bodies)} bodies and does not take this option; set each "
+                                   "body's law in the case")
+        case = case.replace(law=options.law)
     if options.name is not None:
-        case = replace(case, name=options.name)
+        case = case.replace(name=options.name)
     if options.chordal_error:
-        case = replace(case, options=case.options.replace(chordal_error=options.chordal_error))
+        case = case.replace(options=case.options.replace(chordal_error=options.chordal_error))
     return convert_units(case, options.units, report) if options.units else case
 
 
-def read_json_case(path, *, report=None, **options) -> Case:
+def read_json_case(path, *, report=None, **options) -> Problem:
     """Read a case JSON file; one with a ``"drawing"`` key takes its curves from a DXF or SVG.
 
     ``"drawing": {"file": "profile.dxf", "layers": {"lower": "BASE"}, ...}``
@@ -621,7 +235,8 @@ def read_json_case(path, *, report=None, **options) -> Case:
     here (the :class:`DrawingOptions` attributes, by name) override the
     JSON's ``drawing`` keys; for a case JSON without a drawing only
     ``units``, ``law``, ``name`` and ``chordal_error`` apply, and the
-    others are an error.
+    others are an error. A ``section-case/2`` JSON gives the bodies' laws
+    and materials by name (:func:`_bodies_with_drawing`).
     """
     path = Path(path)
     given = {k: v for k, v in options.items() if v is not None}
@@ -635,21 +250,82 @@ def read_json_case(path, *, report=None, **options) -> Case:
     opts = {k: v for k, v in d.items() if k != "file"}
     DrawingOptions.from_mapping(opts, "drawing", allowed=JSON_KEYS)
     opts.update(given)
-    if data.get("format") == "section-case/2":
-        from .assembly import assembly_from_json_and_drawing
-
-        return assembly_from_json_and_drawing(path, data, opts, report)
+    if data.get("format") == V2:
+        return _bodies_with_drawing(path, data, opts, report)
     if "law" in data and overrides.law is None:
         opts["law"] = law_from_json(data["law"])
     if "target" in data:
         opts["target"] = curve_from_json(data["target"], "target")
-    chordal = (data.get("options") or {}).get("chordal_error")
-    drawing = read_drawing_file(path.parent / d["file"], opts.get("chordal_error") or chordal)
+    drawing = _drawing_of(path, data, opts)
     case = case_from_drawing(drawing, DrawingOptions.from_mapping(opts), report=report)
-    merged = {"format": data.get("format", "section-case/1"), "lower": case.lower.to_json(), "upper": case.upper.to_json(),
+    merged = {"format": data.get("format", V1), "lower": case.lower.to_json(), "upper": case.upper.to_json(),
               "target": case.target.to_json(), "law": case.law.to_json(), "name": data.get("name", case.name),
               "units": data.get("units", case.units), "options": {**case.options.to_json(), **(data.get("options") or {})}}
     for key in ("lower", "upper"):
         if key in data:
             merged[key] = data[key]
     return case_from_dict(merged)
+
+
+def _drawing_of(path: Path, data: dict, opts: dict) -> Drawing:
+    """The drawing a case JSON names, read with the chordal error of the options or of the case."""
+    chordal = (data.get("options") or {}).get("chordal_error")
+    return read_drawing_file(path.parent / data["drawing"]["file"], opts.get("chordal_error") or chordal)
+
+
+JSON_BODY_KEYS = ("name", "law", "material", "note")
+BODIES_JSON_KEYS = ("format", "name", "units", "target", "revolution", "bodies", "options", "drawing", "note")
+
+
+def _bodies_with_drawing(path: Path, data: dict, opts: dict, report=None) -> Problem:
+    """A ``section-case/2`` problem whose curves are a drawing's and whose laws and materials a case JSON gives.
+
+    ``{"format": "section-case/2", "drawing": {"file": "layup.dxf", ...},
+    "bodies": [{"name": "tread", "law": {...}, "material": {...}}, ...]}``:
+    the bodies are the drawing's, matched by name (without regard to case),
+    in the JSON's order; ``target``, ``revolution``, ``options``, ``name``
+    and ``units`` (a relabelling, as for one body) of the JSON take
+    precedence over the drawing's.
+
+    Raises
+    ------
+    CaseError
+        A key this form does not take (curves of a body: draw them), a body
+        of the JSON with no layer, or the errors of :func:`case_from_drawing`.
+    """
+    for key in data:
+        if key not in BODIES_JSON_KEYS and not is_user_key(key):
+            raise unknown_key("", key, BODIES_JSON_KEYS)
+    bodies = data.get("bodies", [])
+    if not isinstance(bodies, list):
+        raise CaseError("bodies", f"expected a list of {{\"name\", \"law\", \"material\"}}, got {bodies!r}")
+    for i, b in enumerate(bodies):
+        if not isinstance(b, dict) or not isinstance(b.get("name"), str):
+            raise CaseError(f"bodies[{i}]", "expected {\"name\": ..., \"law\": ...}; the curves are the drawing's")
+        for key in b:
+            if key not in JSON_BODY_KEYS and not str(key).startswith("x-"):
+                hint = "; with a drawing, a body's curves are drawn on its layers" if key in ("lower", "upper") else ""
+                raise CaseError(f"bodies[{i}].{key}", f"not taken here{hint}; use {', '.join(JSON_BODY_KEYS)}")
+    revolution = revolution_from_json(data["revolution"]) if "revolution" in data else None
+    axis = revolution.axis if revolution is not None else None
+    if "target" in data:
+        opts["target"] = curve_from_json(data["target"], "target")
+    drawing = _drawing_of(path, data, opts)
+    meta = dict(drawing.meta or {})
+    stored = stored_bodies(meta)
+    merged = []
+    for i, b in enumerate(bodies):
+        entry = {**stored.pop(b["name"].upper(), {}), **{k: v for k, v in b.items() if k in ("name", "law", "material")}}
+        if "law" in b:
+            law_from_json(b["law"], f"bodies[{i}].law", axis)  # checked here, to name the JSON's field
+        merged.append(entry)
+    meta.update(bodies=merged + list(stored.values()), format=V2,
+                options={**(meta.get("options") or {}), **(data.get("options") or {})})
+    if revolution is not None:
+        meta["revolution"] = revolution.to_json()
+    if "name" in data:
+        meta["name"] = data["name"]
+    problem = case_from_drawing(replace(drawing, meta=meta), DrawingOptions.from_mapping(opts), report=report)
+    if "units" in data and "units" not in opts:
+        problem = problem.replace(units=data["units"])
+    return problem

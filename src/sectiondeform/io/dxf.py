@@ -26,16 +26,16 @@ units (unitless or missing: mm). How pieces become a case is
 
 Writing
 -------
-:func:`write_case` puts ``lower``, ``upper`` and ``target`` on layers
-LOWER, UPPER, TARGET as native entities (polylines as LWPOLYLINE, arcs as
-ARC or CIRCLE, B-splines as SPLINE with their knots), and the law, name,
-options and start points in the header custom property ``sectiondeform``,
-so DXF -> case -> DXF loses nothing. :func:`write_result` writes the
-deformed section (layer DEFORMED, a closed LWPOLYLINE, or two SPLINEs fitted
-within the chordal error with ``spline=True``), the initial section
-(INITIAL), the deformed lower curve on the target (TARGET), and both meshes
-(MESH_INITIAL, MESH_FINAL; one closed LWPOLYLINE per element, in element
-order).
+:func:`write_case` puts a problem's curves on the layers of its dialect
+(:mod:`.layers`: LOWER, UPPER, TARGET for the paper's one body; SUPPORT,
+TARGET, BODY-<name>-LOWER, -UPPER and AXIS otherwise) as native entities
+(polylines as LWPOLYLINE, arcs as ARC or CIRCLE, B-splines as SPLINE with
+their knots), and the laws, name, options and start points in the header
+custom property ``sectiondeform``, so DXF -> case -> DXF loses nothing.
+:func:`write_result` writes the result's layers: deformed and initial
+curves as LWPOLYLINEs (the deformed ones as SPLINEs fitted within the
+chordal error with ``spline=True``) and each mesh as one closed
+LWPOLYLINE per element, in element order.
 """
 
 from __future__ import annotations
@@ -49,11 +49,12 @@ import numpy as np
 from ..curves import DEFAULT_CHORDAL_FRACTION, Arc, BSpline, Curve, Polyline
 from ..errors import CaseError, require
 from .chaining import fmt_point
-from .json import atomic_write
+from .files import atomic_write
+from .layers import Layer, case_layers, case_meta, check_case, check_layer_names, read_meta, result_layers, tolerance
 from .pieces import Drawing, Piece
 from .units import DXF_UNITS, MM_PER_UNIT
 
-__all__ = ["read_drawing", "read_case", "write_case", "write_result", "fit_spline", "read_meta"]
+__all__ = ["read_drawing", "read_case", "write_case", "write_result", "fit_spline"]
 
 INSUNITS = {name: code for code, name in DXF_UNITS.items()}
 IGNORED = {"TEXT", "MTEXT", "DIMENSION", "ARC_DIMENSION", "LARGE_RADIAL_DIMENSION", "POINT", "HATCH",
@@ -154,38 +155,6 @@ def _extent(msp) -> float:
     if box.has_data:
         return float(math.hypot(box.size.x, box.size.y)) or 1.0
     return 1.0
-
-
-def read_meta(text: str | None, where: str) -> dict:
-    """The case data a writer of this package stored in a drawing, from its JSON text.
-
-    Parameters
-    ----------
-    text : str or None
-        The stored JSON; None or empty when the drawing stores none.
-    where : str
-        Where it is stored, for the message (file and property).
-
-    Returns
-    -------
-    dict
-        {} when nothing is stored.
-
-    Raises
-    ------
-    CaseError
-        If the stored text is not a JSON object: the data is corrupt, and
-        reading on without it would give a misleading error later.
-    """
-    if not text:
-        return {}
-    try:
-        meta = json.loads(text)
-    except (TypeError, ValueError) as exc:
-        raise CaseError(where, f"the stored case data is not valid JSON ({exc}); remove it or write the file again") from None
-    if not isinstance(meta, dict):
-        raise CaseError(where, f"the stored case data is a JSON {type(meta).__name__}, not an object; remove it or write the file again")
-    return meta
 
 
 def read_drawing(path, chordal_error: float | None = None) -> Drawing:
@@ -320,33 +289,29 @@ def _dxf_knots(t: np.ndarray) -> np.ndarray:
 
 
 def write_case(path, case) -> None:
-    """Write a case as a DXF drawing (layers LOWER, UPPER, TARGET), atomically.
+    """Write a case as a DXF drawing, atomically: its curves as native entities on the layers of its dialect.
 
     Parameters
     ----------
     path : str or Path
-    case : Case or Assembly
-        An assembly is written by :func:`sectiondeform.io.assembly.write_case_dxf`.
+    case : Problem
+        Layers LOWER, UPPER, TARGET for ``section-case/1``; SUPPORT, TARGET,
+        BODY-<name>-LOWER, -UPPER (and AXIS) for ``section-case/2``
+        (:func:`sectiondeform.io.layers.case_layers`).
+
+    Raises
+    ------
+    CaseError
+        A body name that cannot be part of a DXF layer name.
     """
-    from ..assembly import Assembly
-
-    if isinstance(case, Assembly):
-        from .assembly import write_case_dxf
-
-        return write_case_dxf(path, case)
+    check_layer_names(case, dxf=True)
     doc = _new_doc(case.units)
     msp = doc.modelspace()
-    curves = (("LOWER", 1, case.lower), ("UPPER", 7, case.upper), ("TARGET", 5, case.target))
-    size = float(np.hypot(*np.ptp(np.concatenate([np.vstack(c.ends) for _, _, c in curves]), axis=0))) or 1.0
-    tol = case.options.chordal_error or DEFAULT_CHORDAL_FRACTION * size
-    for name, color, curve in curves:
-        _layer(doc, name, color)
-        _add_curve(msp, curve, name, tol)
-    meta = {
-        "law": case.law.to_json(), "name": case.name, "options": case.options.to_json(),
-        "lower_start": case.lower.start.tolist(), "target_start": case.target.start.tolist(),
-    }
-    doc.header.custom_vars.append(META_KEY, json.dumps(meta, separators=(",", ":")))
+    tol = tolerance(case)
+    for layer in case_layers(case):
+        _layer(doc, layer.name, layer.dxf_color)
+        _add_curve(msp, layer.data, layer.name, tol)
+    doc.header.custom_vars.append(META_KEY, json.dumps(case_meta(case), separators=(",", ":")))
     atomic_write(path, lambda tmp: doc.saveas(str(tmp)))
 
 
@@ -394,61 +359,68 @@ def fit_spline(points: np.ndarray, tol: float):
     return np.column_stack((c[0][:n], c[1][:n])), np.asarray(t, dtype=np.float64), int(k)
 
 
-def _add_closed(msp, pts: np.ndarray, layer: str) -> None:
-    msp.add_lwpolyline(np.asarray(pts).tolist(), format="xy", close=True, dxfattribs={"layer": layer})
+def _add_points(msp, pts: np.ndarray, layer: str, closed: bool) -> None:
+    msp.add_lwpolyline(np.asarray(pts).tolist(), format="xy", close=closed, dxfattribs={"layer": layer})
 
 
 def _add_mesh(msp, mesh, layer: str) -> None:
     corners = {"quad": 4, "triangle": 3, "triangle6": 3}[mesh.kind]
     pts = mesh.points
     for cell in mesh.cells:
-        _add_closed(msp, pts[cell[:corners]], layer)
+        _add_points(msp, pts[cell[:corners]], layer, True)
+
+
+def _add_layer(msp, layer: Layer, spline_tol: float | None) -> None:
+    """One layer of a result; its deformed curves as fitted SPLINEs when ``spline_tol`` is given."""
+    if layer.kind == "mesh":
+        _add_mesh(msp, layer.data, layer.name)
+    elif spline_tol is not None and layer.splines:
+        for part in layer.splines:
+            cp, knots, k = fit_spline(part, spline_tol)
+            msp.add_open_spline(cp.tolist(), degree=k, knots=knots.tolist(), dxfattribs={"layer": layer.name})
+    else:
+        _add_points(msp, layer.data, layer.name, layer.kind == "closed")
 
 
 def write_result(path, result, spline: bool = False, chordal_error: float | None = None, case=None) -> None:
-    """Write a deformed section as a DXF drawing, atomically.
+    """Write a deformed problem as a DXF drawing, atomically.
 
-    Layers: DEFORMED (the deformed section), INITIAL (the section before),
-    TARGET (the deformed lower curve, on the target), MESH_INITIAL and
-    MESH_FINAL (one closed LWPOLYLINE per element, in element order).
+    Layers (:func:`sectiondeform.io.layers.result_layers`): for a
+    ``section-result/1`` result DEFORMED (the deformed section), INITIAL
+    (the section before), TARGET (the deformed lower curve, on the target),
+    MESH_INITIAL and MESH_FINAL (one closed LWPOLYLINE per element, in
+    element order); for a ``section-result/2`` one, per body
+    DEFORMED-<name>-LOWER/-UPPER, INITIAL-<name>-LOWER/-UPPER,
+    MESH-INITIAL-<name> and MESH-FINAL-<name>.
 
     Parameters
     ----------
     path : str or Path
     result : Result
     spline : bool
-        Write the deformed section as two SPLINEs (lower, then upper) fitted
-        within ``chordal_error`` instead of one closed LWPOLYLINE.
+        Write the deformed curves as SPLINEs fitted within ``chordal_error``
+        (the one-body section as two, lower then upper) instead of polylines.
     chordal_error : float, optional
-        Units; default 1e-4 of the section's diagonal.
-    case : Assembly, optional
-        For an assembly's result (written by
-        :func:`sectiondeform.io.assembly.write_result_dxf`): the case, whose
-        support and target are drawn too.
+        Units; default 1e-4 of the deformed bodies' diagonal.
+    case : Problem, optional
+        The problem deformed: a ``section-result/2`` drawing draws its
+        SUPPORT and TARGET too.
+
+    Raises
+    ------
+    CaseError
+        A case whose bodies are not the result's; a body name that cannot
+        be part of a DXF layer name.
     """
-    from ..assembly_result import AssemblyResult
-
-    if isinstance(result, AssemblyResult):
-        if spline:
-            raise CaseError("spline", "not available for an assembly's result; its curves are written as polylines")
-        from .assembly import write_result_dxf
-
-        return write_result_dxf(path, result, case)
-    if case is not None:
-        raise CaseError("case", "only taken with an assembly's result; a one-body result draws its target itself")
+    check_case(result, case)
+    check_layer_names(result, dxf=True)
+    spline_tol = None
+    if spline:
+        contours = np.concatenate([b.contour for b in result.bodies])
+        spline_tol = chordal_error or DEFAULT_CHORDAL_FRACTION * float(np.hypot(*np.ptp(contours, axis=0)))
     doc = _new_doc(result.units)
     msp = doc.modelspace()
-    for name, color in (("INITIAL", 8), ("TARGET", 5), ("MESH_INITIAL", 9), ("MESH_FINAL", 3), ("DEFORMED", 1)):
-        _layer(doc, name, color)
-    _add_mesh(msp, result.initial_mesh, "MESH_INITIAL")
-    _add_mesh(msp, result.final_mesh, "MESH_FINAL")
-    _add_closed(msp, result.initial_contour, "INITIAL")
-    msp.add_lwpolyline(result.lower.tolist(), format="xy", dxfattribs={"layer": "TARGET"})
-    if spline:
-        tol = chordal_error or DEFAULT_CHORDAL_FRACTION * float(np.hypot(*np.ptp(result.contour, axis=0)))
-        for part in (result.lower, result.upper):
-            cp, knots, k = fit_spline(part, tol)
-            msp.add_open_spline(cp.tolist(), degree=k, knots=knots.tolist(), dxfattribs={"layer": "DEFORMED"})
-    else:
-        _add_closed(msp, result.contour, "DEFORMED")
+    for layer in result_layers(result, case):
+        _layer(doc, layer.name, layer.dxf_color)
+        _add_layer(msp, layer, spline_tol)
     atomic_write(path, lambda tmp: doc.saveas(str(tmp)))

@@ -1,24 +1,33 @@
 """The meshes of a result through meshio: VTU, VTK, Gmsh MSH, XDMF, Abaqus INP.
 
 :func:`write_result` writes a result's *final* mesh; :func:`write_mesh`
-writes its final or its initial mesh. Numbering is kept: node i of the
-file is row i of the result's ``points`` (1-based formats such as Gmsh and
-Abaqus number it i + 1), element j is row j of ``cells``, corners
+writes its final or its initial mesh: one cell block per body, the bodies'
+nodes one after the other in the case's order (a node on a piece two
+bodies share is written once per body). Numbering is kept: within a body's
+block, node i is row i of its mesh's ``points`` (1-based formats such as
+Gmsh and Abaqus number from 1), element j row j of its ``cells``, corners
 counter-clockwise as in :class:`~sectiondeform.models.base.MeshData`.
 Points are written with z = 0.
 
-Where the two meshes have the same nodes (the layered paper model), VTU,
-VTK and MSH files carry point data: the final mesh has ``initial`` (the
-initial coordinates) and ``displacement`` (final - initial), the initial
-mesh ``final`` and ``displacement``; every file has the cell data
-``element`` (0-based element number). Any other point or cell data (one row
-per node or element, any number of components) is passed through
-:func:`to_meshio`; ``write_mesh(..., fields=True)`` adds the per-element
-strain or geometric fields as cell data (:mod:`sectiondeform.strain_fields`):
-for the hyperelastic model also ``von_mises_stress`` and ``pressure``
-(−tr σ / 3, positive in compression), in units of the shear modulus for a
-one-body section, in the unit of each body's material for an assembly.
-Abaqus INP carries the mesh only.
+Where every body's two meshes have the same nodes (the layered paper
+model), VTU, VTK and MSH files carry point data: the final mesh has
+``initial`` (the initial coordinates) and ``displacement`` (final -
+initial), the initial mesh ``final`` and ``displacement``; every file has
+the cell data ``element`` (the element's number in its body's mesh).
+``write_mesh(..., fields=True)`` adds each body's per-element strain or
+geometric fields as cell data (:mod:`sectiondeform.strain_fields`): for the
+hyperelastic model also ``von_mises_stress`` and ``pressure`` (−tr σ / 3,
+positive in compression), in units of the shear modulus for the paper's
+one body, in the unit of each body's material otherwise. Abaqus INP
+carries the mesh only.
+
+The bodies of a ``section-result/2`` result are tagged: cell data
+``body`` = the body's tag (its index in the case's ``bodies`` plus 1),
+field data ``{name: [tag, 2]}``, which Gmsh files keep as named physical
+groups (``gmsh:physical`` = the tag; VTU and VTK files keep no field data:
+tag t is ``bodies[t - 1]`` of the case and of the result JSON); Abaqus
+files get one element set per body, named after it. A ``section-result/1``
+result (the paper's one body) is written untagged, physical group 1.
 """
 
 from __future__ import annotations
@@ -29,9 +38,10 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import CaseError, require
-from .json import atomic_write
+from ..result import RESULT_V1
+from .files import atomic_write
 
-__all__ = ["write_mesh", "write_result", "to_meshio", "FORMATS"]
+__all__ = ["write_mesh", "write_result", "to_meshio", "split_components", "FORMATS"]
 
 FORMATS = {".vtu": "vtu", ".vtk": "vtk", ".msh": "gmsh", ".xdmf": "xdmf", ".inp": "abaqus"}
 
@@ -53,9 +63,14 @@ def _xyz(points: np.ndarray) -> np.ndarray:
     return np.column_stack((points, np.zeros(len(points))))
 
 
+def _tagged(result) -> bool:
+    """Whether the file tags its bodies: every result but the paper's one body (``section-result/1``)."""
+    return result.dialect != RESULT_V1
+
+
 def to_meshio(result, which: str = "final", data: bool = True, point_data: dict | None = None,
               cell_data: dict | None = None):
-    """One mesh of a result as a :class:`meshio.Mesh`.
+    """One mesh of every body of a result as one :class:`meshio.Mesh`.
 
     Parameters
     ----------
@@ -63,37 +78,49 @@ def to_meshio(result, which: str = "final", data: bool = True, point_data: dict 
     which : str
         ``"final"`` or ``"initial"``.
     data : bool
-        Attach the point and cell data described in the module docstring.
-    point_data, cell_data : dict of str to ndarray, optional
-        More data to attach: arrays ``(N, ...)`` per node, ``(M, ...)`` per element.
+        Attach the point, cell and field data described in the module docstring.
+    point_data : dict of str to ndarray, optional
+        More data, ``(N, ...)``: one row per node of the file (the bodies' nodes in order).
+    cell_data : dict of str to ndarray or list, optional
+        More data: ``(M, ...)``, one row per element of the file (the
+        bodies' elements in order), or a list of one such array per body.
 
     Raises
     ------
     CaseError
-        For extra data whose row count is not the mesh's node or element count.
+        For an unknown mesh, or extra data whose row count is not the node or element count.
 
     Returns
     -------
     meshio.Mesh
-        Points ``(N, 3)`` float64 (z = 0), one cell block in element order.
+        Points ``(N, 3)`` float64 (z = 0), one cell block per body in element order.
     """
     meshio = require("meshio", "cad", "writing meshes")
     if which not in ("final", "initial"):
         raise CaseError("mesh", f"unknown mesh {which!r}; use final or initial")
-    mesh, other = (result.final_mesh, result.initial_mesh) if which == "final" else (result.initial_mesh, result.final_mesh)
-    point_data_in, cell_data_in = point_data, cell_data
-    point_data, cell_data = {}, {}
+    meshes = [(b.final_mesh, b.initial_mesh) if which == "final" else (b.initial_mesh, b.final_mesh) for b in result.bodies]
+    offsets = np.cumsum([0] + [len(m.points) for m, _ in meshes])
+    blocks = [(m.kind, np.asarray(m.cells, dtype=np.int64) + o) for (m, _), o in zip(meshes, offsets)]
+    points = np.concatenate([m.points for m, _ in meshes])
+    counts = [len(m.cells) for m, _ in meshes]
+    out_points, out_cells, field_data = {}, {}, {}
     if data:
-        cell_data["element"] = [np.arange(len(mesh.cells), dtype=np.int64)]
-        if other.points.shape == mesh.points.shape:
-            point_data["initial" if which == "final" else "final"] = _xyz(other.points)
-            point_data["displacement"] = _xyz(result.final_mesh.points - result.initial_mesh.points)
-    for name, values in (point_data_in or {}).items():
-        point_data[name] = _rows(values, len(mesh.points), name, "node")
-    for name, values in (cell_data_in or {}).items():
-        cell_data[name] = [_rows(values, len(mesh.cells), name, "element")]
-    return meshio.Mesh(_xyz(mesh.points), [(mesh.kind, np.asarray(mesh.cells, dtype=np.int64))],
-                       point_data=point_data, cell_data=cell_data)
+        out_cells["element"] = [np.arange(n, dtype=np.int64) for n in counts]
+        if all(m.points.shape == other.points.shape for m, other in meshes):
+            twin = np.concatenate([other.points for _, other in meshes])
+            out_points["initial" if which == "final" else "final"] = _xyz(twin)
+            out_points["displacement"] = _xyz(points - twin if which == "final" else twin - points)
+        if _tagged(result):
+            out_cells["body"] = [np.full(n, i + 1, dtype=np.int64) for i, n in enumerate(counts)]
+            field_data = {b.name: np.array([i + 1, 2], dtype=np.int64) for i, b in enumerate(result.bodies)}
+    for name, values in (point_data or {}).items():
+        out_points[name] = _rows(values, len(points), name, "node")
+    for name, values in (cell_data or {}).items():
+        if isinstance(values, (list, tuple)):
+            out_cells[name] = [_rows(v, n, name, "element") for v, n in zip(values, counts)]
+        else:
+            out_cells[name] = np.split(_rows(values, sum(counts), name, "element"), np.cumsum(counts)[:-1])
+    return meshio.Mesh(_xyz(points), blocks, point_data=out_points, cell_data=out_cells, field_data=field_data)
 
 
 def _rows(values, count: int, name: str, what: str) -> np.ndarray:
@@ -133,8 +160,43 @@ def _teach_meshio_plane_strain() -> None:
         _abaqus.abaqus_to_meshio_type.setdefault(name, "quad")
 
 
+def _one_block_per_type(mesh, meshio):
+    """The mesh with the blocks of one cell type joined (cell data joined alike; ``body`` still tags each cell).
+
+    XDMF writes blocks of several types as one *Mixed* topology, which
+    meshio 5.3 cannot read back for quadratic triangles: bodies that share
+    one element type are written as one block instead.
+    """
+    types = [c.type for c in mesh.cells]
+    if len(set(types)) != 1 or len(types) == 1:
+        return mesh
+    cells = [(types[0], np.concatenate([c.data for c in mesh.cells]))]
+    data = {name: [np.concatenate(blocks)] for name, blocks in mesh.cell_data.items()}
+    return meshio.Mesh(mesh.points, cells, point_data=mesh.point_data, cell_data=data)
+
+
+def _for_format(mesh, result, which: str, fmt: str, meshio):
+    """The mesh with what ``fmt`` needs: Gmsh physical groups, one XDMF block per type, Abaqus element sets."""
+    tags = [np.full(len(c.data), i + 1, dtype=np.int32) for i, c in enumerate(mesh.cells)]
+    if fmt == "xdmf":
+        return _one_block_per_type(mesh, meshio)
+    if fmt == "gmsh":
+        mesh.cell_data["gmsh:physical"] = tags
+        mesh.cell_data["gmsh:geometrical"] = [t.copy() for t in tags]
+        if _tagged(result):
+            counts = [len((b.final_mesh if which == "final" else b.initial_mesh).points) for b in result.bodies]
+            mesh.point_data["gmsh:dim_tags"] = np.column_stack((np.full(sum(counts), 2),
+                                                                np.repeat(np.arange(1, len(counts) + 1), counts)))
+    if fmt == "abaqus" and _tagged(result):
+        sets = {re.sub(r"[^A-Za-z0-9_]", "_", b.name): [np.arange(len(c.data)) if k == i else np.array([], dtype=np.int64)
+                                                          for k, c in enumerate(mesh.cells)]
+                for i, b in enumerate(result.bodies)}
+        return meshio.Mesh(mesh.points, mesh.cells, cell_sets=sets)
+    return mesh
+
+
 def write_mesh(path, result, which: str = "final", fields: bool = False) -> None:
-    """Write one mesh of a result, format by extension, atomically.
+    """Write one mesh of every body of a result, format by extension, atomically.
 
     Parameters
     ----------
@@ -145,50 +207,27 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
     which : str
         ``"final"`` or ``"initial"``.
     fields : bool
-        Add the per-element fields as cell data
-        (:func:`~sectiondeform.strain_fields.result_fields`: the hyperelastic
-        model's strains, von Mises stress and pressure, the paper model's
-        geometric fields and its mesh's strains prefixed ``geometric_``;
-        none in Abaqus files; for an assembly, each body's, in its block). Gmsh files
-        take 1, 3 or 9 components per field, XDMF files 1, 3, 6 or 9: the
-        others are split into ``name_0``, ``name_1``, ...
+        Add each body's per-element fields as cell data, in its block
+        (:func:`body_cell_data`; none in Abaqus files). Gmsh files take 1,
+        3 or 9 components per field, XDMF files 1, 3, 6 or 9: the others are
+        split into ``name_0``, ``name_1``, ...
 
     Raises
     ------
     CaseError
         For an unknown extension.
     """
-    from ..assembly_result import AssemblyResult
-
-    if isinstance(result, AssemblyResult):  # one mesh of every body, tagged (sectiondeform.io.assembly)
-        from .assembly import write_mesh as write_assembly_mesh
-
-        cells = None
-        if fields and FORMATS.get(Path(path).suffix.lower()) not in (None, "abaqus"):
-            cells = assembly_cell_data(result, fmt=FORMATS[Path(path).suffix.lower()])
-        return write_assembly_mesh(path, result, which, cell_data=cells)
     meshio = require("meshio", "cad", "writing meshes")
     path = Path(path)
     ext = path.suffix.lower()
     if ext not in FORMATS:
         raise CaseError(str(path), f"unknown mesh format {ext!r}; use one of {', '.join(FORMATS)}")
     fmt = FORMATS[ext]
-    cells = None
-    if fields and fmt != "abaqus":
-        from ..strain_fields import result_fields, result_mechanics
+    cells = body_cell_data(result, fmt) if fields and fmt != "abaqus" else None
+    mesh = _for_format(to_meshio(result, which, data=fmt != "abaqus", cell_data=cells), result, which, fmt, meshio)
 
-        lz = getattr(result.info, "out_of_plane_stretch", 1.0)
-        cells = result_fields(result.initial_mesh, result.final_mesh, result.model, lz,
-                              mechanics=result_mechanics(result)[0])[1]
-        cells = split_components(cells, fmt)
-    mesh = to_meshio(result, which, data=fmt != "abaqus", cell_data=cells)
-    kwargs = writer_options(fmt)
-    if fmt == "gmsh":
-        tags = np.zeros(len(mesh.cells[0].data), dtype=np.int32)
-        mesh.cell_data["gmsh:physical"] = [tags + 1]
-        mesh.cell_data["gmsh:geometrical"] = [tags + 1]
     def write(tmp):
-        meshio.write(str(tmp), mesh, file_format=fmt, **kwargs)
+        meshio.write(str(tmp), mesh, file_format=fmt, **writer_options(fmt))
         if fmt == "abaqus":  # meshio names quads CAX4P (axisymmetric pore pressure): plane strain instead
             _teach_meshio_plane_strain()
             tmp.write_text(re.sub(r"(?i)type\s*=\s*CAX4P\b", "type=CPE4", tmp.read_text()))
@@ -196,13 +235,14 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
     atomic_write(path, write)
 
 
-def assembly_cell_data(result, fmt: str = "vtu") -> dict:
-    """Each body's per-element fields of an assembly result, as cell data: name to one array per body.
+def body_cell_data(result, fmt: str = "vtu") -> dict:
+    """Each body's per-element fields, as cell data: name to one array per body.
 
     The fields of :func:`~sectiondeform.strain_fields.result_fields` with each
-    body's mechanics (the hyperelastic model's von Mises stress and pressure
-    in the unit of the body's material); a field some body lacks is left out.
-    ``fmt``: the meshio format written, whose field widths apply (:func:`split_components`).
+    body's mechanics (the hyperelastic model's von Mises stress and pressure,
+    relative to the shear modulus for the paper's one body, else in the unit
+    of the body's material); a field some body lacks is left out. ``fmt``:
+    the meshio format written, whose field widths apply (:func:`split_components`).
     """
     from ..strain_fields import result_fields, result_mechanics
 

@@ -25,12 +25,12 @@ user coordinates map to case coordinates by scale alone.
 
 Writing
 -------
-:func:`write_case` writes ``<path id="lower">``, ``upper``, ``target``
-(arcs as ``A``, cubic and quadratic B-splines as Bézier segments, others
-flattened within the chordal error), one user unit = one case unit, plus
-the law and options in the root's ``data-sectiondeform`` attribute.
-:func:`write_result` writes groups ``initial``, ``mesh-initial``,
-``target``, ``mesh-final``, ``deformed``.
+:func:`write_case` writes one ``<path>`` per layer of the problem's
+dialect (:mod:`.layers`; ``lower``, ``upper``, ``target`` for the paper's
+one body), arcs as ``A``, cubic and quadratic B-splines as Bézier segments,
+others flattened within the chordal error, one user unit = one case unit,
+plus the case data in the root's ``data-sectiondeform`` attribute.
+:func:`write_result` writes one group per layer of the result.
 """
 
 from __future__ import annotations
@@ -47,8 +47,8 @@ import numpy as np
 from ..curves import DEFAULT_CHORDAL_FRACTION, Arc, BSpline, Curve, Polyline
 from ..errors import CaseError, require
 from .chaining import fmt_point
-from .dxf import read_meta
-from .json import atomic_write
+from .files import atomic_write
+from .layers import case_layers, case_meta, check_case, check_layer_names, read_meta, result_layers, tolerance
 from .pieces import Drawing, Piece
 from .units import CSS_UNITS, MM_PER_UNIT, mm_per_unit
 
@@ -340,34 +340,24 @@ def _svg(bounds: np.ndarray, units: str, body: list[str], meta: dict | None = No
 
 
 def write_case(path, case) -> None:
-    """Write a case as an SVG drawing (paths ``lower``, ``upper``, ``target``), atomically.
+    """Write a case as an SVG drawing, atomically: one path per layer of its dialect, ids as the DXF layers.
 
     Parameters
     ----------
     path : str or Path
-    case : Case or Assembly
-        An assembly is written by :func:`sectiondeform.io.assembly.write_case_svg`.
+    case : Problem
+        Paths ``lower``, ``upper``, ``target`` for ``section-case/1``;
+        ``SUPPORT``, ``TARGET``, ``BODY-<name>-LOWER``, ``-UPPER`` (and
+        ``AXIS``) for ``section-case/2`` (:func:`sectiondeform.io.layers.case_layers`).
     """
-    from ..assembly import Assembly
-
-    if isinstance(case, Assembly):
-        from .assembly import write_case_svg
-
-        return write_case_svg(path, case)
-    pts = []
-    body = []
-    size = 0.0
-    for c in (case.lower, case.upper, case.target):
-        q, _ = c.discretise(max(c.length, 1e-300) * DEFAULT_CHORDAL_FRACTION)
-        pts.append(q)
-    allp = np.concatenate(pts)
-    size = float(np.hypot(*np.ptp(allp, axis=0))) or 1.0
-    tol = case.options.chordal_error or DEFAULT_CHORDAL_FRACTION * size
-    for name, color, c in (("lower", "#d62728", case.lower), ("upper", "#222222", case.upper), ("target", "#1f77b4", case.target)):
-        body.append(f'<path id="{name}" stroke="{color}" d="{_curve_d(c, tol)}"/>')
-    meta = {"law": case.law.to_json(), "name": case.name, "options": case.options.to_json(), "units": case.units,
-            "lower_start": case.lower.start.tolist(), "target_start": case.target.start.tolist()}
-    text = _svg(allp, case.units, body, meta)
+    check_layer_names(case, dxf=False)
+    tol = tolerance(case)
+    body, pts = [], []
+    for layer in case_layers(case):
+        if layer.name != "AXIS":
+            pts.append(layer.data.discretise(tol)[0])
+        body.append(f'<path id={quoteattr(layer.svg)} stroke="{layer.svg_color}" d="{_curve_d(layer.data, tol)}"/>')
+    text = _svg(np.concatenate(pts), case.units, body, case_meta(case))
     atomic_write(path, lambda tmp: tmp.write_text(text, encoding="utf-8"))
 
 
@@ -375,36 +365,34 @@ def _poly_d(points: np.ndarray, close: bool) -> str:
     return "M" + " L".join(_pt(p) for p in points) + (" Z" if close else "")
 
 
+def _layer_d(layer) -> str:
+    if layer.kind == "mesh":
+        corners = {"quad": 4, "triangle": 3, "triangle6": 3}[layer.data.kind]
+        return " ".join(_poly_d(layer.data.points[c[:corners]], True) for c in layer.data.cells)
+    return _poly_d(np.asarray(layer.data), layer.kind == "closed")
+
+
 def write_result(path, result, case=None) -> None:
-    """Write a deformed section as SVG: groups initial, mesh-initial, target, mesh-final, deformed.
+    """Write a deformed problem as SVG, atomically: one group per layer, ids as in :func:`sectiondeform.io.layers.result_layers`.
 
     Parameters
     ----------
     path : str or Path
-    result : Result or AssemblyResult
-        An assembly's is written by :func:`sectiondeform.io.assembly.write_result_svg`.
-    case : Assembly, optional
-        For an assembly's result: the case, whose support and target are drawn too.
+    result : Result
+        A ``section-result/1`` result gives the groups ``mesh-initial``,
+        ``initial``, ``mesh-final``, ``target``, ``deformed``; a
+        ``section-result/2`` one the DXF writer's layers, per body.
+    case : Problem, optional
+        The problem deformed: a ``section-result/2`` drawing draws its
+        support and target too.
     """
-    from ..assembly_result import AssemblyResult
-
-    if isinstance(result, AssemblyResult):
-        from .assembly import write_result_svg
-
-        return write_result_svg(path, result, case)
-    if case is not None:
-        raise CaseError("case", "only taken with an assembly's result; a one-body result draws its target itself")
-    def mesh_d(mesh):
-        corners = {"quad": 4, "triangle": 3, "triangle6": 3}[mesh.kind]
-        return " ".join(_poly_d(mesh.points[c[:corners]], True) for c in mesh.cells)
-
-    body = [
-        f'<g id="mesh-initial" stroke="#bbbbbb"><path d="{mesh_d(result.initial_mesh)}"/></g>',
-        f'<g id="initial" stroke="#777777"><path d="{_poly_d(result.initial_contour, True)}"/></g>',
-        f'<g id="mesh-final" stroke="#2ca02c"><path d="{mesh_d(result.final_mesh)}"/></g>',
-        f'<g id="target" stroke="#1f77b4"><path d="{_poly_d(result.lower, False)}"/></g>',
-        f'<g id="deformed" stroke="#d62728"><path d="{_poly_d(result.contour, True)}"/></g>',
-    ]
-    bounds = np.vstack((result.contour, result.initial_contour))
-    text = _svg(bounds, result.units, body, {"units": result.units, "name": result.name})
+    check_case(result, case)
+    check_layer_names(result, dxf=False)
+    body, pts = [], []
+    for layer in result_layers(result, case):
+        if layer.kind != "mesh":
+            pts.append(np.asarray(layer.data))
+        body.append(f'<g id={quoteattr(layer.svg)} stroke="{layer.svg_color}"><path d="{_layer_d(layer)}"/></g>')
+    meta = {"units": result.units, "name": result.name, "format": result.dialect}
+    text = _svg(np.concatenate(pts), result.units, body, meta)
     atomic_write(path, lambda tmp: tmp.write_text(text, encoding="utf-8"))
