@@ -55,9 +55,10 @@ import numpy as np
 
 from .fem.elements import p2_gradients
 from .materials.measures import max_principal_strain, principal_stretches, von_mises
-from .materials.models import NeoHookean, gradient_3d
+from .materials.models import gradient_3d
 from .models.base import MeshData
 from .pappus import signed_distance
+from .result import RESULT_V1
 
 __all__ = ["element_gradients", "element_centres", "strain_fields", "result_fields", "result_mechanics", "Mechanics",
            "fields_json", "STRAIN_NOTE", "STRESS_NOTES"]
@@ -90,8 +91,9 @@ class Mechanics:
         Volumetric growth c of the elements (bodies of revolution under a
         volume law); 1 otherwise.
     relative : bool
-        The moduli are relative (the model's default rubber, shear modulus
-        1): stresses in units of the shear modulus.
+        The moduli are relative (the body of a ``section-case/1`` problem,
+        which has no material: the model's rubber of shear modulus 1):
+        stresses in units of the shear modulus.
     """
 
     material: object
@@ -218,8 +220,8 @@ def result_mechanics(result) -> list:
         One entry per body, read from the solved state
         (:class:`~sectiondeform.models.hyperelastic.HyperelasticState`): the
         body's rubber (a body without a ``material`` has the model's
-        neo-Hookean rubber of shear modulus 1, relative), its pressure field
-        and its growth. None for the paper model and for a drag preview
+        neo-Hookean rubber of shear modulus 1; relative for the body of a
+        ``section-result/1`` result), its pressure field and its growth. None for the paper model and for a drag preview
         without a state; a preview's ``mean_stress`` is None (its state is
         not a solution).
     """
@@ -232,13 +234,8 @@ def result_mechanics(result) -> list:
         preview = getattr(body.info, "preview", False)
         mean = None if preview else _mean_stress(state.state.z, state.pressure_dofs[b])
         growth = float(state.stretches[b]) if state.growth else 1.0
-        out.append(Mechanics(material, mean, growth, relative=_relative(material)))
+        out.append(Mechanics(material, mean, growth, relative=result.dialect == RESULT_V1))
     return out
-
-
-def _relative(material) -> bool:
-    """Whether a body's rubber is the model's default, neo-Hookean of shear modulus 1: its stresses are relative."""
-    return isinstance(material, NeoHookean) and material.shear_modulus == 1.0
 
 
 def result_fields(initial: MeshData, final: MeshData, model: str, out_of_plane: float = 1.0,
