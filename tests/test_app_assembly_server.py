@@ -83,14 +83,16 @@ def test_a_law_change_is_placed_without_preparing_again_and_matches_a_fresh_defo
     assert r["bodies"][1]["area_final"] == pytest.approx(0.8 * r["bodies"][1]["area_initial"], rel=1e-9)
 
 
-def test_a_law_change_leaves_the_prepared_assembly_alone(strip):
+def test_a_law_change_reuses_the_prepared_problem_and_keeps_its_case(strip):
     cache = engine.DeformerCache()
-    deformer, _ = cache.get(strip, "paper")
-    laws = engine.laws_of(with_law(strip, 0, 0.7))
-    placed = engine.with_laws(deformer, laws)
-    assert placed is not deformer and placed.bodies is deformer.bodies
-    assert deformer.assembly.bodies[0].law.to_json() == strip["bodies"][0]["law"]
-    assert engine.with_laws(deformer, engine.laws_of(strip)) is deformer
+    deformer, fresh = cache.get(strip, "paper")
+    changed = with_law(strip, 0, 0.7)
+    again, prepared = cache.get(changed, "paper")
+    assert fresh and not prepared and again is deformer
+    out = engine.answer(cache, changed, "paper", None, True)
+    backing = out["bodies"][0]
+    assert backing["area_final"] == pytest.approx(0.7 * backing["area_initial"], rel=1e-9)
+    assert deformer.problem.bodies[0].law.to_json() == strip["bodies"][0]["law"]
 
 
 def test_a_refusal_comes_with_the_librarys_message_and_the_server_goes_on(client, drum):
@@ -158,5 +160,9 @@ def test_the_start_of_an_assembly_and_its_saved_case(client, strip):
     r = client.post("/api/save/case.json", json={"case": strip, "model": "paper"}, headers=ORIGIN)
     assert r.status_code == 200
     assert case_from_dict(json.loads(r.content)) == case_from_dict(strip)
-    r = client.post("/api/save/result.dxf", json={"case": strip, "model": "paper"}, headers=ORIGIN)
-    assert r.status_code == 422 and "assembly" in r.json()["error"]
+    r = client.post("/api/save/result.json", json={"case": strip, "model": "paper"}, headers=ORIGIN)
+    assert r.status_code == 200
+    saved = json.loads(r.content)
+    assert saved["format"] == "section-result/2" and [b["name"] for b in saved["bodies"]] == ["backing", "cover"]
+    for body, case_body in zip(saved["bodies"], strip["bodies"]):
+        assert body["area"]["final"] == pytest.approx(case_body["law"]["area_ratio"] * body["area"]["initial"], rel=1e-9)
