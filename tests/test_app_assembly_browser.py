@@ -17,8 +17,8 @@ from pathlib import Path
 import pytest
 from test_app_browser import LAUNCH_ARGS, _missing, centre, chromium_path, shown, wait_for
 
-from sectiondeform.assembly import assembly_from_dict
 from sectiondeform.errors import SectionDeformError
+from sectiondeform.io.case import case_from_dict
 
 CASES = Path(__file__).parent / "data" / "cases" / "v2"
 STRIP = CASES / "two-layer-strip.json"
@@ -148,7 +148,7 @@ def test_a_refusal_is_shown_and_the_last_shape_stays(page, tmp_path):
 
 def test_a_body_of_revolution_opens_with_volumes_and_the_librarys_refusal(page):
     try:
-        assembly_from_dict(json.loads(DRUM.read_text()))
+        case_from_dict(json.loads(DRUM.read_text()))
         refusal = None
     except SectionDeformError as exc:
         refusal = str(exc)

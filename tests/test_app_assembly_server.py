@@ -19,8 +19,8 @@ from test_app_server import ORIGIN, receive  # noqa: E402
 from sectiondeform import CaseError, curve_from_json  # noqa: E402
 from sectiondeform.app import engine  # noqa: E402
 from sectiondeform.app.server import create_app  # noqa: E402
-from sectiondeform.assembly import assembly_from_dict  # noqa: E402
-from sectiondeform.assembly_deform import AssemblyDeformer  # noqa: E402
+from sectiondeform.deform import Deformer  # noqa: E402
+from sectiondeform.io.case import case_from_dict  # noqa: E402
 
 CASES = Path(__file__).parent / "data" / "cases" / "v2"
 
@@ -76,21 +76,23 @@ def test_a_law_change_is_placed_without_preparing_again_and_matches_a_fresh_defo
         r = receive(ws)
     assert r["type"] == "result" and not r["prepared"]
     assert "initial_contour" not in r["bodies"][0] and "cells" not in r["bodies"][0]["mesh_final"]
-    expected = AssemblyDeformer(assembly_from_dict(changed)).deform()
+    expected = Deformer(case_from_dict(changed)).deform()
     for body, exp in zip(r["bodies"], expected.bodies):
         np.testing.assert_array_equal(body["contour"], exp.contour)
         assert body["area_target"] == exp.area_target
     assert r["bodies"][1]["area_final"] == pytest.approx(0.8 * r["bodies"][1]["area_initial"], rel=1e-9)
 
 
-def test_a_law_change_leaves_the_prepared_assembly_alone(strip):
+def test_a_law_change_reuses_the_prepared_problem_and_keeps_its_case(strip):
     cache = engine.DeformerCache()
-    deformer, _ = cache.get(strip, "paper")
-    laws = engine.laws_of(with_law(strip, 0, 0.7))
-    placed = engine.with_laws(deformer, laws)
-    assert placed is not deformer and placed.bodies is deformer.bodies
-    assert deformer.assembly.bodies[0].law.to_json() == strip["bodies"][0]["law"]
-    assert engine.with_laws(deformer, engine.laws_of(strip)) is deformer
+    deformer, fresh = cache.get(strip, "paper")
+    changed = with_law(strip, 0, 0.7)
+    again, prepared = cache.get(changed, "paper")
+    assert fresh and not prepared and again is deformer
+    out = engine.answer(cache, changed, "paper", None, True)
+    backing = out["bodies"][0]
+    assert backing["area_final"] == pytest.approx(0.7 * backing["area_initial"], rel=1e-9)
+    assert deformer.problem.bodies[0].law.to_json() == strip["bodies"][0]["law"]
 
 
 def test_a_refusal_comes_with_the_librarys_message_and_the_server_goes_on(client, drum):
@@ -104,7 +106,7 @@ def test_a_refusal_comes_with_the_librarys_message_and_the_server_goes_on(client
         good = receive(ws)
     assert bad["type"] == "refused" and bad["seq"] == 1
     with pytest.raises(CaseError) as exc:
-        AssemblyDeformer(assembly_from_dict(yeoh), model="hyperelastic")
+        Deformer(case_from_dict(yeoh), model="hyperelastic")
     assert bad["message"] == str(exc.value)
     assert good["type"] == "result" and good["seq"] == 2
 
@@ -127,7 +129,7 @@ def test_a_body_of_revolution_opens_with_its_outline_and_the_librarys_refusal(cl
     assert data["case"]["revolution"] == drum["revolution"]
     assert len(data["outline"]) == len(drum["bodies"]) and all(len(b["contour"]) > 10 for b in data["outline"])
     try:
-        assembly_from_dict(drum)
+        case_from_dict(drum)
         refusal = None
     except CaseError as exc:
         refusal = str(exc)
@@ -157,6 +159,10 @@ def test_the_start_of_an_assembly_and_its_saved_case(client, strip):
     assert start["case"]["format"] == "section-case/2" and len(start["outline"]) == 2
     r = client.post("/api/save/case.json", json={"case": strip, "model": "paper"}, headers=ORIGIN)
     assert r.status_code == 200
-    assert assembly_from_dict(json.loads(r.content)) == assembly_from_dict(strip)
-    r = client.post("/api/save/result.dxf", json={"case": strip, "model": "paper"}, headers=ORIGIN)
-    assert r.status_code == 422 and "assembly" in r.json()["error"]
+    assert case_from_dict(json.loads(r.content)) == case_from_dict(strip)
+    r = client.post("/api/save/result.json", json={"case": strip, "model": "paper"}, headers=ORIGIN)
+    assert r.status_code == 200
+    saved = json.loads(r.content)
+    assert saved["format"] == "section-result/2" and [b["name"] for b in saved["bodies"]] == ["backing", "cover"]
+    for body, case_body in zip(saved["bodies"], strip["bodies"]):
+        assert body["area"]["final"] == pytest.approx(case_body["law"]["area_ratio"] * body["area"]["initial"], rel=1e-9)

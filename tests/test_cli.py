@@ -129,3 +129,37 @@ def test_missing_output_folder_is_one_line(tmp_path, capsys):
     err = capsys.readouterr().err.strip()
     assert "--output: the folder" in err and len(err.splitlines()) == 1
     assert [p.name for p in tmp_path.iterdir()] == ["case.json"]
+
+
+V2_CASES = SHARED_CASES[0].parent / "v2"
+
+
+def test_deform_prints_each_body_and_writes_the_version_2_result(tmp_path, capsys):
+    out = tmp_path / "r.json"
+    case = V2_CASES / "two-layer-strip.json"
+    assert main(["deform", str(case), "-o", str(out), "--no-meshes"]) == 0
+    r = json.loads(out.read_text())
+    laws = [b["law"]["area_ratio"] for b in json.loads(case.read_text())["bodies"]]
+    assert r["format"] == "section-result/2" and "meshes" not in r["bodies"][0]
+    for body, ratio in zip(r["bodies"], laws):
+        assert body["area"]["final"] == pytest.approx(ratio * body["area"]["initial"], rel=1e-9)
+    text = capsys.readouterr().out
+    assert "2 bodies" in text and "  backing\n" in text and "  cover\n" in text and text.count("relative error") == 2
+
+
+def test_area_ratio_on_several_bodies_is_one_line_naming_the_option(tmp_path, capsys):
+    from argparse import Namespace
+
+    from sectiondeform.commands._common import apply_overrides
+    from sectiondeform.errors import CaseError
+    from sectiondeform.io.case import load_case
+    from sectiondeform.laws import AreaRatio
+
+    problem = load_case(V2_CASES / "two-layer-strip.json")
+    with pytest.raises(CaseError) as exc:
+        apply_overrides(problem, Namespace(area_ratio=0.9))
+    assert str(exc.value).startswith("--area-ratio: the case has 2 bodies") and "\n" not in str(exc.value)
+    same = problem.replace(bodies=tuple(b.__class__(b.name, b.lower, b.upper, AreaRatio(0.9)) for b in problem.bodies))
+    assert apply_overrides(same, Namespace(area_ratio=0.9)) == same  # a drawing's reader gave every body that law
+    one = load_case(SHARED_CASES[0])
+    assert apply_overrides(one, Namespace(area_ratio=0.7)).law == AreaRatio(0.7)

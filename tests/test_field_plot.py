@@ -5,11 +5,11 @@ import json
 import numpy as np
 import pytest
 
-from sectiondeform.case import case_from_dict
 from sectiondeform.cli import main
 from sectiondeform.deform import Deformer
 from sectiondeform.errors import CaseError
 from sectiondeform.field_plot import draw_field, field_values
+from sectiondeform.io.case import case_from_dict
 
 from conftest import CASES_DIR
 

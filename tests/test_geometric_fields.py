@@ -13,10 +13,10 @@ import meshio
 import numpy as np
 import pytest
 
-from sectiondeform.case import case_from_dict
 from sectiondeform.cli import main
 from sectiondeform.deform import Deformer
 from sectiondeform.errors import CaseError
+from sectiondeform.io.case import case_from_dict
 from sectiondeform.io.meshes import to_meshio, write_mesh
 
 LAM, RATIO = 1.25, 0.8

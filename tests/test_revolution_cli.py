@@ -15,10 +15,10 @@ import pytest
 import shapely
 from scipy.optimize import brentq
 
-from sectiondeform.assembly import assembly_from_dict
-from sectiondeform.assembly_deform import deform_assembly
-from sectiondeform.assembly_plot import draw_assembly
 from sectiondeform.cli import main
+from sectiondeform.deform import deform
+from sectiondeform.io.case import case_from_dict
+from sectiondeform.plot import draw_result
 
 from conftest import CASES_DIR
 
@@ -121,16 +121,16 @@ def test_a_rectangle_bent_onto_an_arc_becomes_the_hand_derived_annular_sector(ra
 def test_the_axis_is_drawn_when_it_is_near_the_bodies_and_named_when_far():
     near = bent_case(1.0)
     near["revolution"] = {"axis": [[0.0, R - 8.0], [1.0, R - 8.0]]}  # 8 mm below the support
-    fig = draw_assembly(deform_assembly(assembly_from_dict(near)))
+    fig = draw_result(deform(case_from_dict(near)))
     for ax in fig.axes:
         lines = [ln for ln in ax.get_lines() if ln.get_label() == "axis of revolution"]
         assert len(lines) == 1
         lo, hi = ax.get_ylim()
         assert lo < R - 8.0 < hi  # the view reaches the axis
-    far = draw_assembly(deform_assembly(assembly_from_dict(bent_case(1.0))))  # axis 40 mm away, size ~20
+    far = draw_result(deform(case_from_dict(bent_case(1.0))))  # axis 40 mm away, size ~20
     assert not any(ln.get_label() == "axis of revolution" for ax in far.axes for ln in ax.get_lines())
     assert "revolution axis through (0, 0), (1, 0)" in far.get_suptitle()
-    label = far.axes[2].get_legend().get_texts()[0].get_text()
+    label = far.axes[3].get_legend().get_texts()[1].get_text()  # after the initial bodies' entry
     assert "mm³" in label and "volume error" in label
 
 
@@ -138,5 +138,5 @@ def test_a_plane_assembly_has_no_revolution_key_nor_volume():
     case = bent_case(1.0)
     del case["revolution"]
     case["bodies"][0]["law"] = {"area_ratio": 0.9}
-    data = deform_assembly(assembly_from_dict(case)).to_json(meshes=False)
+    data = deform(case_from_dict(case)).to_json(meshes=False)
     assert "revolution" not in data and "volume" not in data["bodies"][0]

@@ -33,13 +33,11 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 from test_hyperelastic_revolution import GROW, A, T, ring_case
 
-from sectiondeform.assembly import assembly_from_dict
-from sectiondeform.assembly_deform import AssemblyDeformer
-from sectiondeform.case import case_from_dict
 from sectiondeform.cli import main
 from sectiondeform.deform import Deformer
 from sectiondeform.errors import CaseError
 from sectiondeform.field_plot import field_values
+from sectiondeform.io.case import case_from_dict
 from sectiondeform.io.meshes import write_mesh
 from sectiondeform.strain_fields import STRESS_NOTES, element_centres, result_fields, result_mechanics
 
@@ -154,7 +152,7 @@ def test_a_mooney_rivlin_body_has_the_hand_stresses_in_its_units_in_json_and_vtu
     lz, sigma = homogeneous(c10, c01, kappa)
     pressure, vm = pressure_and_von_mises(sigma)
     material = {"model": "mooney-rivlin", "c10": c10, "c01": c01}
-    result = AssemblyDeformer(assembly_from_dict(side_by_side_case([material], lz))).deform()
+    result = Deformer(case_from_dict(side_by_side_case([material], lz))).deform()
     body = result.to_json(fields=True)["bodies"][0]
     assert body["fields"]["note"] == STRESS_NOTES[False]
     np.testing.assert_allclose(body["fields"]["principal_stretches"][0], [LAM, LAM, lz], rtol=1e-9)
@@ -220,7 +218,7 @@ def test_stacked_blocks_of_different_rubbers_hold_each_ones_exact_state_with_the
     states = [homogeneous(*r) for r in rubbers]
     materials = [{"model": "mooney-rivlin", "c10": c10, "c01": c01, "bulk_to_shear": kappa / (2 * (c10 + c01))}
                  for c10, c01, kappa in rubbers]
-    result = AssemblyDeformer(assembly_from_dict(stacked_case(materials, [lz for lz, _ in states]))).deform()
+    result = Deformer(case_from_dict(stacked_case(materials, [lz for lz, _ in states]))).deform()
     z = result.state.state.z
     interface = []
     for b, (body, data, (lz, sigma)) in enumerate(zip(result.bodies, result.to_json(fields=True)["bodies"], states)):
@@ -254,7 +252,7 @@ def test_stacked_blocks_keep_their_exact_state_through_a_warm_start_and_a_previe
     """
     lz, sigma = homogeneous(0.5, 0.0, 1000.0)
     pressure = pressure_and_von_mises(sigma)[0]
-    deformer = AssemblyDeformer(assembly_from_dict(stacked_case([{"shear_modulus": 1.0}, {"shear_modulus": 3.0}], [lz, lz])))
+    deformer = Deformer(case_from_dict(stacked_case([{"shear_modulus": 1.0}, {"shear_modulus": 3.0}], [lz, lz])))
     cold = deformer.deform()
     warm, preview = deformer.deform(start=cold), deformer.preview(start=cold)
     assert warm.bodies[0].info.warm_start and warm.state.state.z.shape == cold.state.state.z.shape
@@ -268,7 +266,7 @@ def test_stacked_blocks_keep_their_exact_state_through_a_warm_start_and_a_previe
 def test_an_assemblys_stress_can_be_plotted_and_the_paper_models_cannot(tmp_path):
     lz, sigma = homogeneous(0.5, 0.0, 1000.0)
     case = side_by_side_case([{"shear_modulus": 1.0}, {"shear_modulus": 3.0}], lz)
-    result = AssemblyDeformer(assembly_from_dict(case)).deform()
+    result = Deformer(case_from_dict(case)).deform()
     kind, (soft, stiff) = field_values(result, "pressure")
     assert kind == "mechanical"
     np.testing.assert_allclose(stiff, 3.0 * pressure_and_von_mises(sigma)[0], rtol=1e-7)
@@ -277,7 +275,7 @@ def test_an_assemblys_stress_can_be_plotted_and_the_paper_models_cannot(tmp_path
     src.write_text(json.dumps(case))
     assert main(["deform", str(src), "-o", str(tmp_path / "r.json"), "--plot", str(fig), "--plot-field", "pressure"]) == 0
     assert fig.stat().st_size > 1000
-    paper = AssemblyDeformer(assembly_from_dict(case), model="paper").deform()
+    paper = Deformer(case_from_dict(case), model="paper").deform()
     with pytest.raises(CaseError, match=r"^--plot-field: pressure is a stress and the paper model has no material"):
         field_values(paper, "pressure")
 
@@ -298,7 +296,7 @@ def test_a_thick_ring_expanded_radially_has_the_closed_form_pressure_and_von_mis
     case = ring_case(1.0)
     case["bodies"][0]["material"] = material
     length = 24 * T
-    result = AssemblyDeformer(assembly_from_dict(case)).deform()
+    result = Deformer(case_from_dict(case)).deform()
     body, mechanics = result.bodies[0], result_mechanics(result)[0]
     assert mechanics.growth == 1.0 and not mechanics.relative
     fields = result_fields(body.initial_mesh, body.final_mesh, "hyperelastic", 1.0, result.axis, mechanics)[1]
@@ -333,7 +331,7 @@ def test_a_grown_body_of_revolution_is_stress_free():
             "bodies": [{"name": "b", "lower": {"polyline": [[0, radius], [w, radius]]}, "upper": {"polyline": upper},
                         "law": {"volume_ratio": v}, "material": {"model": "yeoh", "c10": 0.4, "c20": -0.01, "c30": 0.002}}],
             "options": {"model": "hyperelastic", "newton_tolerance": 1e-10}}
-    result = AssemblyDeformer(assembly_from_dict(case)).deform()
+    result = Deformer(case_from_dict(case)).deform()
     mechanics = result_mechanics(result)[0]
     assert mechanics.growth == pytest.approx(v)
     fields = result.to_json(fields=True)["bodies"][0]["fields"]
@@ -355,7 +353,7 @@ def test_two_stacked_rings_of_different_rubbers_grown_alike_are_stress_free():
     case = {"format": "section-case/2", "name": "grow", "support": {"polyline": [[0, radius], [w, radius]]},
             "target": {"polyline": [[0, g * radius], [g * w, g * radius]]}, "revolution": {"axis": [[0, 0], [1, 0]]},
             "bodies": bodies, "options": {"model": "hyperelastic", "newton_tolerance": 1e-10}}
-    result = AssemblyDeformer(assembly_from_dict(case)).deform()
+    result = Deformer(case_from_dict(case)).deform()
     for body, data in zip(result.bodies, result.to_json(fields=True)["bodies"]):
         assert np.abs(body.final_mesh.points - g * body.initial_mesh.points).max() <= 1e-9 * h
         np.testing.assert_allclose(data["fields"]["J"], v, rtol=1e-8)
@@ -381,7 +379,7 @@ def two_layer_ring_pressure_errors(moduli=(1.0, 3.0), length=48 * T, through=2.0
 
     ``medians``, a list, receives each layer's median exact pressure there.
     """
-    result = AssemblyDeformer(assembly_from_dict(two_layer_ring_case(moduli, length, through))).deform()
+    result = Deformer(case_from_dict(two_layer_ring_case(moduli, length, through))).deform()
     outer = math.sqrt(GROW**2 + (A + T) ** 2 - A**2)
     r_mid = math.sqrt(GROW**2 + (A + T / 2) ** 2 - A**2)
 

@@ -202,3 +202,33 @@ def test_study_of_every_axis_expands_to_the_product(tmp_path):
 def test_importing_sectiondeform_does_not_import_pyarrow():
     code = "import sys, sectiondeform; assert 'pyarrow' not in sys.modules; sectiondeform.sweep; assert 'pyarrow' in sys.modules"
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+V2 = Path(__file__).parent / "data" / "cases" / "v2"
+
+
+def test_a_sweep_of_version_2_cases_of_one_body_and_several(tmp_path):
+    for name in ("two-layer-strip.json", "cover-alone-on-arc.json"):
+        shutil.copy(V2 / name, tmp_path / name)
+    study = {"format": "section-study/1", "name": "v2",
+             "cases": [{"case": "two-layer-strip.json", "vary": {"crown": [0.0, 2.0]}},
+                       {"case": "cover-alone-on-arc.json", "vary": {"area_ratio": [0.8, 0.9]}}]}
+    path = tmp_path / "study.json"
+    path.write_text(json.dumps(study))
+    rows = sd.sweep(path, workers=0).to_pylist()
+    assert [r["ok"] for r in rows] == [True] * 4, [r["error"] for r in rows]
+    strip = sd.load_case(V2 / "two-layer-strip.json")
+    target = sum(b.law.ratio * sd.deform(strip).body(b.name).area_initial for b in strip.bodies)
+    for r in rows[:2]:  # each body under its own law: the areas summed
+        assert r["area_final"] == pytest.approx(target, rel=1e-9) and set(json.loads(r["quality"])) == {"backing", "cover"}
+    for r in rows[2:]:
+        assert r["area_final"] == pytest.approx(r["area_ratio"] * r["area_initial"], rel=1e-9)
+
+
+def test_an_area_ratio_axis_on_a_case_of_several_bodies_is_refused(tmp_path):
+    shutil.copy(V2 / "two-layer-strip.json", tmp_path / "strip.json")
+    path = tmp_path / "study.json"
+    path.write_text(json.dumps({"format": "section-study/1", "cases": [{"case": "strip.json", "vary": {"area_ratio": [0.9]}}]}))
+    with pytest.raises(StudyError) as exc:
+        load_study(path)
+    assert str(exc.value).startswith("cases[0].vary.area_ratio: sets the law of a one-body case; this case has 2 bodies")

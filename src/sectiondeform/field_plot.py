@@ -1,14 +1,14 @@
 """A strain field drawn as a colour map on the deformed mesh (matplotlib, extra ``[plot]``).
 
-One panel: each element of the final mesh (every body's, for an assembly)
+One panel: each element of every body's final mesh
 filled with the colour of one scalar field of :mod:`sectiondeform.strain_fields`,
 clipped to the deformed section, its outline drawn over it, with a colour
 bar naming the field and its kind. For the paper model the field is the
 geometric one of that name (``geometric_J`` for ``J``), and says so. The
 stresses (``von_mises_stress``, ``pressure``: hyperelastic model only) are
-labelled with their unit: × shear modulus for a one-body section (its
-modulus is relative), the unit of the bodies' material moduli for an
-assembly (MPa as the case gives them).
+labelled with their unit: × shear modulus when every body has the
+model's default rubber (a relative modulus), else the unit of the bodies'
+material moduli (MPa as the case gives them).
 """
 
 from __future__ import annotations
@@ -38,19 +38,12 @@ def check_plot_field(name: str) -> str:
     return name
 
 
-def _pieces(result):
-    """(initial mesh, final mesh, deformed contour, info) of each body of a result or an assembly's result."""
-    if hasattr(result, "bodies"):
-        return [(b.initial_mesh, b.final_mesh, b.contour, b.info) for b in result.bodies]
-    return [(result.initial_mesh, result.final_mesh, result.contour, result.info)]
-
-
 def field_values(result, name: str) -> tuple[str, list[np.ndarray]]:
     """The scalar field ``name`` per element of each body, and its kind (``mechanical`` or ``geometric``).
 
     Parameters
     ----------
-    result : Result or AssemblyResult
+    result : Result
     name : str
         One of :data:`PLOT_FIELDS`.
 
@@ -67,11 +60,10 @@ def field_values(result, name: str) -> tuple[str, list[np.ndarray]]:
         drag preview (its state is not a solution).
     """
     key, column, _ = PLOT_FIELDS[check_plot_field(name)]
-    axis = getattr(result, "axis", None)
     kind, out = "geometric", []
-    mechanics = result_mechanics(result)
-    for (initial, final, _contour, info), mech in zip(_pieces(result), mechanics):
-        kind, fields = result_fields(initial, final, result.model, getattr(info, "out_of_plane_stretch", 1.0), axis, mech)
+    for body, mech in zip(result.bodies, result_mechanics(result)):
+        kind, fields = result_fields(body.initial_mesh, body.final_mesh, result.model,
+                                     getattr(body.info, "out_of_plane_stretch", 1.0), result.axis, mech)
         values = fields.get(key if kind == "mechanical" else f"geometric_{key}")
         if values is None and kind == "geometric" and key in STRESS_FIELDS:
             raise CaseError("--plot-field", f"{name} is a stress and the paper model has no material; "
@@ -80,7 +72,7 @@ def field_values(result, name: str) -> tuple[str, list[np.ndarray]]:
             raise CaseError("--plot-field", f"no {name} for a drag preview (its state is not a solution); "
                             "deform to plot a stress")
         if values is None:
-            raise CaseError("--plot-field", f"no {name} for this result's {final.kind} mesh")
+            raise CaseError("--plot-field", f"no {name} for this result's {body.final_mesh.kind} mesh")
         out.append(values if column is None else values[:, column])
     return kind, out
 
@@ -108,7 +100,8 @@ def draw_field(result, name: str, fig=None):
     both = np.concatenate(values)
     norm = Normalize(float(both.min()), float(both.max()) if both.max() > both.min() else float(both.min()) + 1e-12)
     collection = None
-    for (_initial, final, contour, _info), v in zip(_pieces(result), values):
+    for body, v in zip(result.bodies, values):
+        final, contour = body.final_mesh, body.contour
         corners = {"quad": 4, "triangle": 3, "triangle6": 3}[final.kind]
         collection = PolyCollection(final.points[final.cells[:, :corners]], array=v, cmap="viridis", norm=norm,
                                     edgecolors="face", linewidths=0.2)

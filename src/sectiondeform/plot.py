@@ -1,8 +1,10 @@
-"""Figures in the spirit of the paper's Figure 11 (matplotlib, extra ``[plot]``).
+"""Figures in the spirit of the paper's Figure 11 (matplotlib, extra ``[plot]``), for one body or several.
 
-Four panels: (1) the section with its lower and upper curves, (2) the
-initial mesh, (3) the empty final mesh on the target, (4) the deformed
-section over the initial one, with the areas written on it.
+Four panels: (1) each body with its lower and upper curves, (2) the
+initial meshes, (3) the final meshes on the target (and on the deformed
+foundations), (4) the deformed bodies over the initial ones, with the
+areas written on them. One body is drawn in the paper's colours, several
+in one colour each; a revolution axis is drawn where it lies near.
 """
 
 from __future__ import annotations
@@ -15,10 +17,9 @@ import numpy as np
 from .errors import require
 from .io import check_figure_path
 from .models.base import MeshData
+from .result import RESULT_V1
 
-__all__ = ["save_figure", "write_figure", "draw_result", "draw_mesh", "new_figure"]
-
-
+__all__ = ["save_figure", "write_figure", "draw_result", "draw_mesh", "new_figure", "body_colours", "PAPER_COLOURS"]
 
 def new_figure(**kw):
     """A matplotlib figure of its own (not pyplot's), so the user's backend is left alone.
@@ -49,45 +50,141 @@ def _closed(points: np.ndarray) -> np.ndarray:
     return np.vstack((points, points[:1]))
 
 
+PAPER_COLOURS = {"lower": "tab:blue", "upper": "tab:red", "target": "tab:green", "outline": "k", "initial_mesh": "0.55",
+                 "mesh": "tab:green",
+                 "deformed": "tab:orange"}
+"""The colours of the paper's one body (``section-result/1``), by role, as in its Figure 11."""
+
+
+def body_colours(result) -> list[dict]:
+    """The colour of each role (:data:`PAPER_COLOURS`' keys) for each body of ``result``.
+
+    The one body of a ``section-result/1`` result is drawn in the paper's
+    colours (:data:`PAPER_COLOURS`); otherwise each body in a colour of its
+    own (``C0``, ``C1``...) for every role.
+    """
+    if result.dialect == RESULT_V1:
+        return [PAPER_COLOURS]
+    return [dict.fromkeys(PAPER_COLOURS, f"C{i % 10}") for i in range(len(result.bodies))]
+
+
+def _named(result, body) -> str:
+    """``"name: "`` before a body's legend entries; empty for the one body of a ``section-result/1`` result."""
+    return "" if result.dialect == RESULT_V1 else f"{body.name}: "
+
+
+def _deformed_label(result, body) -> str:
+    """Legend of a deformed body: its area, or its volume of revolution, and (named bodies) the law's error."""
+    u = result.units
+    named = _named(result, body)
+    text = f"{named}deformed {body.area_final:.1f} {u}²"
+    if body.volume_final is not None:
+        text += f", volume {body.volume_final:.5g} {u}³"
+    if named:
+        text += f" ({body.measure} error {body.relative_error:+.1e})"
+    return text
+
+
+def _target_title(result) -> str:
+    """The last panel's legend title: the bodies' total target (area, or volume) and the worst relative error."""
+    u = result.units
+    areas = all(b.measure == "area" for b in result.bodies)
+    total = sum(b.target for b in result.bodies)
+    unit = f"{u}²" if areas else f"{u}³ (volume)" if all(b.measure == "volume" for b in result.bodies) else None
+    target = f"target {total:.1f} {unit}, " if unit is not None else ""
+    return f"{target}error {result.relative_error:+.1e}"
+
+
+def _suptitle(result) -> str:
+    """The figure's title: each body's law ratio (its final over initial area, or volume), up to four bodies."""
+    if len(result.bodies) > 4:
+        return f"{result.name}: {len(result.bodies)} bodies"
+    ratios = ", ".join(f"{_named(result, b)}{b.measure} ratio {b.target / _initial(b):.4g}" for b in result.bodies)
+    return f"{result.name}: {ratios}"
+
+
+def _initial(body) -> float:
+    return body.area_initial if body.measure == "area" else body.volume_initial
+
+
+def _curve_labels(result, body) -> tuple:
+    """Legend of the first panel's lower, upper and deformed lower curves: the paper's, or one entry per named body."""
+    if result.dialect == RESULT_V1:
+        return "lower curve (BC)", "upper curve", "deformed BC (target)"
+    return f"{body.name} (dashed: deformed lower curve)", None, None
+
+
+def _draw_axis(axes, axis, points: np.ndarray, u: str) -> str:
+    """Draw the revolution axis (dash-dot, every panel) if near ``points`` (N, 2); else return a line naming it."""
+    p0, p1 = np.asarray(axis, dtype=np.float64)
+    along = (p1 - p0) / np.hypot(*(p1 - p0))
+    normal = np.array([-along[1], along[0]])
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    centre, size = (lo + hi) / 2, float(np.hypot(*(hi - lo)))
+    dist = float(np.dot(centre - p0, normal))
+    if abs(dist) <= 0.75 * size:
+        for ax in axes:
+            ax.axline(p0, p1, color="k", ls="-.", lw=0.8, label="axis of revolution")
+            ax.update_datalim([centre - dist * normal])
+        return ""
+    pts = ", ".join(f"({x:.4g}, {y:.4g})" for x, y in (p0, p1))
+    return f"\nrevolution axis through {pts}, {abs(dist):.4g} {u} from the bodies' centre (not drawn)"
+
+
+def _mesh_shape(result) -> str:
+    """`` (the initial mesh described)`` for the paper's one body; each named body's element count otherwise."""
+    if result.dialect != RESULT_V1:
+        return " (" + ", ".join(f"{b.name} {len(b.initial_mesh.cells)}" for b in result.bodies) + " elements)"
+    quality = result.bodies[0].quality
+    return f" ({quality.initial.describe()})" if quality is not None else ""
+
+
 def draw_result(result, fig=None):
-    """Draw the four panels of a :class:`~sectiondeform.result.Result`; returns the figure."""
+    """Draw the four panels of a :class:`~sectiondeform.result.Result`, one colour per body; returns the figure.
+
+    (1) each body's lower and upper curves and its deformed lower curve (on
+    the target or on its deformed foundations), (2) the initial meshes,
+    (3) the final meshes, (4) the deformed bodies over the initial ones with
+    their areas (and volumes of revolution). A revolution axis is drawn
+    (dash-dot) where it lies near the bodies; farther away, the title names
+    it. One body is drawn in the paper's colours (:func:`body_colours`).
+    """
     if fig is None:
         fig = new_figure(figsize=(11, 8), layout="constrained")
     axes = fig.subplots(2, 2, sharex=True, sharey=True).ravel()
     u = result.units
-    low0, up0, low1 = result.initial_lower, result.initial_upper, result.lower
-
-    ax = axes[0]
-    ax.plot(*low0.T, color="tab:blue", lw=2, label="lower curve (BC)")
-    ax.plot(*up0.T, color="tab:red", lw=1.5, label="upper curve")
-    ax.plot(*up0.T, ".", color="tab:red", ms=2)
-    ax.plot(*low1.T, "--", color="tab:green", lw=1.2, label="deformed BC (target)")
-    ax.set_title("1  section: lower and upper curves")
-    ax.legend(loc="best", fontsize=8)
-
-    ax = axes[1]
-    draw_mesh(ax, result.initial_mesh)
-    ax.plot(*_closed(result.initial_contour).T, color="k", lw=1.2)
-    shape = f" ({result.quality.initial.describe()})" if result.quality is not None else ""
-    ax.set_title(f"2  initial mesh{shape}")
-
-    ax = axes[2]
-    draw_mesh(ax, result.final_mesh, edgecolors="tab:green")
-    ax.plot(*low1.T, color="tab:green", lw=2)
-    ax.set_title(f"3  final mesh on the deformed BC ({result.model} model)")
-
-    ax = axes[3]
-    ax.fill(*result.initial_contour.T, color="0.85", label=f"initial  {result.area_initial:.1f} {u}²")
-    ax.fill(*result.contour.T, color="tab:orange", alpha=0.6, label=f"deformed {result.area_final:.1f} {u}²")
-    ax.plot(*_closed(result.contour).T, color="tab:orange", lw=1.2)
-    ax.set_title("4  deformed section over the initial one")
-    ax.legend(loc="best", fontsize=8, title=f"target {result.area_target:.1f} {u}², error {result.relative_error:+.1e}",
-              title_fontsize=8)
+    bodies = result.bodies
+    for body in bodies:  # every initial body first, so none hides a deformed one
+        axes[3].fill(*body.initial_contour.T, color="0.85")
+    area0 = sum(b.area_initial for b in bodies)
+    axes[3].fill([], [], color="0.85", label=f"initial  {area0:.1f} {u}²")
+    for body, c in zip(bodies, body_colours(result)):
+        labels = _curve_labels(result, body)
+        axes[0].plot(*body.initial_lower.T, color=c["lower"], lw=2, label=labels[0])
+        axes[0].plot(*body.initial_upper.T, color=c["upper"], lw=1.5, label=labels[1])
+        axes[0].plot(*body.initial_upper.T, ".", color=c["upper"], ms=2)
+        axes[0].plot(*body.lower.T, "--", color=c["target"], lw=1.2, label=labels[2])
+        draw_mesh(axes[1], body.initial_mesh, edgecolors=c["initial_mesh"])
+        axes[1].plot(*_closed(body.initial_contour).T, color=c["outline"], lw=1.2)
+        draw_mesh(axes[2], body.final_mesh, edgecolors=c["mesh"])
+        axes[2].plot(*body.lower.T, color=c["target"], lw=2)
+        axes[3].fill(*body.contour.T, color=c["deformed"], alpha=0.6, label=_deformed_label(result, body))
+        axes[3].plot(*_closed(body.contour).T, color=c["deformed"], lw=1.2)
+    note = ""
+    if result.axis is not None:
+        points = np.concatenate([np.concatenate((b.initial_contour, b.contour)) for b in bodies])
+        note = _draw_axis(axes, result.axis, points, u)
+    axes[0].set_title("1  section: lower and upper curves")
+    axes[0].legend(loc="best", fontsize=8)
+    axes[1].set_title(f"2  initial mesh{_mesh_shape(result)}")
+    axes[2].set_title(f"3  final mesh on the deformed BC ({result.model} model)")
+    axes[3].set_title("4  deformed section over the initial one")
+    axes[3].legend(loc="best", fontsize=8, title=_target_title(result), title_fontsize=8)
     for ax in axes:
         ax.set_aspect("equal")
         ax.autoscale_view()
         ax.grid(True, lw=0.3, alpha=0.5)
-    fig.suptitle(f"{result.name}: area ratio {result.area_target / result.area_initial:.4g}")
+    fig.suptitle(_suptitle(result) + note)
     return fig
 
 
@@ -121,8 +218,4 @@ def save_figure(result, path) -> Path:
         If matplotlib is not installed (``pip install 'sectiondeform[plot]'``).
     """
     check_figure_path(path)
-    if hasattr(result, "bodies"):  # an assembly's result
-        from .assembly_plot import draw_assembly
-
-        return write_figure(draw_assembly(result), path)
     return write_figure(draw_result(result), path)

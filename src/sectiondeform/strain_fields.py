@@ -34,12 +34,11 @@ data, in element order):
     holds with. Its sign in the solver is the opposite (the unknown is the
     mean stress tr σ / 3, positive in tension).
 
-Stress units: those of the rubber's moduli. A one-body section's rubber is
-neo-Hookean with a relative shear modulus (its shape does not depend on
-it): its stresses are in units of the shear modulus ("× shear modulus").
-An assembly's bodies each have their own rubber (``material``, in the unit
-the case gives, MPa by convention; shear modulus 1 for a body without one):
-their stresses are in that unit. A drag preview carries strains only (its
+Stress units: those of the rubber's moduli. Each body has its own rubber
+(``material``, in the unit the case gives, MPa by convention); a body
+without one (every ``section-case/1`` body) has the model's neo-Hookean
+rubber of shear modulus 1, a relative modulus (the shape does not depend on
+it): its stresses are in units of the shear modulus ("× shear modulus"). A drag preview carries strains only (its
 state is not a solution). The stresses need :func:`result_mechanics`.
 
 For the hyperelastic model these are the solution's strains. The paper
@@ -56,9 +55,10 @@ import numpy as np
 
 from .fem.elements import p2_gradients
 from .materials.measures import max_principal_strain, principal_stretches, von_mises
-from .materials.models import NeoHookean, gradient_3d
+from .materials.models import gradient_3d
 from .models.base import MeshData
 from .pappus import signed_distance
+from .result import RESULT_V1
 
 __all__ = ["element_gradients", "element_centres", "strain_fields", "result_fields", "result_mechanics", "Mechanics",
            "fields_json", "STRAIN_NOTE", "STRESS_NOTES"]
@@ -91,8 +91,9 @@ class Mechanics:
         Volumetric growth c of the elements (bodies of revolution under a
         volume law); 1 otherwise.
     relative : bool
-        The moduli are relative (a one-body section): stresses in units of
-        the shear modulus.
+        The moduli are relative (the body of a ``section-case/1`` problem,
+        which has no material: the model's rubber of shear modulus 1):
+        stresses in units of the shear modulus.
     """
 
     material: object
@@ -211,41 +212,29 @@ def result_mechanics(result) -> list:
 
     Parameters
     ----------
-    result : Result or AssemblyResult
+    result : Result
 
     Returns
     -------
     list of Mechanics or None
-        One entry per body (one for a :class:`~sectiondeform.result.Result`).
-        A one-body section's rubber is neo-Hookean, shear modulus 1 (the
-        model's, relative); an assembly's bodies have theirs, read from the
-        solved state. None for the paper model, and for a drag preview of
-        an assembly; a preview's ``mean_stress`` is None (its state is not a
-        solution).
+        One entry per body, read from the solved state
+        (:class:`~sectiondeform.models.hyperelastic.HyperelasticState`): the
+        body's rubber (a body without a ``material`` has the model's
+        neo-Hookean rubber of shear modulus 1; relative for the body of a
+        ``section-result/1`` result), its pressure field and its growth. None for the paper model and for a drag preview
+        without a state; a preview's ``mean_stress`` is None (its state is
+        not a solution).
     """
-    bodies = getattr(result, "bodies", None)
-    count = 1 if bodies is None else len(bodies)
-    if result.model != "hyperelastic":
-        return [None] * count
     state = getattr(result, "state", None)
-    if bodies is None:
-        preview = getattr(result.info, "preview", False)
-        mean = None
-        cells = np.asarray(result.final_mesh.cells)
-        z = getattr(state, "z", None)
-        if not preview and z is not None and result.final_mesh.kind == "triangle6":
-            dofs = 2 * len(result.final_mesh.points) + cells[:, :3]
-            if z.shape == (int(dofs.max()) + 1,):
-                mean = _mean_stress(z, dofs)
-        return [Mechanics(NeoHookean(1.0), mean, 1.0, relative=True)]
-    if not getattr(state, "materials", ()):
-        return [None] * count
+    if result.model != "hyperelastic" or not getattr(state, "materials", ()):
+        return [None] * len(result.bodies)
     out = []
-    for b, body in enumerate(bodies):
+    for b, body in enumerate(result.bodies):
+        material = state.materials[b]
         preview = getattr(body.info, "preview", False)
         mean = None if preview else _mean_stress(state.state.z, state.pressure_dofs[b])
         growth = float(state.stretches[b]) if state.growth else 1.0
-        out.append(Mechanics(state.materials[b], mean, growth))
+        out.append(Mechanics(material, mean, growth, relative=result.dialect == RESULT_V1))
     return out
 
 

@@ -204,18 +204,12 @@ def _assembly_opened(case_json: dict) -> dict:
 
 def _write(case_json: dict, model: str, what: str, ext: str) -> bytes:
     """The bytes of a case or result file, written in a private temporary folder."""
-    from ..case import case_from_dict
     from ..io import write_case, write_result
 
-    if engine.is_assembly(case_json):
-        if what != "case" or ext != ".json":
-            raise CaseError("save", f"the page saves an assembly as case.json only, not {what}{ext}; "
-                                    "deform it with the deform command for its result")
-        return json.dumps(engine.case_json_of(engine.case_from_json(case_json)), indent=1).encode("utf-8")
     with tempfile.TemporaryDirectory(prefix="sectiondeform-") as tmp:
         path = Path(tmp) / f"out{ext}"
         if what == "case":
-            write_case(path, engine.with_model(case_from_dict(case_json), model))
+            write_case(path, engine.with_model(engine.case_from_json(case_json), model))
         else:
             write_result(path, engine.full_result(case_json, model))
         return path.read_bytes()

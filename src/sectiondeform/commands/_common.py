@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import dataclasses
 import sys
 
 from ..errors import CaseError
 from ..laws import AreaRatio
 from ..models import MODEL_NAMES
+from ..result import RESULT_V1
 
 
 def add_model_args(parser) -> None:
@@ -17,33 +17,69 @@ def add_model_args(parser) -> None:
     parser.add_argument("--element-size", type=float, metavar="H", help="element size of the layered mesh, in the case's units")
 
 
-def apply_overrides(case, args):
-    """The case with the command line's ``--area-ratio`` and ``--model`` applied."""
-    if getattr(args, "area_ratio", None) is not None:
-        case = dataclasses.replace(case, law=AreaRatio(args.area_ratio))
+def apply_overrides(problem, args):
+    """The problem with the command line's ``--area-ratio`` and ``--model`` applied (``--element-size`` checked).
+
+    ``--area-ratio`` is the law of a one-body problem. A problem of several
+    bodies has one law per body: it is refused there, unless every body has
+    that law already (a drawing's reader gives it to every body).
+
+    Raises
+    ------
+    CaseError
+        One line naming the option.
+    """
+    ratio = getattr(args, "area_ratio", None)
+    if ratio is not None:
+        law = AreaRatio(ratio)
+        if len(problem.bodies) == 1:
+            problem = problem.replace(law=law)
+        elif any(b.law != law for b in problem.bodies):
+            raise CaseError("--area-ratio", f"the case has {len(problem.bodies)} bodies, each with its own law; "
+                                            "set each body's law in the case")
     if getattr(args, "model", None):
-        case = dataclasses.replace(case, options=case.options.replace(model=args.model))
+        problem = problem.replace(options=problem.options.replace(model=args.model))
     if getattr(args, "element_size", None) is not None and not args.element_size > 0:
         raise CaseError("--element-size", f"must be > 0, got {args.element_size}")
-    return case
+    return problem
 
 
-def summary(result, warnings: bool = True) -> str:
-    """A few lines on a result: areas, error, mesh and time; its warnings too unless ``warnings`` is False."""
-    u = result.units
-    q = result.quality
-    lines = [
-        f"{result.name} ({result.model} model)",
-        f"  initial area  {result.area_initial:12.4f} {u}²",
-        f"  target area   {result.area_target:12.4f} {u}²",
-        f"  final area    {result.area_final:12.4f} {u}²   relative error {result.relative_error:+.2e}",
-    ]
+def _body_lines(body, units: str) -> list[str]:
+    """A body's areas (and volumes of revolution) with the law's relative error, and its mesh."""
+    u, q = units, body.quality
+    lines = [f"initial area  {body.area_initial:12.4f} {u}²"]
+    if body.area_target is not None:
+        lines.append(f"target area   {body.area_target:12.4f} {u}²")
+    error = f"   relative error {body.relative_error:+.2e}"
+    lines.append(f"final area    {body.area_final:12.4f} {u}²" + (error if body.measure == "area" else ""))
+    if body.volume_initial is not None:
+        lines.append(f"initial volume {body.volume_initial:11.6g} {u}³")
+        if body.volume_target is not None:
+            lines.append(f"target volume {body.volume_target:12.6g} {u}³")
+        lines.append(f"final volume  {body.volume_final:12.6g} {u}³" + (error if body.measure == "volume" else ""))
     if q is not None:
-        text = f"  mesh          {q.initial.describe()}"
+        text = f"mesh          {q.initial.describe()}"
         if q.initial.jacobian_min is not None and q.final.jacobian_min is not None:
             text += (f", Jacobian {q.initial.jacobian_min:.4g}..{q.initial.jacobian_max:.4g} initial, "
                      f"{q.final.jacobian_min:.4g}..{q.final.jacobian_max:.4g} final")
         lines.append(text)
+    return lines
+
+
+def summary(result, warnings: bool = True) -> str:
+    """A few lines on a result: each body's areas, error and mesh, and the time; its warnings too unless False.
+
+    The bodies of a ``section-result/2`` result are each under their name;
+    the one body of a ``section-result/1`` result is the result itself.
+    """
+    named = result.dialect != RESULT_V1
+    count = f", {len(result.bodies)} bodies" if named else ""
+    lines = [f"{result.name} ({result.model} model{count})"]
+    for body in result.bodies:
+        if named:
+            lines.append(f"  {body.name}")
+        indent = "    " if named else "  "
+        lines += [indent + line for line in _body_lines(body, result.units)]
     t = result.timings
     lines.append(f"  time          prepare {1e3 * t['prepare_s']:.2f} ms, deform {1e3 * t['place_s']:.3f} ms")
     for w in result.warnings if warnings else ():

@@ -1,6 +1,7 @@
 """Time your own case: preparation and re-deformation, medians of repeated runs.
 
-Prepare is ``Deformer(case)`` (discretisation, initial mesh, location);
+Prepare is ``Deformer(case)`` (discretisation, initial meshes, location), for
+one body or several;
 re-deformation is ``deformer.deform()`` on the prepared section, the
 interactive use. Nothing is written. The project's own benchmark, with its
 targets, is ``python benchmarks/run.py`` in the source repository.
@@ -42,11 +43,11 @@ def run(args) -> int:
 
     if not 1 <= args.repeat <= 100_000:
         raise CaseError("--repeat", f"must be a whole number from 1 to 100000, got {args.repeat}")
-    case = apply_overrides(read_case(args.case), args)
-    deformer = Deformer(case, element_size=args.element_size)
-    prepare = _median_s(lambda: Deformer(case, element_size=args.element_size), args.repeat)
+    problem = apply_overrides(read_case(args.case), args)
+    deformer = Deformer(problem, element_size=args.element_size)
+    prepare = _median_s(lambda: Deformer(problem, element_size=args.element_size), args.repeat)
     redeform = _median_s(deformer.deform, args.repeat)
-    print(f"{case.name}: median of {args.repeat} runs")
+    print(f"{problem.name}: median of {args.repeat} runs ({len(problem.bodies)} bodies)")
     print(f"  prepare         {1e3 * prepare:10.3f} ms   Deformer(case)")
     print(f"  re-deformation  {1e3 * redeform:10.3f} ms   deformer.deform()")
     return 0

@@ -3,9 +3,10 @@
 Reads IN (.json, .dxf, .svg; drawings with the same options as deform) and
 writes OUT (.json, .dxf, .svg). The output file is written whole or not at all.
 
-An assembly (section-case/2) converts the same way: its drawing has the
-layers SUPPORT, TARGET and one per body (BODY-<name>-LOWER and -UPPER, or
-BODY-<name> as one closed contour); --area-ratio then sets every body's law.
+A case of several bodies (section-case/2) converts the same way: its drawing
+has the layers SUPPORT, TARGET and one per body (BODY-<name>-LOWER and
+-UPPER, or BODY-<name> as one closed contour); --area-ratio then sets every
+body's law (a JSON case of several bodies keeps each body's own).
 
 Examples
 --------
@@ -19,7 +20,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..assembly import Assembly
 from ..io import write_case
 from ._common import apply_overrides
 from ._io_args import add_input_args, read_input_case
@@ -28,16 +28,14 @@ from ._io_args import add_input_args, read_input_case
 def add_args(parser) -> None:
     parser.add_argument("input", type=Path, help="case file (.json, .dxf, .svg)")
     parser.add_argument("output", type=Path, help="case file to write (.json, .dxf, .svg)")
-    parser.add_argument("--area-ratio", type=float, metavar="R", help="the law: final area = R x initial area (an assembly drawing: every body's)")
+    parser.add_argument("--area-ratio", type=float, metavar="R", help="the law: final area = R x initial area (a drawing of several bodies: every body's)")
     add_input_args(parser)
 
 
 def run(args) -> int:
     report: list[str] = []
-    case = read_input_case(args.input, args, report)
-    if not isinstance(case, Assembly):  # an assembly's reader has applied --area-ratio to every body
-        case = apply_overrides(case, args)
-    write_case(args.output, case)
+    problem = apply_overrides(read_input_case(args.input, args, report), args)
+    write_case(args.output, problem)
     for line in report:
         print(f"  {line}")
     print(f"  wrote {args.output}")

@@ -1,8 +1,9 @@
 """Deform a case and write the result (JSON, or any format its extension names).
 
 Reads CASE (a section-case/1 or /2 JSON file, or another supported format), deforms
-the section onto its target under its law, and writes RESULT. The output
-file is written whole or not at all.
+every body onto the target under its law, and writes RESULT. The output
+file is written whole or not at all. --area-ratio sets the law of a case of
+one body; a case of several bodies has one law per body, set in the case.
 
 Example: sectiondeform deform case.json -o result.json --plot result.png
          sectiondeform deform profile.dxf --area-ratio 0.8 -o deformed.dxf --mesh-out final.vtu
@@ -12,11 +13,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..assembly import Assembly
 from ..deform import Deformer
 from ..errors import CaseError
 from ..io import write_result
-from ._assembly import run_assembly
 from ._common import add_model_args, apply_overrides, print_warnings, summary
 from ._io_args import add_input_args, add_output_args, check_outputs, output_options, read_input_case, write_meshes
 
@@ -76,20 +75,27 @@ def save_plot(args, result) -> None:
         save_figure(result, args.plot)
 
 
+def result_options(args, problem) -> dict:
+    """The writer's options for ``-o``: the JSON's meshes and fields, DXF splines, the case drawn under a DXF or SVG."""
+    ext = args.output.suffix.lower()
+    if ext == ".json":
+        return {"meshes": not args.no_meshes, "fields": bool(args.fields)}
+    options = output_options(args, args.output)
+    if ext in (".dxf", ".svg"):
+        options["case"] = problem
+    elif args.fields and ext in FIELD_FORMATS:
+        options["fields"] = True
+    return options
+
+
 def run(args) -> int:
     check_outputs(args)
     check_plot_field_args(args)
     check_fields_args(args)
     report: list[str] = []
-    case = read_input_case(args.case, args, report)
-    if isinstance(case, Assembly):
-        return run_assembly(args, case, report)
-    case = apply_overrides(case, args)
-    result = Deformer(case, element_size=args.element_size).deform()
-    options = {"meshes": False} if args.no_meshes and args.output.suffix.lower() == ".json" else output_options(args, args.output)
-    if args.fields and args.output.suffix.lower() in FIELD_FORMATS:
-        options["fields"] = True
-    write_result(args.output, result, **options)
+    problem = apply_overrides(read_input_case(args.case, args, report), args)
+    result = Deformer(problem, element_size=args.element_size).deform()
+    write_result(args.output, result, **result_options(args, problem))
     meshes = write_meshes(args, result)
     if args.plot:
         save_plot(args, result)

@@ -16,8 +16,8 @@ import time
 from pathlib import Path
 
 from .. import example_case_path
-from ..case import load_case
 from ..deform import Deformer
+from ..io.case import load_case
 from ._common import add_model_args, apply_overrides, summary
 
 

@@ -25,7 +25,7 @@ def add_args(parser) -> None:
     parser.add_argument("--save", choices=("results", "figures", "none"), default="none",
                         help="per-row files in OUTDIR/results/: result JSON, or result JSON and PNG figure")
     parser.add_argument("--csv", action="store_true", help="also write OUTDIR/rows.csv")
-    parser.add_argument("--reference", type=Path, metavar="RESULT", help="result JSON: add each row's Hausdorff distance to it")
+    parser.add_argument("--reference", type=Path, metavar="RESULT", help="result JSON (one body, or as many as the cases): add each row's Hausdorff distance to it")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
 
 

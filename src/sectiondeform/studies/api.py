@@ -108,7 +108,7 @@ def sweep(study, outdir=None, *, workers: int | None = None, scheduler: str | No
     csv : bool
         Also write ``outdir/rows.csv``.
     reference : str or Path, optional
-        A ``section-result/1`` file: the table gets the Hausdorff distance
+        A result file (one body or as many as the cases): the table gets the Hausdorff distance
         (units) of every row's contour to its contour.
     quiet : bool
         No progress bar on stderr.

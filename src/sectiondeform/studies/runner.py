@@ -17,9 +17,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ..case import load_case
 from ..compare import hausdorff_distance
-from . import _adapter
+from ..deform import Deformer
+from ..errors import CaseError
+from ..io.case import load_case
+from ..laws import AreaRatio
+from ..result import RESULT_V1
 from .study import Row, read_target
 from .targets import TRANSFORMS, transformed_target
 
@@ -27,7 +30,7 @@ __all__ = ["CACHE_SIZE", "Chunk", "run_chunk", "run_row"]
 
 CACHE_SIZE = 8
 _SECTIONS: OrderedDict = OrderedDict()  # section key -> Deformer, or the exception that preparing it raised
-_FILES: dict = {}  # path -> parsed target curve or reference contour
+_FILES: dict = {}  # path -> parsed target curve, or the reference's closed contours (one per body)
 _WORKER = f"{socket.gethostname()}:{os.getpid()}"
 
 
@@ -56,7 +59,7 @@ def _section(row: Row):
         _SECTIONS.move_to_end(key)
     else:
         try:
-            _SECTIONS[key] = _adapter.prepare(load_case(row.case_path), row.model, row.element_size)
+            _SECTIONS[key] = Deformer(load_case(row.case_path), model=row.model, element_size=row.element_size)
         except Exception as exc:  # noqa: BLE001 - a section that cannot be prepared fails each of its rows, not the study
             _SECTIONS[key] = exc
         while len(_SECTIONS) > CACHE_SIZE:
@@ -71,9 +74,46 @@ def _file(path: str, kind: str):
             _FILES[key] = read_target(path)
         else:
             data = json.loads(Path(path).read_text(encoding="utf-8"))
-            contour = np.asarray(data["contour"], dtype=np.float64)
-            _FILES[key] = np.concatenate((contour, contour[:1]))
+            contours = [data["contour"]] if "contour" in data else [b["contour"] for b in data["bodies"]]
+            _FILES[key] = [_closed(np.asarray(c, dtype=np.float64)) for c in contours]
     return _FILES[key]
+
+
+def _closed(contour: np.ndarray) -> np.ndarray:
+    return np.concatenate((contour, contour[:1]))
+
+
+def _hausdorff(result, reference: list) -> float:
+    """The largest Hausdorff distance of a body's contour to the reference's, body by body (units)."""
+    if len(reference) != len(result.bodies):
+        raise CaseError("reference", f"holds {len(reference)} bodies, the result {len(result.bodies)}")
+    return max(hausdorff_distance(_closed(b.contour), ref) for b, ref in zip(result.bodies, reference))
+
+
+def _figures(result) -> dict:
+    """The table's figures of a result: areas summed over the bodies, the worst error and Jacobian, quality and info.
+
+    ``quality`` and ``info`` are JSON text: the one body's object for a
+    ``section-result/1`` result, else an object by body name.
+    """
+    bodies = result.bodies
+    qualities = [b.quality.to_json() if b.quality is not None else {} for b in bodies]
+    infos = [b.info.to_json() for b in bodies]
+    jacobians = [q.get("final_jacobian_min", q.get("final_area_stretch_min")) for q in qualities]
+    jacobians = [j for j in jacobians if j is not None]
+    targets = [b.area_target for b in bodies]
+
+    def by_body(values):
+        return values[0] if result.dialect == RESULT_V1 else {b.name: v for b, v in zip(bodies, values)}
+
+    return dict(
+        area_initial=sum(b.area_initial for b in bodies),
+        area_target=None if None in targets else sum(targets),
+        area_final=sum(b.area_final for b in bodies),
+        relative_error=result.relative_error,
+        jacobian_min=min(jacobians, default=None),
+        quality=json.dumps(by_body(qualities), default=str), info=json.dumps(by_body(infos), default=str),
+    )
 
 
 def _message(exc: BaseException) -> str:
@@ -88,7 +128,8 @@ def run_row(row: Row, deformer, save: str = "none", outdir: str | None = None) -
     -------
     dict
         The row's inputs, ``ok``, ``error_type`` and ``error`` (one line),
-        areas (units²), ``relative_error`` of the law, ``jacobian_min``,
+        areas (units², summed over the bodies), ``relative_error`` of the
+        law (the worst body's), ``jacobian_min`` (the smallest),
         ``quality`` and ``info`` (JSON text), ``hausdorff`` (units),
         ``prepare_s``, ``place_s``, ``row_s`` (seconds) and ``worker``.
     """
@@ -101,21 +142,12 @@ def run_row(row: Row, deformer, save: str = "none", outdir: str | None = None) -
         base = None if row.target_path is None else _file(row.target_path, "target")
         amounts = {k: getattr(row, k) for k in TRANSFORMS}
         if any(v is not None for v in amounts.values()):
-            base = transformed_target(base if base is not None else deformer.case.target, **amounts)
-        result = _adapter.deform(deformer, base, row.area_ratio)
-        q = result.quality.to_json()
-        rec.update(
-            ok=True,
-            area_initial=result.area_initial, area_target=result.area_target, area_final=result.area_final,
-            relative_error=result.relative_error,
-            jacobian_min=q.get("final_jacobian_min", q.get("final_area_stretch_min")),
-            quality=json.dumps(q, default=str), info=json.dumps(result.info.to_json(), default=str),
-            warnings="; ".join(result.warnings) or None,
-            place_s=result.timings.get("place_s"),
-        )
+            base = transformed_target(base if base is not None else deformer.problem.target, **amounts)
+        result = deformer.deform(base, None if row.area_ratio is None else AreaRatio(row.area_ratio))
+        rec.update(ok=True, **_figures(result), warnings="; ".join(result.warnings) or None,
+                   place_s=result.timings.get("place_s"))
         if row.reference_path is not None:
-            contour = np.concatenate((result.contour, result.contour[:1]))
-            rec["hausdorff"] = hausdorff_distance(contour, _file(row.reference_path, "reference"))
+            rec["hausdorff"] = _hausdorff(result, _file(row.reference_path, "reference"))
         if save != "none" and outdir is not None:
             _save(result, row, save, Path(outdir))
     except Exception as exc:  # noqa: BLE001 - a failed row is recorded, never stops the study

@@ -17,10 +17,10 @@ import math
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
-from ..case import MODELS, load_case
 from ..curves import curve_from_json
 from ..errors import CaseError, SectionDeformError
-from . import _adapter
+from ..io.case import load_case
+from ..models import MODEL_NAMES
 from .targets import TRANSFORMS
 
 __all__ = ["AXES", "STUDY_FORMAT", "Row", "Study", "StudyError", "load_study", "study_from_dict"]
@@ -39,7 +39,7 @@ class StudyError(CaseError):
 
 @dataclass(frozen=True)
 class Row:
-    """One run of a study: a section (case, model, element size), a target and a law.
+    """One run of a study: a problem (case, model, element size; one body or several), a target and a law.
 
     Attributes
     ----------
@@ -51,13 +51,14 @@ class Row:
     element_size : float or None
         Units; None for the case's own.
     area_ratio : float or None
-        None keeps the case's law.
+        The law of a one-body case; None keeps the case's laws.
     bend_radius, crown, stretch, scale, rotate_deg, translate_x, translate_y : float or None
         Target transformations (see :mod:`sectiondeform.studies.targets`); None: not applied.
     target_file : str or None
         A target curve file (as the study names it) replacing the case's target.
     reference : str or None
-        A ``section-result/1`` file to measure the Hausdorff distance to.
+        A result file (``section-result/1`` or ``/2``, as many bodies as the
+        case) to measure the Hausdorff distance to, body by body.
     row_id : str
         Stable hash of the inputs and of the files' contents.
     """
@@ -158,8 +159,8 @@ def _axis(name: str, spec, field: str, base: Path) -> list:
     if name == "model":
         values = _values(spec, field)
         for i, v in enumerate(values):
-            if v is not None and v not in MODELS:
-                raise StudyError(f"{field}[{i}]", f"unknown model {v!r}; use one of {', '.join(MODELS)}")
+            if v is not None and v not in MODEL_NAMES:
+                raise StudyError(f"{field}[{i}]", f"unknown model {v!r}; use one of {', '.join(MODEL_NAMES)}")
         return values
     if name == "targets":
         return _target_files(spec, field, base)
@@ -230,11 +231,13 @@ def _case_rows(entry, field: str, defaults: dict, base: Path, reference: str | N
     ref = entry.get("reference", reference)
     if ref is not None and not isinstance(ref, str):
         raise StudyError(f"{field}.reference", f"expected a result file name, got {ref!r}")
+    _check_law_axis(case, axes, "vary.area_ratio" if "area_ratio" in defaults and "area_ratio" not in vary
+                    else f"{field}.vary.area_ratio")
     names = list(axes)
     rows = []
     for combo in itertools.product(*(axes[k] for k in names)):
         values = dict(zip(names, combo))
-        values["model"] = values.get("model") or _adapter.case_model(case)
+        values["model"] = values.get("model") or case.model
         target = values.pop("targets", None)
         rows.append(Row(
             case=name, case_path=str(case_path), target_file=target,
@@ -243,6 +246,13 @@ def _case_rows(entry, field: str, defaults: dict, base: Path, reference: str | N
             **values,
         ))
     return rows
+
+
+def _check_law_axis(problem, axes: dict, field: str) -> None:
+    """Refuse an ``area_ratio`` axis on a case of several bodies: each has its own law."""
+    if len(problem.bodies) > 1 and any(v is not None for v in axes.get("area_ratio", ())):
+        raise StudyError(field, f"sets the law of a one-body case; this case has {len(problem.bodies)} bodies, "
+                                "each with its own law (vary the target, model or element size)")
 
 
 def _finish(name: str, rows: list[Row], wheres: list[str]) -> Study:
@@ -318,8 +328,8 @@ def _csv_value(column: str, text: str, where: str):
     if text == "":
         return None
     if column in ("case", "model", "target_file", "reference"):
-        if column == "model" and text not in MODELS:
-            raise StudyError(where, f"unknown model {text!r}; use one of {', '.join(MODELS)}")
+        if column == "model" and text not in MODEL_NAMES:
+            raise StudyError(where, f"unknown model {text!r}; use one of {', '.join(MODEL_NAMES)}")
         return text
     try:
         value = float(text)

@@ -630,7 +630,7 @@ function download(blob, name) {
 
 document.querySelectorAll("[data-save]").forEach((b) => b.addEventListener("click", async () => {
   const name = b.dataset.save;
-  state.case.law = { area_ratio: state.ratio };
+  if (!isAssembly()) state.case.law = { area_ratio: state.ratio };   // an assembly's laws are its bodies'
   const r = await fetch("/api/save/" + name, {
     method: "POST", headers: { "Content-Type": "application/json" },
     body: JSON.stringify({ case: state.case, model: state.model }),
