@@ -98,8 +98,8 @@ def body_material(problem, b: int, bulk_to_shear: float | None = None, material=
     b : int
     bulk_to_shear : float, optional
         κ / μ replacing the rubber's own bulk modulus.
-    material : NeoHookean or MooneyRivlin or Yeoh, optional
-        A rubber replacing the body's ``material``.
+    material : NeoHookean or MooneyRivlin or Yeoh or dict, optional
+        A rubber (or the case format's ``material`` object) replacing the body's ``material``.
 
     Raises
     ------
@@ -112,9 +112,11 @@ def body_material(problem, b: int, bulk_to_shear: float | None = None, material=
     data = problem.bodies[b].material_data
     case_k = problem.options.for_model("hyperelastic").bulk_to_shear
     own = material is None and any(k in data for k in ("bulk_modulus", "bulk_to_shear"))
-    if material is None:
+    if material is None or isinstance(material, dict):
+        own = own if material is None else any(k in material for k in ("bulk_modulus", "bulk_to_shear"))
         k = None if case_k is None else _positive(case_k, "options.bulk_to_shear")
-        material = material_from_json(data, f"{prefix}material", default_bulk_to_shear=k)
+        field = f"{prefix}material" if material is None else "material"
+        material = material_from_json(data if material is None else material, field, default_bulk_to_shear=k)
     elif not (hasattr(material, "kappa") and hasattr(material, "first_piola")):
         raise CaseError("material", f"expected a rubber of sectiondeform.materials, got {type(material).__name__}")
     field_k = f"{prefix}material.bulk_to_shear" if own else "options.bulk_to_shear"
@@ -181,8 +183,9 @@ def solve_reference(
         κ / μ of every body, at least 100; by default each material's, else
         the case's ``options.bulk_to_shear``, else 1000. Given explicitly,
         it replaces the materials' own bulk moduli.
-    material : NeoHookean or MooneyRivlin or Yeoh, optional
-        One rubber for every body, instead of their ``material`` objects.
+    material : NeoHookean or MooneyRivlin or Yeoh or dict, optional
+        One rubber (or the case format's ``material`` object) for every
+        body, instead of their own ``material`` objects.
     tol : float
         Newton tolerance on the correction, relative to T (displacement) and
         to μ (pressure).
