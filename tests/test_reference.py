@@ -18,8 +18,8 @@ import sectiondeform as sd
 pytest.importorskip("skfem")
 pytest.importorskip("triangle")
 
-from sectiondeform.reference import solve_reference  # noqa: E402
 from sectiondeform.materials import NeoHookean  # noqa: E402
+from sectiondeform.reference import solve_reference  # noqa: E402
 from sectiondeform.reference.mesh import triangulate  # noqa: E402
 from sectiondeform.reference.solver import MixedProblem, neo_hookean  # noqa: E402
 
