@@ -119,6 +119,8 @@ def body_material(problem, b: int, bulk_to_shear: float | None = None, material=
         material = material_from_json(data if material is None else material, field, default_bulk_to_shear=k)
     elif not (hasattr(material, "kappa") and hasattr(material, "first_piola")):
         raise CaseError("material", f"expected a rubber of sectiondeform.materials, got {type(material).__name__}")
+    else:
+        own, prefix = True, ""
     field_k = f"{prefix}material.bulk_to_shear" if own else "options.bulk_to_shear"
     if bulk_to_shear is not None:
         material = dataclasses.replace(material, bulk_modulus=None, bulk_to_shear=_positive(bulk_to_shear, field_k))
