@@ -20,9 +20,9 @@ import sectiondeform as sd
 pytest.importorskip("skfem")
 pytest.importorskip("triangle")
 
+from sectiondeform.io.case import case_from_dict  # noqa: E402
 from sectiondeform.materials import MooneyRivlin, NeoHookean, Yeoh  # noqa: E402
 from sectiondeform.materials.homogeneous import nominal_stress  # noqa: E402
-from sectiondeform.io.case import case_from_dict  # noqa: E402
 from sectiondeform.reference import solve_reference  # noqa: E402
 
 from conftest import CASES_DIR  # noqa: E402
