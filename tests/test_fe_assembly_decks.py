@@ -13,9 +13,9 @@ from sectiondeform.cli import main
 from sectiondeform.errors import CaseError
 from sectiondeform.external.axis import axis_frame, reverse_orientation
 from sectiondeform.external.deck import build_deck, deck_text
-from sectiondeform.external.fe_assembly import read_fe_assembly
 from sectiondeform.external.mesh import element_areas
-from sectiondeform.external.solve_assembly import revolved_volumes
+from sectiondeform.external.solve import revolved_volumes
+from sectiondeform.io.case import case_from_dict
 
 CASES = Path(__file__).parent / "data" / "cases" / "v2"
 STRIP = CASES / "two-layer-strip.json"
@@ -50,7 +50,7 @@ def small_strip() -> dict:
 
 
 def deck_of(data: dict, **kw):
-    deck = build_deck(read_fe_assembly(data), **kw)
+    deck = build_deck(case_from_dict(data), **kw)
     return deck, parse(deck_text(deck))
 
 
@@ -100,10 +100,10 @@ def test_bonded_bodies_share_their_nodes_on_the_shared_piece():
 def test_support_nodes_go_onto_the_target_and_laws_are_said():
     data = json.loads(STRIP.read_text())
     deck, blocks = deck_of(data, mesh_size=0.6)
-    fe = read_fe_assembly(data)
+    fe = case_from_dict(data)
     x0 = deck.mesh.points[deck.mesh.lower_nodes]
     assert np.allclose(x0[:, 1], 0.0) and np.allclose(deck.mesh.lower_fractions, x0[:, 0] / 100.0)
-    on_target = fe.assembly.target.at_fractions(x0[:, 0] / 100.0)
+    on_target = fe.target.at_fractions(x0[:, 0] / 100.0)
     assert np.allclose(deck.placed_points[deck.mesh.lower_nodes] + deck.support_displacement, on_target, atol=1e-12)
     head = deck_text(deck).split("*NODE")[0]
     assert "NOT EXPRESSED" in head and "area ratio 0.95" in head and "area ratio 0.9" in head
@@ -149,14 +149,14 @@ def test_revolution_deck_is_written_in_r_z_with_counter_clockwise_axisymmetric_e
         cells = np.array([[int(v) - 1 for v in r[1:]] for r in blocks[f"*ELEMENT, TYPE=CAX6, ELSET={name}"]])
         assert element_areas(rz, cells, 3).min() > 0  # counter-clockwise in (r, z)
     # Support displacements in (u_r, u_z): the support nodes go onto the target, mapped to (r, z).
-    fe = read_fe_assembly(data)
+    fe = case_from_dict(data)
     u = {}
     for node, dof, _, value in blocks["*BOUNDARY"]:
         u.setdefault(int(node) - 1, [0.0, 0.0])[int(dof) - 1] = float(value)
     nodes = np.array(sorted(u))
     final = rz[nodes] + np.array([u[k] for k in nodes])
     frac = dict(zip(deck.mesh.lower_nodes.tolist(), deck.mesh.lower_fractions.tolist()))
-    target = fe.assembly.target.at_fractions(np.array([frac[k] for k in nodes]))
+    target = fe.target.at_fractions(np.array([frac[k] for k in nodes]))
     assert np.allclose(final, target[:, ::-1] + [250.0, 0.0], atol=1e-9)
     head = deck_text(deck).split("*NODE")[0]
     assert "r = (X - [0.0, -250.0])" in head and "volume ratio 0.98" in head

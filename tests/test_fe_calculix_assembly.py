@@ -14,8 +14,8 @@ import pytest
 from sectiondeform.cli import main
 from sectiondeform.external.calculix import run_ccx
 from sectiondeform.external.deck import build_deck, deck_text
-from sectiondeform.external.fe_assembly import read_fe_assembly
-from sectiondeform.external.solve_assembly import solve_calculix_assembly
+from sectiondeform.external.solve import solve_calculix
+from sectiondeform.io.case import case_from_dict
 
 sys.path.insert(0, str(Path(__file__).parent))
 from test_fe_assembly_decks import small_strip  # noqa: E402
@@ -45,7 +45,7 @@ def ring_case() -> dict:
 
 
 def test_axisymmetric_ring_keeps_area_times_radius(ccx):
-    result = solve_calculix_assembly(read_fe_assembly(ring_case()), mesh_size=1.0)
+    result = solve_calculix(case_from_dict(ring_case()), mesh_size=1.0)
     body = result.bodies[0]
     # Incompressible: the volume 2 pi * area * centroid radius is kept (to kappa = 1000 mu).
     assert body.volume_initial == pytest.approx(2 * np.pi * 40.0 * 21.0, rel=1e-12)
@@ -92,7 +92,7 @@ def test_ccx_reads_the_nodes_and_the_support_motion_as_the_deck_means_them(ccx):
     # CalculiX reads only the first 20 characters of a real; this deck has a coordinate that took 21 when
     # written with 15 digits (-1.8e-15, read as -0.18). Its .frd gives back the nodes as read, and the
     # support's displacements, which *BOUNDARY prescribes exactly.
-    deck = build_deck(read_fe_assembly(small_strip()), mesh_size=1.0)
+    deck = build_deck(case_from_dict(small_strip()), mesh_size=1.0)
     results, _ = run_ccx(deck_text(deck), job="numbers")
     assert results.nodes.tolist() == list(range(1, len(deck.mesh.points) + 1))
     assert np.abs(results.coordinates[:, :2] - deck.placed_points).max() < 1e-4  # .frd: 6 digits

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import json
 import math
 import sys
@@ -13,11 +12,10 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from sectiondeform.case import load_case
 from sectiondeform.external.deck import build_deck, deck_text
-from sectiondeform.external.fe_assembly import read_fe_assembly
 from sectiondeform.external.inp_number import FIELD_WIDTH, inp_real
 from sectiondeform.external.material_cards import hyperelastic_card
+from sectiondeform.io.case import case_from_dict, load_case
 from sectiondeform.laws import AreaRatio
 from sectiondeform.materials.models import MooneyRivlin, NeoHookean, Yeoh
 
@@ -47,11 +45,11 @@ def test_nan_and_infinity_are_refused():
 
 
 def _v2(name: str):
-    return build_deck(read_fe_assembly(json.loads((DATA / "v2" / f"{name}.json").read_text())), mesh_size=0.3)
+    return build_deck(case_from_dict(json.loads((DATA / "v2" / f"{name}.json").read_text())), mesh_size=0.3)
 
 
 def _v1(name: str):
-    return build_deck(dataclasses.replace(load_case(DATA / f"{name}.json"), law=AreaRatio(1.0)), mesh_size=0.1)
+    return build_deck(load_case(DATA / f"{name}.json").replace(law=AreaRatio(1.0)), mesh_size=0.1)
 
 
 @pytest.mark.parametrize("make, name", [(_v2, "two-layer-strip"), (_v2, "tread-on-drum"), (_v1, "grooved-tread"),

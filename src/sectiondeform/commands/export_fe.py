@@ -38,19 +38,7 @@ def add_fe_args(parser) -> None:
 
 
 def read_fe_case(path: Path, args):
-    """The case of a command line: a version-1 Case, or a version-2 FeAssembly (bodies, revolution)."""
-    from ..case import read_json
-    from ..external.deck import check_case_format
-    from ..external.fe_assembly import read_fe_assembly
-
-    if Path(path).suffix.lower() == ".json" and Path(path).is_file():
-        data = read_json(path)
-        check_case_format(data)
-        if isinstance(data, dict) and data.get("format") == "section-case/2":
-            if getattr(args, "area_ratio", None) is not None:
-                raise CaseError("--area-ratio", "a section-case/2 case has one law per body; set each body's law in "
-                                "the case")
-            return read_fe_assembly(data)
+    """The problem of a command line (any case format, either version), with ``--area-ratio`` applied."""
     return apply_overrides(read_case(path), args)
 
 
@@ -74,6 +62,6 @@ def run(args) -> int:
     for line in deck.unexpressed:
         eprint(f"sectiondeform export-fe: warning: {line}")
     m = deck.mesh
-    print(f"wrote {args.output}: {len(m.points)} nodes, {len(m.cells)} {deck.element.name} elements, "
-          f"{len(m.lower_nodes)} support nodes")
+    print(f"wrote {args.output}: {len(m.points)} nodes, {len(m.cells)} {deck.element.name} elements in "
+          f"{len(deck.bodies)} element set{'s' if len(deck.bodies) > 1 else ''}, {len(m.lower_nodes)} support nodes")
     return 0

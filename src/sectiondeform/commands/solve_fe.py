@@ -3,7 +3,8 @@
 Writes the case's deck (as export-fe), runs CalculiX's ccx in a temporary
 folder with its increments on stderr, reads the displacements back and maps
 the upper curve's characteristic points through the deformed elements. The
-result is a section-result/1 (model "calculix"), or a section-result/2 for a
+result is written in the case's dialect: a section-result/1 (model
+"calculix") for a section-case/1 case, a section-result/2 for a
 section-case/2 case (bonded bodies, bodies of revolution: each body's
 points, areas, and volumes about the axis). Needs ccx (Debian/Ubuntu:
 apt-get install calculix-ccx).
@@ -34,7 +35,6 @@ def add_args(parser) -> None:
 
 
 def run(args) -> int:
-    from ..external.fe_assembly import FeAssembly
     from ..external.solve import solve_calculix
     from ..io import check_figure_path
 
@@ -47,39 +47,9 @@ def run(args) -> int:
         raise CaseError("--output", f"a result is a .json file, got {args.output.name!r}")
     if args.plot is not None:
         check_figure_path(args.plot)
-    case = read_fe_case(args.case, args)
-    if isinstance(case, FeAssembly):
-        return _run_assembly(args, case)
-    solution = solve_calculix(case, element=args.element, mesh_size=args.mesh_size,
-                              progress=None if args.quiet else eprint, keep=args.keep, timeout=args.timeout)
-    for line in solution.warnings:
-        eprint(f"sectiondeform solve-fe: warning: {line}")
-    result = solution.to_result()
-    if args.output is not None:
-        text = json.dumps(result.to_json(), indent=1) + "\n"
-        atomic_write(args.output, lambda tmp: tmp.write_text(text, encoding="utf-8"))
-    if args.plot is not None:
-        from ..plot import save_figure
-
-        save_figure(result, args.plot)
-    info = solution.info
-    print(f"{case.name} (CalculiX, {solution.elements} {solution.deck.element.name} elements)")
-    print(f"  area initial {result.area_initial:.4f}, final {result.area_final:.4f} {case.units}²  "
-          f"(relative error to the law {result.relative_error:+.2e})")
-    print(f"  {info['increments']} increments, {info['iterations']} iterations, {info['cutbacks']} cut-backs, "
-          f"{solution.seconds:.1f} s")
-    written = [str(p) for p in (args.output, args.plot) if p is not None]
-    if written:
-        print(f"  wrote {' and '.join(written)}")
-    return 0
-
-
-def _run_assembly(args, fe) -> int:
-    """solve-fe on a section-case/2 case: a section-result/2."""
-    from ..external.solve_assembly import solve_calculix_assembly
-
-    result = solve_calculix_assembly(fe, element=args.element, mesh_size=args.mesh_size,
-                                     progress=None if args.quiet else eprint, keep=args.keep, timeout=args.timeout)
+    problem = read_fe_case(args.case, args)
+    result = solve_calculix(problem, element=args.element, mesh_size=args.mesh_size,
+                            progress=None if args.quiet else eprint, keep=args.keep, timeout=args.timeout)
     for line in result.warnings:
         eprint(f"sectiondeform solve-fe: warning: {line}")
     if args.output is not None:
@@ -91,12 +61,12 @@ def _run_assembly(args, fe) -> int:
         save_figure(result, args.plot)
     info = result.bodies[0].info
     print(f"{result.name} (CalculiX, {sum(b.quality.initial.elements for b in result.bodies)} {info.element_type} "
-          f"elements, {len(result.bodies)} bodies)")
+          f"elements, {len(result.bodies)} bod{'y' if len(result.bodies) == 1 else 'ies'})")
     for b in result.bodies:
         text = f"  {b.name:<12} area {b.area_initial:.4f} -> {b.area_final:.4f} {result.units}²"
         if b.volume_initial is not None:
             text += f", volume {b.volume_initial:.6g} -> {b.volume_final:.6g} {result.units}³"
-        print(text)
+        print(text + f"  (relative error to the law {b.relative_error:+.2e})")
     print(f"  {info.increments} increments, {info.iterations} iterations, {info.cutbacks} cut-backs, "
           f"{result.timings['solve_s']:.1f} s")
     written = [str(p) for p in (args.output, args.plot) if p is not None]

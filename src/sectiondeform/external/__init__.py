@@ -1,9 +1,10 @@
 """Hand a case to the finite-element solvers engineers trust: Abaqus/CalculiX decks, CalculiX runs.
 
-:mod:`.deck` writes a complete ``.inp`` deck (mesh, sets, material, support
-motion, step; reals by :mod:`.inp_number`); :mod:`.calculix` runs ``ccx``; :mod:`.frd` reads its results;
-:mod:`.solve` turns them into a ``section-result``; :mod:`.validation`
-compares the project's models with it.
+:mod:`.deck` writes one complete ``.inp`` deck of any problem (one conforming
+mesh from :mod:`.mesh`, a set, section and material per body, support motion,
+step; reals by :mod:`.inp_number`); :mod:`.calculix` runs ``ccx``; :mod:`.frd`
+reads its results; :mod:`.solve` turns them into a :class:`~sectiondeform.result.Result`;
+:mod:`.validation` hands it to ``validate`` as a reference.
 """
 
 DEFAULT_MESH_SIZE = 0.1

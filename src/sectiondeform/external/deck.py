@@ -19,11 +19,12 @@ writes it in the keyword syntax both Abaqus/Standard and CalculiX read:
 Every real is written in at most 20 characters (:func:`.inp_number.inp_real`):
 CalculiX reads no more of a field and drops the rest without a word.
 
-The default element, CPE6, does not lock for nearly incompressible rubber
-in CalculiX 2.20, which has no hybrid elements. The deck is designed for
-several bodies (one set, section and material each) and for bodies of
-revolution (CAX elements); the case format of version 1 has one plane body,
-so only that is built today.
+One writer for every problem: one body or several bonded ones (one
+conforming mesh, shared nodes on shared pieces, one element set, section and
+material per body; a ``section-case/1`` problem's set is ``BODY``), plane
+(CPE elements) or of revolution (CAX elements, nodes in (r, z), see
+:mod:`.axis`). The default element, CPE6, does not lock for nearly
+incompressible rubber in CalculiX 2.20, which has no hybrid elements.
 """
 
 from __future__ import annotations
@@ -36,14 +37,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import CaseError
-from ..materials.models import NeoHookean
-from ..section import build_section
-from .assembly_mesh import assembly_mesh, body_ring
+from ..materials.models import material_from_json
+from ..problem import V1
 from .axis import AxisFrame, axis_frame, reverse_orientation
-from .fe_assembly import FeAssembly
 from .inp_number import inp_real
 from .material_cards import hyperelastic_card, material_summary
-from .mesh import FeMesh, element_areas, fe_mesh
+from .mesh import FeMesh, element_areas
 
 __all__ = [
     "DEFAULT_AXI_ELEMENT",
@@ -53,10 +52,7 @@ __all__ = [
     "Body",
     "Deck",
     "ElementType",
-    "build_assembly_deck",
     "build_deck",
-    "case_option",
-    "check_case_format",
     "rigid_fit",
     "deck_text",
     "default_element",
@@ -171,14 +167,15 @@ class Deck:
     element : ElementType
     bodies : tuple of Body
     support_displacement : (n_l, 2) float64 ndarray
-        Displacement of each of ``mesh.lower_nodes``, units, in (x, y).
+        Displacement of each of ``mesh.lower_nodes`` beyond the rigid
+        placement, units, in (x, y).
     unexpressed : tuple of str
         What the case asks for that the deck cannot say (one sentence each).
     area_initial : float
         Mesh area, units².
     area_target : float
-        The case's law applied to it, units² (version 1; the sum of the
-        bodies' targets for an assembly).
+        The sum of the bodies' area targets (a body under a volume law
+        counts its initial area), units².
     axis : AxisFrame or None
         For a body of revolution: the map to the solver's (r, z), in which
         the deck writes its nodes and displacements.
@@ -251,33 +248,6 @@ def rigid_fit(points: np.ndarray, targets: np.ndarray, axis: AxisFrame | None = 
     return R, cy - R @ cx
 
 
-def case_option(case, key: str, default):
-    """One option of a case (a common option or a model's, e.g. ``bulk_to_shear``); ``default`` when unset."""
-    options = getattr(case, "options", None)
-    if options is None:
-        return default
-    if isinstance(options, dict):
-        value = options.get(key)
-    else:
-        value = getattr(options, key, None)
-        if value is None:
-            value = dict(getattr(options, "model_values", ())).get(key)
-    return default if value is None else value
-
-
-def check_case_format(data: dict) -> None:
-    """Refuse, in one line, a case format the deck writer does not know.
-
-    Raises
-    ------
-    CaseError
-        For a ``format`` other than ``section-case/1`` and ``section-case/2``.
-    """
-    if isinstance(data, dict) and data.get("format") not in (None, "section-case/1", "section-case/2"):
-        raise CaseError("format", f"{data.get('format')!r} is not a case format the solver decks know; "
-                        "give a section-case/1 or section-case/2 case")
-
-
 def default_element(axisymmetric: bool) -> str:
     """The element that does not lock for nearly incompressible rubber in CalculiX: CPE6, or CAX6 for revolution."""
     return DEFAULT_AXI_ELEMENT if axisymmetric else DEFAULT_ELEMENT
@@ -313,55 +283,6 @@ def _hybrid_note(el: ElementType) -> list[str]:
     return [f"{el.name} is a hybrid element: Abaqus runs it, CalculiX 2.20 does not (use {plain[:3]}6 or {plain[:3]}8R)"]
 
 
-def build_deck(case, element: str | None = None, mesh_size: float = DEFAULT_MESH_SIZE,
-               shear_modulus: float = 1.0) -> Deck:
-    """The deck of a case: a version-1 :class:`~sectiondeform.case.Case` or a version-2 :class:`FeAssembly`.
-
-    Parameters
-    ----------
-    case : Case or FeAssembly
-    element : str, optional
-        Abaqus element name (see :data:`ELEMENTS`): plane strain for a plane
-        case, axisymmetric for a body of revolution; by default
-        :func:`default_element`.
-    mesh_size : float
-        Triangle size as a fraction of each body's mesh scale (mean thickness).
-    shear_modulus : float
-        μ of a version-1 case (the shape does not depend on it).
-
-    Returns
-    -------
-    Deck
-
-    Raises
-    ------
-    CaseError
-        For an unknown element or one of the wrong family, a mesh size not > 0.
-    """
-    if isinstance(case, FeAssembly):
-        return build_assembly_deck(case, element, mesh_size)
-    el = _element(element)
-    mesh_size = _mesh_size(mesh_size)
-    k = float(case_option(case, "bulk_to_shear", DEFAULT_BULK_TO_SHEAR))
-    section = build_section(case)
-    mesh = fe_mesh(section, case.lower, mesh_size * section.mesh_scale, el.family, el.nodes)
-    support = np.asarray(case.target.at_fractions(mesh.lower_fractions), dtype=np.float64)
-    R, t = rigid_fit(mesh.points[mesh.lower_nodes], support)
-    displacement = support - (mesh.points[mesh.lower_nodes] @ R.T + t)
-    area0 = float(element_areas(mesh.points, mesh.cells, mesh.corners).sum())
-    area_target = float(case.law.target_area(area0))
-    unexpressed = []
-    ratio = area_target / area0
-    if abs(ratio - 1.0) > 1e-12:
-        unexpressed.append(_area_note("the law", ratio))
-    unexpressed += _hybrid_note(el)
-    body = Body("BODY", np.arange(len(mesh.cells), dtype=np.int64), NeoHookean(float(shear_modulus), bulk_to_shear=k),
-                f"area ratio {ratio:.6g}")
-    return Deck(name=case.name, units=case.units, mesh=mesh, element=el, bodies=(body,),
-                support_displacement=displacement, unexpressed=tuple(unexpressed), area_initial=area0,
-                area_target=area_target, rotation=R, translation=t)
-
-
 def _area_note(who: str, ratio: float) -> str:
     return (f"{who} asks for area ratio {ratio:.6g}: generalised plane strain with an out-of-plane stretch "
             f"1/r = {1.0 / ratio:.6g} has no element in CalculiX; this deck is plain plane strain (area kept up to "
@@ -380,48 +301,80 @@ def _set_name(name: str, used: set) -> str:
     return out
 
 
-def build_assembly_deck(fe: FeAssembly, element: str | None = None, mesh_size: float = DEFAULT_MESH_SIZE) -> Deck:
-    """The deck of a version-2 case: one conforming mesh, one element set, section and material per body.
+def _law_text(law) -> str:
+    """E.g. ``"area ratio 0.9"``."""
+    return f"{law.key.replace('_', ' ')} {law.ratio:.6g}"
+
+
+def _bodies(problem, body_of: np.ndarray, areas: np.ndarray, axisymmetric: bool):
+    """Each body of the deck (set, elements, rubber, law), what the deck cannot say, and the sum of the targets."""
+    k = dict(problem.options.model_values).get("bulk_to_shear", DEFAULT_BULK_TO_SHEAR)
+    bodies, unexpressed, used, target = [], [], set(), 0.0
+    for i, b in enumerate(problem.bodies):
+        elements = np.flatnonzero(body_of == i).astype(np.int64)
+        where = "" if problem.dialect == V1 else f"bodies[{i}]."
+        material = material_from_json(b.material_data, f"{where}material", default_bulk_to_shear=k)
+        name = "BODY" if problem.dialect == V1 else _set_name(b.name, used)
+        law = b.law
+        bodies.append(Body(name, elements, material, _law_text(law)))
+        area = float(areas[elements].sum())
+        target += law.target_area(area) if law.measure == "area" else area
+        if abs(law.ratio - 1.0) > 1e-12:
+            who = problem.label(i) or "the law"
+            if law.measure == "area" and not axisymmetric:
+                unexpressed.append(_area_note(who, law.ratio))
+            else:
+                unexpressed.append(f"{who} asks for {_law_text(law)}: volumetric growth has no place in a "
+                                   "hyperelastic deck; the rubber keeps its volume up to compressibility")
+    return tuple(bodies), unexpressed, target
+
+
+def build_deck(problem, element: str | None = None, mesh_size: float = DEFAULT_MESH_SIZE) -> Deck:
+    """The deck of a problem: one conforming mesh, one element set, section and material per body.
 
     Shared pieces are bonded (the bodies share their nodes there); the
     support's nodes go onto the target by the arc-length rule; a body of
     revolution is written in the solver's (r, z) (see :mod:`.axis`).
     What the solver cannot express (an area ratio other than 1 on a plane
     body, a volume ratio other than 1: growth) is in :attr:`Deck.unexpressed`.
+
+    Parameters
+    ----------
+    problem : Problem
+        One body or several, plane or of revolution.
+    element : str, optional
+        Abaqus element name (see :data:`ELEMENTS`): plane strain for a plane
+        problem, axisymmetric for bodies of revolution; by default
+        :func:`default_element`.
+    mesh_size : float
+        Triangle size as a fraction of each body's mesh scale (mean thickness).
+
+    Returns
+    -------
+    Deck
+
+    Raises
+    ------
+    CaseError
+        For an unknown element or one of the wrong family, a mesh size not > 0.
     """
-    axisymmetric = fe.revolution is not None
+    from .mesh import fe_mesh
+
+    axisymmetric = problem.revolution is not None
     el = _element(element, axisymmetric)
-    mesh_size = _mesh_size(mesh_size)
-    a = fe.assembly
-    sections = [build_section(a.body_case(i)) for i in range(len(a.bodies))]
-    sizes = [mesh_size * s.mesh_scale for s in sections]
-    rings = [body_ring(s, h) for s, h in zip(sections, sizes)]
-    mesh, body_of = assembly_mesh(rings, sizes, a.layout.fine["support"], a.layout.tolerance, el.family, el.nodes)
+    mesh, body_of = fe_mesh(problem, _mesh_size(mesh_size), el.family, el.nodes)
     order = np.argsort(body_of, kind="stable")  # each body's elements in one run of numbers
     mesh = dataclasses.replace(mesh, cells=mesh.cells[order])
     mesh.cells.setflags(write=False)
-    body_of = body_of[order]
-    support = np.asarray(a.target.at_fractions(mesh.lower_fractions), dtype=np.float64)
+    support = np.asarray(problem.target.at_fractions(mesh.lower_fractions), dtype=np.float64)
     areas = element_areas(mesh.points, mesh.cells, mesh.corners)
-    axis = axis_frame(fe.revolution.axis, mesh.points) if axisymmetric else None
+    axis = axis_frame(problem.revolution.axis, mesh.points) if axisymmetric else None
     R, t = rigid_fit(mesh.points[mesh.lower_nodes], support, axis)
-    displacement = support - (mesh.points[mesh.lower_nodes] @ R.T + t)
-    bodies, unexpressed, used, target = [], [], set(), 0.0
-    for i, (b, law, material) in enumerate(zip(a.bodies, fe.laws, fe.materials)):
-        elements = np.flatnonzero(body_of == i).astype(np.int64)
-        bodies.append(Body(_set_name(b.name, used), elements, material, law.text))
-        area = float(areas[elements].sum())
-        target += law.ratio * area if law.key == "area_ratio" else area
-        if abs(law.ratio - 1.0) > 1e-12:
-            if law.key == "area_ratio" and not axisymmetric:
-                unexpressed.append(_area_note(f"{a.label(i)}", law.ratio))
-            else:
-                unexpressed.append(f"{a.label(i)} asks for {law.text}: volumetric growth has no place in a "
-                                   "hyperelastic deck; the rubber keeps its volume up to compressibility")
-    unexpressed += _hybrid_note(el)
-    return Deck(name=a.name, units=a.units, mesh=mesh, element=el, bodies=tuple(bodies),
-                support_displacement=displacement, unexpressed=tuple(unexpressed),
-                area_initial=float(areas.sum()), area_target=float(target), axis=axis, rotation=R, translation=t)
+    bodies, unexpressed, target = _bodies(problem, body_of[order], areas, axisymmetric)
+    return Deck(name=problem.name, units=problem.units, mesh=mesh, element=el, bodies=bodies,
+                support_displacement=support - (mesh.points[mesh.lower_nodes] @ R.T + t),
+                unexpressed=tuple(unexpressed + _hybrid_note(el)), area_initial=float(areas.sum()),
+                area_target=float(target), axis=axis, rotation=R, translation=t)
 
 
 def _rows(first: int, table: np.ndarray) -> list[str]:

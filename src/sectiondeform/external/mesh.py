@@ -1,9 +1,10 @@
 """The finite-element mesh of a case for an external solver: corners, mid-edge nodes, quads.
 
 The corners come from the project's reference mesher
-(:func:`~sectiondeform.reference.mesh.triangulate_section`, quality triangles
-whose vertices include every characteristic point of the upper curve and the
-lower nodes with their arc-length fractions). From them:
+(:func:`~sectiondeform.reference.mesh.triangulate`: one conforming mesh of
+the bodies' union, quality triangles whose vertices include the upper
+curves' characteristic points, thinned to a third of the element size, and
+the support's nodes with their arc-length fractions). From them:
 
 * triangles (``CPE3``) are used as they are; six-node triangles (``CPE6``)
   get a node at the middle of every edge;
@@ -22,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["FeMesh", "add_mid_nodes", "element_areas", "fe_mesh", "split_into_quads", "thin_polyline"]
+__all__ = ["FeMesh", "add_mid_nodes", "element_areas", "fe_mesh", "split_into_quads"]
 
 #: meshio's name of each (family, nodes) mesh kind.
 KINDS = {("triangle", 3): "triangle", ("triangle", 6): "triangle6", ("quad", 4): "quad", ("quad", 8): "quad8"}
@@ -42,12 +43,13 @@ class FeMesh:
     kind : str
         ``"triangle"``, ``"triangle6"``, ``"quad"`` or ``"quad8"``.
     lower_nodes : (n_l,) int64 ndarray
-        Nodes on the lower curve, by increasing fraction (A to B).
+        Nodes on the support, by increasing fraction (A to B).
     lower_fractions : (n_l,) float64 ndarray
-        Arc-length fraction of each of ``lower_nodes``.
+        Arc-length fraction of each of ``lower_nodes`` on the support.
     upper_nodes : (m',) int64 ndarray
-        Nodes of the upper curve's characteristic points kept as mesh
-        nodes (see :func:`thin_polyline`), B to A.
+        Nodes of the upper curves' characteristic points kept as mesh
+        nodes (:func:`~sectiondeform.reference.mesh.thin_polyline`), body
+        by body, each B to A.
     """
 
     points: np.ndarray
@@ -156,43 +158,15 @@ def element_areas(points: np.ndarray, cells: np.ndarray, corners: int) -> np.nda
     return poly + bulge
 
 
-def thin_polyline(points: np.ndarray, spacing: float, corner_deg: float = 10.0) -> np.ndarray:
-    """Indices of the vertices of an open polyline kept so that kept ones are about ``spacing`` apart.
-
-    The ends and every vertex where the polyline turns by more than
-    ``corner_deg`` are kept; between them a vertex is kept once the arc
-    length since the last kept one reaches ``spacing``.
-
-    Examples
-    --------
-    >>> thin_polyline(np.column_stack((np.arange(7.0), np.zeros(7))), 2.5).tolist()
-    [0, 3, 6]
-    """
-    seg = np.diff(points, axis=0)
-    length = np.hypot(seg[:, 0], seg[:, 1])
-    heading = np.arctan2(seg[:, 1], seg[:, 0])
-    turn = np.abs((np.diff(heading) + np.pi) % (2 * np.pi) - np.pi)
-    corner = np.concatenate(([True], np.degrees(turn) > corner_deg, [True]))
-    keep, since = [0], 0.0
-    for i in range(1, len(points)):
-        since += length[i - 1]
-        if corner[i] or since >= spacing:
-            keep.append(i)
-            since = 0.0
-    return np.asarray(keep, dtype=np.int64)
-
-
-def fe_mesh(section, lower_curve, size: float, family: str, nodes: int) -> FeMesh:
-    """Mesh a section for a solver deck.
+def fe_mesh(problem, mesh_size: float, family: str, nodes: int) -> tuple[FeMesh, np.ndarray]:
+    """Mesh a problem's bodies for a solver deck: one conforming mesh, each element with its body.
 
     Parameters
     ----------
-    section : Section
-    lower_curve : Curve or None
-        Exact lower curve for the lower nodes (see
-        :func:`~sectiondeform.reference.mesh.triangulate_section`).
-    size : float
-        Triangle size h, units (quads are about h / 2).
+    problem : Problem
+        One body or several.
+    mesh_size : float
+        Triangle size over each body's mesh scale (quads are about half).
     family : str
         ``"triangle"`` or ``"quad"``.
     nodes : int
@@ -200,24 +174,26 @@ def fe_mesh(section, lower_curve, size: float, family: str, nodes: int) -> FeMes
 
     Returns
     -------
-    FeMesh
+    mesh : FeMesh
+    body : (M,) int64 ndarray
+        The body of each element.
     """
-    import dataclasses
+    from ..reference.mesh import triangulate
 
-    from ..reference.mesh import triangulate_section
-
-    # The upper curve as its characteristic points about size / 3 apart (the rest are mapped by
-    # the shape functions), so a finely discretised curve does not flood the mesh with elements.
-    kept = thin_polyline(np.asarray(section.upper), size / 3.0)
-    tri = triangulate_section(dataclasses.replace(section, upper=section.upper[kept]), size, lower_curve)
-    p, c = np.asarray(tri.points), np.asarray(tri.triangles)
+    # Upper points about size / 3 apart (the rest are mapped by the shape functions),
+    # so a finely discretised curve does not flood the mesh with elements.
+    tri = triangulate(problem, mesh_size, thin=True)
+    p, c, body = np.asarray(tri.points), np.asarray(tri.triangles), np.asarray(tri.body)
     ln, lf = np.asarray(tri.lower_nodes), np.asarray(tri.lower_fractions)
     if family == "quad":
         p, c, ln, lf = split_into_quads(p, c, ln, lf)
+        body = np.tile(body, 3)
     if nodes in (6, 8):
         p, c, ln, lf = add_mid_nodes(p, c, ln, lf)
+    upper = np.concatenate(tri.upper_nodes)
     out = FeMesh(points=p, cells=c.astype(np.int64), kind=KINDS[(family, nodes)], lower_nodes=ln.astype(np.int64),
-                 lower_fractions=lf, upper_nodes=np.asarray(tri.upper_nodes, dtype=np.int64))
-    for arr in (out.points, out.cells, out.lower_nodes, out.lower_fractions, out.upper_nodes):
+                 lower_fractions=lf, upper_nodes=upper[np.sort(np.unique(upper, return_index=True)[1])])
+    body = body.astype(np.int64)
+    for arr in (out.points, out.cells, out.lower_nodes, out.lower_fractions, out.upper_nodes, body):
         arr.setflags(write=False)
-    return out
+    return out, body

@@ -1,60 +1,61 @@
-"""The fast method against CalculiX on one case (``sectiondeform validate --reference calculix``).
+"""CalculiX as the reference of ``sectiondeform validate --reference calculix``.
 
-The same :class:`~sectiondeform.reference.validation.Validation` as against
-the project's own finite elements, with a :class:`~sectiondeform.external.solve.CalculixSolution`
-as the reference: it has the attributes the report and the figure read.
+:func:`calculix_run` solves the problem with CalculiX
+(:func:`~sectiondeform.external.solve.solve_calculix`) and hands it to
+:func:`~sectiondeform.reference.validation.validate` as a
+:class:`~sectiondeform.reference.validation.ReferenceRun`: the same
+validation, body by body, as against the project's own finite elements.
 """
 
 from __future__ import annotations
 
-import statistics
-import time
-
-import numpy as np
-
-from ..compare import compare_curves
-from ..deform import Deformer
-from ..section import polygon_area
+from ..reference.validation import ReferenceRun
 from .deck import DEFAULT_MESH_SIZE
 from .solve import solve_calculix
 
-__all__ = ["validate_with_calculix"]
+__all__ = ["calculix_run"]
 
 
-def validate_with_calculix(case, *, model: str | None = None, mesh_size: float | None = None, fast_runs: int = 5,
-                           progress=None):
-    """Run the fast model and CalculiX on a case and compare the deformed upper curves.
+def calculix_run(problem, *, mesh_size: float | None = None, element: str | None = None, progress=None) -> ReferenceRun:
+    """Solve a problem with CalculiX, as a reference for :func:`~sectiondeform.reference.validation.validate`.
 
     Parameters
     ----------
-    case : Case
-    model : str, optional
-        ``"paper"`` or ``"hyperelastic"``; by default the case's.
+    problem : Problem
+        One body or several, plane or of revolution.
     mesh_size : float, optional
-        CalculiX triangle size over the mean thickness (default 0.1).
-    fast_runs : int
-        Runs of the fast model; its time is their median.
+        Triangle size over each body's mesh scale (default 0.1).
+    element : str, optional
+        By default CPE6, or CAX6 for bodies of revolution.
     progress : callable, optional
+        One line per stage and ccx increment, and the deck's warnings.
 
     Returns
     -------
-    Validation
-    """
-    from ..reference.validation import Validation
+    ReferenceRun
 
-    times, fast = [], None
-    for _ in range(max(1, int(fast_runs))):
-        t0 = time.perf_counter()
-        fast = Deformer(case, model=model).deform()
-        times.append(time.perf_counter() - t0)
-    ref = solve_calculix(case, mesh_size=DEFAULT_MESH_SIZE if mesh_size is None else mesh_size, progress=progress)
+    Raises
+    ------
+    SolverNotFoundError, SolverFailedError
+        Without ``ccx``, or when it fails.
+    """
+    result = solve_calculix(problem, element=element, mesh_size=DEFAULT_MESH_SIZE if mesh_size is None else mesh_size,
+                            progress=progress)
     if progress is not None:
-        for line in ref.warnings:
+        for line in result.warnings:
             progress(f"validate: warning: {line}")
-    thickness = fast.area_initial / case.lower.length
-    return Validation(
-        case=case, fast=fast, reference=ref, shape=compare_curves(fast.upper, ref.upper, scale=thickness),
-        thickness=thickness, area_reference=ref.area_final,
-        area_reference_polygon=abs(polygon_area(np.concatenate((fast.lower, ref.upper[1:-1])))),
-        fast_seconds=statistics.median(times), reference_seconds=ref.seconds,
-    )
+    info = result.bodies[0].info
+    rubbers = ", ".join(dict.fromkeys(b.material_data.get("model", "neo-hookean") for b in problem.bodies))
+    kind = "axisymmetric" if problem.revolution is not None else "plane strain"
+    elements = sum(b.quality.initial.elements for b in result.bodies)
+    summary = {"solver": "calculix", "element": info.element_type, "elements": elements,
+               "increments": info.increments, "iterations": info.iterations, "cutbacks": info.cutbacks,
+               "ccx_seconds": info.ccx_seconds, "seconds": result.timings["solve_s"], "warnings": list(result.warnings),
+               "bodies": [{"name": b.name, "area_initial": b.area_initial, "area_final": b.area_final,
+                           "relative_error": b.relative_error} for b in result.bodies]}
+    return ReferenceRun(solution=result, bodies=result.bodies, meshes=tuple(b.final_mesh for b in result.bodies),
+                        model=f"CalculiX: {rubbers}, {kind}, {info.element_type}", summary=summary,
+                        note=f"{elements} {info.element_type} elements, {info.increments} increments, "
+                             f"{info.iterations} iterations",
+                        seconds=result.timings["solve_s"])
+

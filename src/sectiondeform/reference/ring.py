@@ -32,7 +32,8 @@ import time
 
 import numpy as np
 
-from ..case import Case, case_from_dict
+from ..io.case import case_from_dict
+from ..problem import Problem
 from .revolution import axis_from_points, p2_first_moments
 
 __all__ = ["ring_case", "ring_figures", "AXIS"]
@@ -41,27 +42,31 @@ AXIS = ((0.0, 0.0), (1.0, 0.0))
 """The x axis: the radius is y."""
 
 
-def ring_case(inner: float = 10.0, wall: float = 4.0, length: float = 96.0, expanded: float = 12.0) -> Case:
-    """The ring's section as a case: lower curve the inner surface, target the same length at radius ``expanded``.
+def ring_case(volume_ratio: float = 1.0, inner: float = 10.0, wall: float = 4.0, length: float = 96.0,
+              expanded: float = 12.0, bulk_to_shear: float = 1e5) -> Problem:
+    """The ring's section as a body of revolution about :data:`AXIS`: inner surface bonded, moved to ``expanded``.
 
     Parameters
     ----------
+    volume_ratio : float
+        v, the body's volume law.
     inner, wall, length, expanded : float
         A, t, L and a, units.
+    bulk_to_shear : float
+        κ / μ of the neo-Hookean rubber.
 
     Returns
     -------
-    Case
-        With the placeholder law ``area_ratio`` 1: give the volume ratio and
-        the axis to :func:`~sectiondeform.reference.solve_reference`.
+    Problem
     """
     top = [[x, inner + wall] for x in np.linspace(length, 0.0, 13)]
+    lower = {"polyline": [[0.0, inner], [length, inner]]}
     return case_from_dict({
-        "format": "section-case/1", "name": "thick-ring",
-        "lower": {"polyline": [[0.0, inner], [length, inner]]},
-        "upper": {"polyline": [[length, inner]] + top + [[0.0, inner]]},
+        "format": "section-case/2", "name": "thick-ring", "support": lower,
         "target": {"polyline": [[0.0, expanded], [length, expanded]]},
-        "law": {"area_ratio": 1.0},
+        "revolution": {"axis": [list(p) for p in AXIS]},
+        "bodies": [{"name": "ring", "lower": lower, "upper": {"polyline": [[length, inner]] + top + [[0.0, inner]]},
+                    "law": {"volume_ratio": volume_ratio}, "material": {"bulk_to_shear": bulk_to_shear}}],
     })
 
 
@@ -93,18 +98,17 @@ def main(argv=None) -> int:
     from . import solve_reference
 
     sizes = [float(a) for a in (argv if argv is not None else sys.argv[1:])] or [0.8, 0.4, 0.2, 0.1]
-    case = ring_case()
     print("| volume ratio v | h / t | triangles | unknowns | Newton its | max distance from r² − a² = v (R² − A²), middle / t "
           "| max strip volume error | body volume error | time |")
     print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for v in (1.0, 0.9):
         for h in sizes:
             t0 = time.perf_counter()
-            ref = solve_reference(case, law=v, axis=AXIS, mesh_size=h, bulk_to_shear=1e5)
+            ref = solve_reference(ring_case(v), mesh_size=h)
             seconds = time.perf_counter() - t0
             f = ring_figures(ref, v)
             print(f"| {v:g} | {h:g} | {ref.elements} | {ref.dofs} | {ref.iterations} | {f['analytic']:.2e} | "
-                  f"{f['strips']:.2e} | {ref.relative_volume_error:+.1e} | {seconds:.2f} s |", flush=True)
+                  f"{f['strips']:.2e} | {ref.bodies[0].relative_error:+.1e} | {seconds:.2f} s |", flush=True)
     return 0
 
 

@@ -56,7 +56,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ConvergenceError, require
-from .mesh import SectionMesh
+from .mesh import ReferenceMesh
 from .mixed import mixed_state
 from .revolution import Axis
 
@@ -200,38 +200,31 @@ class MixedProblem:
 
     Parameters
     ----------
-    mesh : SectionMesh
-    shear_modulus : float
-        μ of the default neo-Hookean rubber (when ``material`` is not given).
-    bulk_to_shear : float
-        κ / μ of the default neo-Hookean rubber.
-    material : NeoHookean or MooneyRivlin or Yeoh, optional
-        The rubber (:mod:`sectiondeform.materials`); overrides the two
-        numbers above.
+    mesh : ReferenceMesh
+        Its ``body`` gives each triangle's body.
+    materials : sequence of NeoHookean or MooneyRivlin or Yeoh
+        One rubber per body (:mod:`sectiondeform.materials`).
     axis : Axis, optional
         The axis of revolution (:mod:`sectiondeform.reference.revolution`);
         without it, generalised plane strain.
-    groups : (nel,) int ndarray, optional
-        Several rubbers on one mesh (the bodies of an assembly): triangle e
-        is of group ``groups[e]``, ``material`` is then a sequence of one
-        rubber per group, and the load parameter of :meth:`material`,
-        :meth:`residual` and :func:`solve_mixed` may be one value per group
-        (each body's own λz or growth). The displacement is continuous over
-        the whole mesh (bonded interfaces); the pressure is continuous
-        within each group and has its own degrees of freedom on either side
-        of an interface (the pressure jumps there, and each group's volume
-        constraint is its own). Without it, one rubber and one scalar load.
+
+    The displacement is continuous over the whole mesh (bonded
+    interfaces); the pressure is continuous within each body and has its
+    own degrees of freedom on either side of an interface (the pressure
+    jumps there, and each body's volume constraint is its own). The load
+    parameter of :meth:`material`, :meth:`residual` and :func:`solve_mixed`
+    is one value per body (each body's own λz or growth), or one for all.
 
     Attributes
     ----------
     n_u, n_p : int
         Number of displacement and pressure degrees of freedom.
     pressure_vertex : (n_p,) int64 ndarray
-        The mesh vertex of each pressure degree of freedom (one per vertex,
-        or, with ``groups``, one per vertex and group meeting there).
+        The mesh vertex of each pressure degree of freedom (one per vertex
+        and body meeting there).
     mu, kappa : float
-        Initial shear and bulk moduli of the rubber (with ``groups``: the
-        smallest of the groups', the scale of the pressure tolerance).
+        The smallest initial shear and bulk moduli of the bodies' rubbers
+        (the scale of the pressure tolerance).
     weight : (nel, nq) float64 ndarray
         Integration weight: the initial radius R, or 1 in plane strain.
     dirichlet : (d,) int64 ndarray
@@ -243,29 +236,19 @@ class MixedProblem:
         Arc-length fraction of each Dirichlet node on the lower curve.
     """
 
-    def __init__(self, mesh: SectionMesh, shear_modulus: float = 1.0, bulk_to_shear: float = 1000.0, *,
-                 material=None, axis: Axis | None = None, groups: np.ndarray | None = None):
+    def __init__(self, mesh: ReferenceMesh, materials, *, axis: Axis | None = None):
         skfem = require("skfem", "fem", "the finite-element reference")
         from ..materials import NeoHookean
 
         self.section_mesh = mesh
-        if material is None:
-            material = NeoHookean(float(shear_modulus), bulk_to_shear=float(bulk_to_shear))
-        self.groups = None
-        if groups is not None:
-            self.groups = np.asarray(groups, dtype=np.int64)
-            self.rubbers = tuple(material)
-            self._members = [np.flatnonzero(self.groups == g) for g in range(len(self.rubbers))]
-            material = self.rubbers[0]
-        self.rubber = material
-        self.mu = float(material.shear_modulus)
-        self.kappa = float(material.kappa)
-        if self.groups is not None:
-            self.mu = min(float(r.shear_modulus) for r in self.rubbers)
-            self.kappa = min(float(r.kappa) for r in self.rubbers)
+        self.groups = np.asarray(mesh.body, dtype=np.int64)
+        self.rubbers = tuple(materials)
+        self._members = [np.flatnonzero(self.groups == g) for g in range(len(self.rubbers))]
+        self.mu = min(float(r.shear_modulus) for r in self.rubbers)
+        self.kappa = min(float(r.kappa) for r in self.rubbers)
         self.axis = axis
-        # The first version's closed form, same model, for the default rubber in plane strain.
-        self._closed_form = axis is None and type(material) is NeoHookean and self.groups is None
+        # The first version's closed form, same model, for one neo-Hookean rubber in plane strain (faster).
+        self._closed_form = axis is None and len(self.rubbers) == 1 and type(self.rubbers[0]) is NeoHookean
         m = skfem.MeshTri(np.ascontiguousarray(mesh.points.T), np.ascontiguousarray(mesh.triangles.T))
         self.skmesh = m
         self.ubasis = skfem.Basis(m, skfem.ElementVector(skfem.ElementTriP2()), intorder=4)
@@ -278,15 +261,14 @@ class MixedProblem:
         self.udofs = ub.element_dofs  # (12, nel)
         self.pdofs = pb.element_dofs  # (3, nel)
         # Pressure vertex of each pressure dof (the P1 dofs are the vertices).
-        self.pressure_vertex = np.arange(self.n_p)
-        if self.groups is not None:
-            # Continuous within a group, free to jump between groups: a bonded interface between
-            # two rubbers carries a pressure jump, and each body's volume constraint stays its own.
-            key = self.pdofs * len(self.rubbers) + self.groups[None, :]
-            uniq, inverse = np.unique(key, return_inverse=True)
-            self.pdofs = inverse.reshape(self.pdofs.shape)
-            self.pressure_vertex = uniq // len(self.rubbers)
-            self.n_p = len(uniq)
+        # Continuous within a body, free to jump between bodies: a bonded interface between
+        # two rubbers carries a pressure jump, and each body's volume constraint stays its own.
+        key = self.pdofs * len(self.rubbers) + self.groups[None, :]
+        uniq, inverse = np.unique(key, return_inverse=True)
+        self.pdofs = inverse.reshape(self.pdofs.shape)
+        self.pressure_vertex = uniq // len(self.rubbers)
+        self.pressure_body = uniq % len(self.rubbers)
+        self.n_p = len(uniq)
         # Initial position of every displacement dof's node (x and y rows repeat the node).
         self.doflocs = ub.doflocs.T  # (n_u, 2)
         nb_u, nel, nq = self.G.shape[0], self.dx.shape[0], self.dx.shape[1]
@@ -359,8 +341,8 @@ class MixedProblem:
         return F
 
     def per_cell(self, load):
-        """``load`` as the value of each triangle, ``(nel, 1)``, for a load per group; a scalar as it is."""
-        if self.groups is None or np.ndim(load) == 0:
+        """``load`` as the value of each triangle, ``(nel, 1)``, for a load per body; a scalar as it is."""
+        if np.ndim(load) == 0:
             return load
         return np.asarray(load, dtype=np.float64)[self.groups][:, None]
 
@@ -400,11 +382,7 @@ class MixedProblem:
             return out
         if self._closed_form and not extras:
             return self._neo_hookean(x, load, tangent, out)
-        if self.groups is None:
-            s = mixed_state(self.rubber, F, self.pressure(x[self.n_u:]), self.growth(load), tangent,
-                            components=COMPONENTS, extras=extras)
-        else:
-            s = self._grouped_state(F, self.pressure(x[self.n_u:]), load, tangent, extras)
+        s = self._grouped_state(F, self.pressure(x[self.n_u:]), load, tangent, extras)
         out.update(s)
         i, j = COMPONENTS.T
         out["P5"] = s["P"][..., i, j]
@@ -415,7 +393,7 @@ class MixedProblem:
         return out
 
     def _grouped_state(self, F: np.ndarray, p: np.ndarray, load, tangent: bool, extras: bool) -> dict:
-        """:func:`~sectiondeform.reference.mixed.mixed_state` of each group's rubber on its triangles, gathered."""
+        """:func:`~sectiondeform.reference.mixed.mixed_state` of each body's rubber on its triangles, gathered."""
         loads = np.broadcast_to(np.asarray(load, dtype=np.float64), (len(self.rubbers),))
         out: dict = {}
         kpp = np.empty(len(self.groups))
@@ -434,7 +412,7 @@ class MixedProblem:
 
     def _neo_hookean(self, x: np.ndarray, load: float, tangent: bool, out: dict) -> dict:
         """:meth:`material` of a neo-Hookean rubber in plane strain through the closed form :func:`neo_hookean` (faster)."""
-        s = neo_hookean(self.grad_u(x[: self.n_u]), load, self.pressure(x[self.n_u:]), self.mu, self.kappa, tangent)
+        s = neo_hookean(self.grad_u(x[: self.n_u]), float(np.ravel(load)[0]), self.pressure(x[self.n_u:]), self.mu, self.kappa, tangent)
         shape = self.dx.shape
         out["P5"] = np.concatenate((np.moveaxis(s["P"], (0, 1), (2, 3)).reshape(shape + (4,)), np.zeros(shape + (1,))), axis=-1)
         out["D5"] = np.concatenate((np.moveaxis(s["dPdp"], (0, 1), (2, 3)).reshape(shape + (4,)), np.zeros(shape + (1,))), axis=-1)
@@ -510,11 +488,11 @@ def solve_mixed(
     problem : MixedProblem
     support : (d / 2, 2) float64 ndarray
         Final position of each Dirichlet node (``problem.dirichlet_points``).
-    load : float or (groups,) float64 ndarray
+    load : float or (bodies,) float64 ndarray
         Final load parameter, ramped from 1 with the support: the
         out-of-plane stretch λz (generalised plane strain), or the growth
         volume ratio v (body of revolution, ``problem.axis`` set); one per
-        group for a problem with ``groups`` (all ramped together).
+        body (all ramped together).
     length_scale : float
         Length for the convergence test (the mean thickness T), units.
     tol : float

@@ -1,22 +1,24 @@
-"""The fast method against the finite-element reference on one case (extra ``[fem]``).
+"""A fast model against a finite-element reference, body by body (extra ``[fem]``).
 
-:func:`validate_case` runs both on the same case and measures the distance
-between the two deformed upper curves (:mod:`sectiondeform.compare`), their
-areas (volumes, for a body of revolution) and their times. A version-2 case
-of one body goes through the assembly path of the fast models
-(:class:`~sectiondeform.assembly_deform.AssemblyDeformer`, which takes a
-body of revolution and its volume law), the reference through its one-body
-assembly solve; :func:`save_validation_figure` overlays the two
-deformed sections. An assembly of several bodies goes to
-:func:`validate_assembly`: the reference of all bodies at once
-(:mod:`sectiondeform.reference.assembly`) and per-body figures.
-``sectiondeform validate`` and ``benchmarks/validation.py`` are thin
-layers over these.
+:func:`validate` runs the fast model (:class:`~sectiondeform.deform.Deformer`)
+and a reference on the same problem, one body or several, plane or of
+revolution, and measures for each body the distance between the two
+deformed upper curves (:mod:`sectiondeform.compare`), the law's measure
+(area, or volume for a body of revolution) and the times. The reference is
+the project's own finite elements (:func:`~sectiondeform.reference.solve_reference`,
+one mesh of all bodies) by default, or any :class:`ReferenceRun`, such as
+CalculiX's (:func:`~sectiondeform.external.solve.calculix_run`).
+``sectiondeform validate`` and ``benchmarks/validation.py`` are thin layers
+over it; :func:`save_validation_figure` overlays the deformed bodies.
+
+The report (:meth:`Validation.to_json`, ``section-validation/1``) lists the
+bodies; a ``section-case/1`` problem keeps its version-1 report, the one
+body's figures at the top level.
 
 Timing is fair to both: each is timed from the case to the deformed upper
 points (section, mesh, solve), after the libraries are imported; the fast
-method's time is the median of a few runs (it takes milliseconds), the
-reference's a single run at its default, converged, mesh size.
+model's time is the median of a few runs (it takes milliseconds), the
+reference's a single run.
 """
 
 from __future__ import annotations
@@ -28,17 +30,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ..assembly_result import AssemblyResult
-from ..case import Case
 from ..compare import CurveComparison, compare_curves, point_to_curve_distance, section_height
-from ..deform import Deformer
 from ..errors import CaseError, require
-from ..io import check_figure_path
-from ..result import Result
+from ..problem import V1
 from ..section import polygon_area
-from . import DEFAULT_MESH_SIZE, ReferenceSolution, check_parameters, solve_reference
+from . import DEFAULT_MESH_SIZE, Reference, check_parameters, solve_reference
 
-__all__ = ["Validation", "AssemblyValidation", "BodyValidation", "validate_case", "validate_assembly",
+__all__ = ["BodyValidation", "ReferenceRun", "Validation", "fem_run", "validate", "draw_validation",
            "save_validation_figure", "VALIDATION_FORMAT"]
 
 VALIDATION_FORMAT = "section-validation/1"
@@ -46,265 +44,53 @@ FAST_RUNS = 5
 
 
 @dataclass(frozen=True, eq=False)
-class Validation:
-    """Fast result, reference solution and the distances between them.
+class ReferenceRun:
+    """A reference solution as :func:`validate` reads it.
 
     Attributes
     ----------
-    case : Case
-    fast : Result or BodyResult
-        The fast model's result: of the version-1 case, or of the one body
-        of a version-2 case (then ``assembly`` holds the whole result).
-    reference : ReferenceSolution
-    shape : CurveComparison
-        Fast upper curve against the reference's, relative figures over the
-        mean thickness (kept for the report's ``shape`` keys).
-    thickness : float
-        Mean thickness, area / lower length, units. It overstates the size
-        of a section wider than its base (a lip on a short foot).
-    height : float
-        The section's height above its lower curve, units
-        (:func:`~sectiondeform.compare.section_height`): the size the
-        distances are read against (``docs/validation.md``).
-    area_reference : float
-        Area of the deformed finite-element body, ∫ det F2D dA, units².
-    area_reference_polygon : float
-        Area of the polygon of the fast result's lower nodes and the
-        reference's upper points (the polygon the fast area is measured
-        on), units². It differs from ``area_reference`` where the reference
-        bends the straight upper segments between characteristic points.
-    fast_seconds, reference_seconds : float
-        Wall times, case to deformed shape.
-    assembly : AssemblyResult or None
-        The fast model's whole result of a version-2 case; None for a
-        version-1 case.
+    solution : object
+        The solver's own solution (a :class:`~sectiondeform.reference.Reference`,
+        a CalculiX :class:`~sectiondeform.result.Result`...).
+    bodies : tuple
+        Per body, anything with ``upper`` (the deformed upper points, in the
+        order of the body's section), ``final`` (the law's measure after)
+        and ``relative_error`` (against its own target).
+    meshes : tuple of MeshData
+        Deformed meshes, drawn under the figure.
+    model : str
+        One line naming the solver and its physics.
+    summary : dict
+        The solver's figures, for the report's ``reference.solver``.
+    note : str
+        One line of size and effort, for the summary lines.
+    seconds : float
+        Wall time, case to deformed shape.
     """
 
-    case: Case
-    fast: Result
-    reference: ReferenceSolution
-    shape: CurveComparison
-    thickness: float
-    height: float
-    area_reference: float
-    area_reference_polygon: float
-    fast_seconds: float
-    reference_seconds: float
-    assembly: AssemblyResult | None = None
-
-    @property
-    def model(self) -> str:
-        """The fast model checked, ``"paper"`` or ``"hyperelastic"``."""
-        return self.assembly.model if self.assembly is not None else self.fast.model
-
-    @property
-    def revolution(self) -> bool:
-        """True for a body of revolution (the law and the figures are volumes)."""
-        return self.reference.revolution
-
-    @property
-    def volume_relative_errors(self) -> tuple[float, float] | None:
-        """(fast, reference) relative volume errors against the law's target; None in plane."""
-        if not self.revolution:
-            return None
-        f, r = self.fast, self.reference
-        return (f.volume_final - f.volume_target) / f.volume_target, r.relative_volume_error
-
-    @property
-    def speed_ratio(self) -> float:
-        """Reference time over fast time."""
-        return self.reference_seconds / self.fast_seconds
-
-    @property
-    def pointwise_distance(self) -> np.ndarray:
-        """Distance between corresponding upper points, ``(m,)``, units."""
-        return np.hypot(*(self.fast.upper - self.reference.upper).T)
-
-    def _area_error(self, area: float) -> float | None:
-        target = self.fast.area_target
-        return None if target is None else (area - target) / target
-
-    def to_json(self) -> dict:
-        """The ``section-validation/1`` report.
-
-        A body of revolution has no area target (its law sets the volume):
-        the area errors are None and a ``volume`` object gives the volumes
-        of revolution (Pappus, units³) of both models and their errors
-        against the law's target, with the axis under ``revolution``.
-        """
-        f, r = self.fast, self.reference
-        out = {
-            "format": VALIDATION_FORMAT,
-            "name": self.case.name,
-            "units": self.case.units,
-            "thickness": self.thickness,
-            "height": self.height,
-            "hausdorff_over_height": self.shape.hausdorff / self.height,
-            "max_pointwise_over_height": self.shape.max_pointwise / self.height,
-            "area": {"initial": f.area_initial, "target": f.area_target},
-            "fast": {
-                "model": self.model,
-                "area_final": f.area_final,
-                "area_relative_error": self._area_error(f.area_final),
-                "seconds": self.fast_seconds,
-                "upper": f.upper.tolist(),
-            },
-            "reference": {
-                "model": f"finite elements: {r.material.model if r.material is not None else 'neo-hookean'}, "
-                         f"{'body of revolution' if r.revolution else 'generalised plane strain'}, P2/P1 Taylor-Hood",
-                "area_final": self.area_reference,
-                "area_relative_error": self._area_error(self.area_reference),
-                "area_polygon": self.area_reference_polygon,
-                "seconds": self.reference_seconds,
-                "solver": r.summary(),
-                "upper": r.upper.tolist(),
-            },
-            "shape": self.shape.to_json(),
-            "pointwise_distance": self.pointwise_distance.tolist(),
-            "speed_ratio": self.speed_ratio,
-        }
-        if self.revolution:
-            fast_err, ref_err = self.volume_relative_errors
-            out["revolution"] = {"axis": [list(map(float, p)) for p in self.assembly.axis]}
-            out["volume"] = {"initial": f.volume_initial, "target": f.volume_target}
-            out["fast"].update(volume_final=f.volume_final, volume_relative_error=fast_err)
-            out["reference"].update(volume_final=r.volume_final, volume_relative_error=ref_err)
-        return out
-
-    def lines(self) -> list[str]:
-        """A short human-readable summary."""
-        u, height = self.case.units, self.height
-        f, r, s = self.fast, self.reference, self.shape
-        head = [
-            f"{self.case.name}: {self.model} model against the finite-element reference"
-            f"{' (body of revolution)' if self.revolution else ''} "
-            f"(height {height:.4g} {u}, mean thickness {self.thickness:.4g} {u})",
-        ]
-        if self.revolution:
-            fast_err, ref_err = self.volume_relative_errors
-            head += [
-                f"  volume target    {f.volume_target:12.6g} {u}³",
-                f"  volume fast      {f.volume_final:12.6g} {u}³   relative error {fast_err:+.2e}",
-                f"  volume reference {r.volume_final:12.6g} {u}³   relative error {ref_err:+.2e} "
-                f"(bulk/shear {r.bulk_to_shear:g}: volume change {r.volume_change:+.2e})",
-                f"  area fast        {f.area_final:12.4f} {u}²   reference {self.area_reference:.4f} {u}² "
-                f"(initial {f.area_initial:.4f} {u}²)",
-            ]
-        else:
-            target = f.area_target
-            head += [
-                f"  area target      {target:12.4f} {u}²",
-                f"  area fast        {f.area_final:12.4f} {u}²   relative error {self._area_error(f.area_final):+.2e}",
-                f"  area reference   {self.area_reference:12.4f} {u}²   relative error "
-                f"{self._area_error(self.area_reference):+.2e} (bulk/shear {r.bulk_to_shear:g}: "
-                f"volume change {r.volume_change:+.2e})",
-            ]
-        return head + [
-            f"  Hausdorff        {s.hausdorff:12.4f} {u}    {s.hausdorff / height:.2%} of the height, "
-            f"{s.hausdorff / self.thickness:.2%} of the mean thickness",
-            f"  max pointwise    {s.max_pointwise:12.4f} {u}    {s.max_pointwise / height:.2%} of the height, "
-            f"{s.max_pointwise / self.thickness:.2%} of the mean thickness (upper point {s.max_pointwise_index})",
-            f"  time fast        {1e3 * self.fast_seconds:12.2f} ms",
-            f"  time reference   {1e3 * self.reference_seconds:12.0f} ms   ({r.elements} elements, {r.dofs} unknowns, "
-            f"{r.iterations} Newton iterations)  speed ratio {self.speed_ratio:,.0f}",
-        ]
+    solution: object
+    bodies: tuple
+    meshes: tuple
+    model: str
+    summary: dict
+    note: str
+    seconds: float
 
 
-def _time_fast(case, model: str | None, runs: int) -> tuple[Result | AssemblyResult, float]:
-    """The fast model's result on a case (a version-2 one through the assembly path) and its median time."""
-    from ..assembly import Assembly
-    from ..assembly_deform import AssemblyDeformer
-
-    deformer = AssemblyDeformer if isinstance(case, Assembly) else Deformer
-    times, result = [], None
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        result = deformer(case, model=model).deform()
-        times.append(time.perf_counter() - t0)
-    return result, statistics.median(times)
-
-
-def validate_case(
-    case: Case,
-    *,
-    model: str | None = None,
-    mesh_size: float = DEFAULT_MESH_SIZE,
-    bulk_to_shear: float | None = None,
-    fast_runs: int = FAST_RUNS,
-    progress=None,
-) -> Validation:
-    """Run the fast model and the finite-element reference on a case and compare them.
-
-    Parameters
-    ----------
-    case : Case or Assembly
-        A version-1 case, or a version-2 case of one body: the fast model
-        then deforms it as an assembly (so ``revolution`` and a volume law
-        are taken), the reference uses its ``material`` and ``revolution``,
-        and the figures are the body's. An assembly of several bodies goes
-        to :func:`validate_assembly` (per-body figures).
-    model : str, optional
-        The fast model to check, ``"paper"`` or ``"hyperelastic"``; by
-        default the case's ``options.model``.
-    mesh_size : float
-        Reference element size, fraction of the mean thickness T.
-    bulk_to_shear : float, optional
-        κ / μ of the reference; by default the case's, else 1000.
-    fast_runs : int
-        Runs of the fast model; its time is their median.
-    progress : callable, optional
-        Called with one line of text per stage of the reference solve.
-
-    Returns
-    -------
-    Validation or AssemblyValidation
-
-    Raises
-    ------
-    SectionDeformError
-        Whatever either model raises (bad geometry, no convergence...).
-    MissingExtraError
-        Without the extra ``[fem]``.
-    """
-    from ..assembly import Assembly
-
-    source = case
-    if isinstance(case, Assembly):
-        if len(case.bodies) != 1:
-            return validate_assembly(case, model=model, mesh_size=mesh_size, bulk_to_shear=bulk_to_shear,
-                                     fast_runs=fast_runs, progress=progress)
-        case = case.body_case(0)
-    require("skfem", "fem", "the finite-element reference")
-    require("triangle", "fem", "the finite-element reference")
-    check_parameters(mesh_size, case.options.for_model("hyperelastic").bulk_to_shear if bulk_to_shear is None else bulk_to_shear)
-    whole, fast_s = _time_fast(source, model, max(1, int(fast_runs)))
-    fast, assembly = (whole.bodies[0], whole) if isinstance(whole, AssemblyResult) else (whole, None)
-    if progress is not None:
-        progress(f"validate: {whole.model} model done in {1e3 * fast_s:.1f} ms; solving the reference")
-    t0 = time.perf_counter()
-    ref = solve_reference(source, mesh_size=mesh_size, bulk_to_shear=bulk_to_shear, progress=progress)
-    ref_s = time.perf_counter() - t0
-    mean_thickness = fast.area_initial / case.lower.length
-    shape = compare_curves(fast.upper, ref.upper, scale=mean_thickness)
-    area_poly = abs(polygon_area(np.concatenate((fast.lower, ref.upper[1:-1]))))
-    return Validation(
-        case=case,
-        fast=fast,
-        reference=ref,
-        shape=shape,
-        thickness=mean_thickness,
-        height=section_height(fast.initial_lower, fast.initial_upper),
-        area_reference=ref.area_final,
-        area_reference_polygon=area_poly,
-        fast_seconds=fast_s,
-        reference_seconds=ref_s,
-        assembly=assembly,
-    )
+def fem_run(reference: Reference) -> ReferenceRun:
+    """The project's finite-element reference as a :class:`ReferenceRun`."""
+    r = reference
+    rubbers = ", ".join(dict.fromkeys(m.model for m in r.materials))
+    kind = "body of revolution" if r.revolution else "generalised plane strain"
+    bodies = "" if len(r.bodies) == 1 else f"one mesh of {len(r.bodies)} bonded bodies, "
+    return ReferenceRun(solution=r, bodies=r.bodies, meshes=(r.mesh,), summary=r.summary(), seconds=r.seconds,
+                        model=f"finite elements: {bodies}{rubbers}, {kind}, P2/P1 Taylor-Hood",
+                        note=f"{r.elements} elements, {r.dofs} unknowns, {r.iterations} Newton iterations")
 
 
 @dataclass(frozen=True, eq=False)
 class BodyValidation:
-    """One body of an assembly: the fast model's upper curve and law against the reference's.
+    """One body: the fast model's upper curve and law against the reference's.
 
     Attributes
     ----------
@@ -321,8 +107,10 @@ class BodyValidation:
     fast_final, reference_final : float
         The measure after deformation, fast and reference.
     fast_error, reference_error : float
-        Their relative errors, each against its own target (the reference's
-        is r × the area, or v × the volume, of its own mesh).
+        Their relative errors, each against its own target.
+    area_polygon : float
+        Area of the polygon of the fast lower nodes and the reference's
+        upper points (the polygon the fast area is measured on), units².
     """
 
     name: str
@@ -334,43 +122,49 @@ class BodyValidation:
     reference_final: float
     fast_error: float
     reference_error: float
+    area_polygon: float
 
 
 @dataclass(frozen=True, eq=False)
-class AssemblyValidation:
-    """An assembly of several bodies: the fast model against the finite-element reference, per body.
+class Validation:
+    """A fast result against a reference, body by body.
 
     Attributes
     ----------
-    case : Assembly
-    assembly : AssemblyResult
+    problem : Problem
+    fast : Result
         The fast model's result.
-    reference : AssemblyReference
+    reference : ReferenceRun
     bodies : tuple of BodyValidation
     height : float
-        The assembly's height above its support: the largest distance of a
-        body's upper point from the support, units.
-    fast_seconds, reference_seconds : float
-        Wall times, case to deformed shape.
+        The problem's height above its support: the largest distance of a
+        body's upper point from the support, units (the size the distances
+        are read against, ``docs/validation.md``).
+    fast_seconds : float
+        Median wall time of the fast model.
     """
 
-    case: object
-    assembly: AssemblyResult
-    reference: object
+    problem: object
+    fast: object
+    reference: ReferenceRun
     bodies: tuple
     height: float
     fast_seconds: float
-    reference_seconds: float
 
     @property
     def model(self) -> str:
         """The fast model checked."""
-        return self.assembly.model
+        return self.fast.model
 
     @property
     def revolution(self) -> bool:
-        """True for a body of revolution."""
-        return self.reference.revolution
+        """True for bodies of revolution (the laws and figures are volumes)."""
+        return self.problem.revolution is not None
+
+    @property
+    def reference_seconds(self) -> float:
+        """Wall time of the reference."""
+        return self.reference.seconds
 
     @property
     def speed_ratio(self) -> float:
@@ -378,81 +172,112 @@ class AssemblyValidation:
         return self.reference_seconds / self.fast_seconds
 
     def to_json(self) -> dict:
-        """The ``section-validation/1`` report of an assembly: the whole, then a ``bodies`` list."""
-        r = self.reference
-        kind = "body of revolution" if self.revolution else "generalised plane strain"
-        out = {
-            "format": VALIDATION_FORMAT,
-            "name": self.case.name,
-            "units": self.case.units,
-            "height": self.height,
-            "fast": {"model": self.model, "seconds": self.fast_seconds},
-            "reference": {
-                "model": f"finite elements: one mesh of {len(self.bodies)} bonded bodies, {kind}, P2/P1 Taylor-Hood",
-                "seconds": self.reference_seconds,
-                "solver": r.summary(),
-            },
-            "bodies": [],
+        """The ``section-validation/1`` report: the whole, then a ``bodies`` list (version 1: one body's keys)."""
+        if self.problem.dialect == V1:
+            return self._v1_json()
+        out = {"format": VALIDATION_FORMAT, "name": self.problem.name, "units": self.problem.units,
+               "height": self.height, "fast": {"model": self.model, "seconds": self.fast_seconds},
+               "reference": {"model": self.reference.model, "seconds": self.reference_seconds,
+                             "solver": self.reference.summary},
+               "bodies": [self._body_json(i) for i in range(len(self.bodies))], "speed_ratio": self.speed_ratio}
+        if self.revolution:
+            out["revolution"] = {"axis": [list(map(float, p)) for p in self.problem.revolution.axis]}
+        return out
+
+    def _body_json(self, i: int) -> dict:
+        bv, fb, rb = self.bodies[i], self.fast.bodies[i], self.reference.bodies[i]
+        s = bv.shape
+        return {
+            "name": bv.name, "thickness": bv.thickness,
+            "hausdorff": s.hausdorff, "hausdorff_over_thickness": s.hausdorff / bv.thickness,
+            "hausdorff_over_height": s.hausdorff / self.height,
+            "max_pointwise": s.max_pointwise, "max_pointwise_over_thickness": s.max_pointwise / bv.thickness,
+            "max_pointwise_over_height": s.max_pointwise / self.height,
+            "measure": bv.measure, "target": bv.target,
+            "fast": {"final": bv.fast_final, "relative_error": bv.fast_error, "upper": fb.upper.tolist()},
+            "reference": {"final": bv.reference_final, "relative_error": bv.reference_error,
+                          "load": getattr(rb, "load", None), "upper": np.asarray(rb.upper).tolist()},
+        }
+
+    def _v1_json(self) -> dict:
+        """The version-1 report of the one body of a ``section-case/1`` problem."""
+        bv, f, r = self.bodies[0], self.fast.bodies[0], self.reference.bodies[0]
+        solver = dict(self.reference.summary)
+        solver.update({k: v for k, v in (solver.pop("bodies", None) or [{}])[0].items() if k != "name"})
+        target = f.area_target
+        return {
+            "format": VALIDATION_FORMAT, "name": self.problem.name, "units": self.problem.units,
+            "thickness": bv.thickness, "height": self.height,
+            "hausdorff_over_height": bv.shape.hausdorff / self.height,
+            "max_pointwise_over_height": bv.shape.max_pointwise / self.height,
+            "area": {"initial": f.area_initial, "target": target},
+            "fast": {"model": self.model, "area_final": f.area_final,
+                     "area_relative_error": (f.area_final - target) / target, "seconds": self.fast_seconds,
+                     "upper": f.upper.tolist()},
+            "reference": {"model": self.reference.model, "area_final": bv.reference_final,
+                          "area_relative_error": (bv.reference_final - target) / target,
+                          "area_polygon": bv.area_polygon, "seconds": self.reference_seconds, "solver": solver,
+                          "upper": np.asarray(r.upper).tolist()},
+            "shape": bv.shape.to_json(),
+            "pointwise_distance": np.hypot(*(f.upper - np.asarray(r.upper)).T).tolist(),
             "speed_ratio": self.speed_ratio,
         }
-        if self.revolution:
-            out["revolution"] = {"axis": [list(map(float, p)) for p in self.assembly.axis]}
-        for bv, fb, rb in zip(self.bodies, self.assembly.bodies, r.bodies):
-            s = bv.shape
-            out["bodies"].append({
-                "name": bv.name,
-                "thickness": bv.thickness,
-                "hausdorff": s.hausdorff,
-                "hausdorff_over_thickness": s.hausdorff / bv.thickness,
-                "hausdorff_over_height": s.hausdorff / self.height,
-                "max_pointwise": s.max_pointwise,
-                "max_pointwise_over_thickness": s.max_pointwise / bv.thickness,
-                "max_pointwise_over_height": s.max_pointwise / self.height,
-                "measure": bv.measure,
-                "target": bv.target,
-                "fast": {"final": bv.fast_final, "relative_error": bv.fast_error, "upper": fb.upper.tolist()},
-                "reference": {"final": bv.reference_final, "relative_error": bv.reference_error,
-                              "load": rb.load, "upper": rb.upper.tolist()},
-            })
-        return out
 
     def lines(self) -> list[str]:
-        """A short human-readable summary: one row per body."""
-        u, r = self.case.units, self.reference
-        names = ", ".join(b.name for b in self.bodies)
-        out = [
-            f"{self.case.name}: {self.model} model against the finite-element reference, {len(self.bodies)} bonded "
-            f"bodies ({names}){' (body of revolution)' if self.revolution else ''}, height {self.height:.4g} {u}",
-            f"  {'body':<14} {'T':>8} {'Hausdorff':>10} {'/ T':>7} {'/ height':>9} {'max pointwise':>13} "
-            f"{'law':>6} {'fast rel. err.':>15} {'reference rel. err.':>20}",
-        ]
-        for b in self.bodies:
-            s = b.shape
-            out.append(
-                f"  {b.name:<14} {b.thickness:8.4g} {s.hausdorff:10.4f} {s.hausdorff / b.thickness:7.2%} "
-                f"{s.hausdorff / self.height:9.2%} {s.max_pointwise:13.4f} {b.measure:>6} {b.fast_error:+15.2e} "
-                f"{b.reference_error:+20.2e}"
-            )
-        out += [
-            f"  distances in {u}; law: each body's {'volume' if self.revolution else 'area'} against its target",
+        """A short human-readable summary: a few lines per body, then the times."""
+        u, height = self.problem.units, self.height
+        cube = "³" if self.revolution else "²"
+        out = [f"{self.problem.name}: {self.model} model against the reference ({self.reference.model})"
+               f"{' (bodies of revolution)' if self.revolution else ''}, height {height:.4g} {u}"]
+        for bv in self.bodies:
+            s = bv.shape
+            out += [
+                f"  body {bv.name!r} (mean thickness {bv.thickness:.4g} {u})",
+                f"    {bv.measure} target    {bv.target:12.6g} {u}{cube}",
+                f"    {bv.measure} fast      {bv.fast_final:12.6g} {u}{cube}   relative error {bv.fast_error:+.2e}",
+                f"    {bv.measure} reference {bv.reference_final:12.6g} {u}{cube}   relative error "
+                f"{bv.reference_error:+.2e}",
+                f"    Hausdorff        {s.hausdorff:12.4f} {u}    {s.hausdorff / height:.2%} of the height, "
+                f"{s.hausdorff / bv.thickness:.2%} of the mean thickness",
+                f"    max pointwise    {s.max_pointwise:12.4f} {u}    {s.max_pointwise / height:.2%} of the height, "
+                f"{s.max_pointwise / bv.thickness:.2%} of the mean thickness (upper point {s.max_pointwise_index})",
+            ]
+        return out + [
             f"  time fast        {1e3 * self.fast_seconds:12.2f} ms",
-            f"  time reference   {1e3 * self.reference_seconds:12.0f} ms   ({r.elements} elements, {r.dofs} unknowns, "
-            f"{r.iterations} Newton iterations)  speed ratio {self.speed_ratio:,.0f}",
+            f"  time reference   {1e3 * self.reference_seconds:12.0f} ms   ({self.reference.note})  "
+            f"speed ratio {self.speed_ratio:,.0f}",
         ]
-        return out
 
 
-def _assembly_height(case) -> float:
-    """Largest distance of a body's upper point from the support, units."""
-    from ..section import build_section
+def _time_fast(problem, model: str | None, runs: int):
+    """The fast model's result on a problem and its median time."""
+    from ..deform import Deformer
 
-    support = case.layout.fine["support"]
-    uppers = np.concatenate([build_section(case.body_case(b)).upper for b in range(len(case.bodies))])
-    return section_height(support, uppers)
+    times, result = [], None
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        result = Deformer(problem, model=model).deform()
+        times.append(time.perf_counter() - t0)
+    return result, statistics.median(times)
 
 
-def validate_assembly(
-    case,
+def _row(problem, i: int, fb, rb) -> BodyValidation:
+    """Body ``i``'s comparison of the fast result ``fb`` and the reference's ``rb``."""
+    upper = np.asarray(rb.upper)
+    if fb.upper.shape != upper.shape:  # pragma: no cover - both take the body's section's upper points
+        raise CaseError(f"bodies[{i}]", f"the fast model gives {len(fb.upper)} upper points and the reference "
+                        f"{len(upper)}; they cannot be compared point by point")
+    thickness = fb.area_initial / problem.bodies[i].lower.length
+    return BodyValidation(
+        name=fb.name, shape=compare_curves(fb.upper, upper, scale=thickness), thickness=thickness,
+        measure=fb.measure, target=fb.target, fast_final=fb.final, reference_final=rb.final,
+        fast_error=fb.relative_error, reference_error=rb.relative_error,
+        area_polygon=abs(polygon_area(np.concatenate((fb.lower, upper[1:-1])))),
+    )
+
+
+def validate(
+    problem,
     *,
     model: str | None = None,
     mesh_size: float = DEFAULT_MESH_SIZE,
@@ -460,73 +285,65 @@ def validate_assembly(
     fast_runs: int = FAST_RUNS,
     reference=None,
     progress=None,
-) -> AssemblyValidation:
-    """Run a fast model and the finite-element reference on an assembly and compare them body by body.
+) -> Validation:
+    """Run a fast model and a reference on a problem and compare them body by body.
 
     Parameters
     ----------
-    case : Assembly
-        Any number of bodies.
-    model, mesh_size, bulk_to_shear, fast_runs, progress
-        As for :func:`validate_case`.
-    reference : AssemblyReference, optional
-        A reference already solved on this case (its own time is reported);
-        by default solved here with :func:`~sectiondeform.reference.assembly.solve_assembly_reference`.
+    problem : Problem
+        One body or several, plane or of revolution.
+    model : str, optional
+        The fast model to check, ``"paper"`` or ``"hyperelastic"``; by
+        default the problem's ``options.model``.
+    mesh_size : float
+        Reference element size, fraction of each body's mesh scale.
+    bulk_to_shear : float, optional
+        κ / μ of the reference; by default the materials', else the case's, else 1000.
+    fast_runs : int
+        Runs of the fast model; its time is their median.
+    reference : Reference or ReferenceRun, optional
+        A reference already solved on this problem (its own time is
+        reported), e.g. CalculiX's; by default the project's finite elements
+        are solved here.
+    progress : callable, optional
+        Called with one line of text per stage of the reference solve.
 
     Returns
     -------
-    AssemblyValidation
+    Validation
 
     Raises
     ------
     SectionDeformError
-        Whatever either model raises.
+        Whatever either model raises (bad geometry, no convergence...).
     MissingExtraError
         Without the extra ``[fem]``.
     """
-    from .assembly import solve_assembly_reference
-
-    require("skfem", "fem", "the finite-element reference")
-    require("triangle", "fem", "the finite-element reference")
-    check_parameters(mesh_size, case.options.for_model("hyperelastic").bulk_to_shear if bulk_to_shear is None else bulk_to_shear)
-    whole, fast_s = _time_fast(case, model, max(1, int(fast_runs)))
+    if reference is None:
+        require("skfem", "fem", "the finite-element reference")
+        require("triangle", "fem", "the finite-element reference")
+        check_parameters(mesh_size, problem.options.for_model("hyperelastic").bulk_to_shear
+                         if bulk_to_shear is None else bulk_to_shear)
+    fast, fast_s = _time_fast(problem, model, max(1, int(fast_runs)))
     if progress is not None:
-        progress(f"validate: {whole.model} model done in {1e3 * fast_s:.1f} ms"
+        progress(f"validate: {fast.model} model done in {1e3 * fast_s:.1f} ms"
                  f"{'; solving the reference' if reference is None else ''}")
     if reference is None:
-        t0 = time.perf_counter()
-        reference = solve_assembly_reference(case, mesh_size=mesh_size, bulk_to_shear=bulk_to_shear, progress=progress)
-        ref_s = time.perf_counter() - t0
-    else:
-        ref_s = reference.seconds
-    rows = []
-    for b, (fb, rb) in enumerate(zip(whole.bodies, reference.bodies)):
-        if fb.upper.shape != rb.upper.shape:  # pragma: no cover - both take the body's section's upper points
-            raise CaseError(f"bodies[{b}]", f"the fast model gives {len(fb.upper)} upper points and the reference "
-                            f"{len(rb.upper)}; they cannot be compared point by point")
-        thickness = fb.area_initial / case.body_case(b).lower.length
-        revolution = rb.volume_target is not None
-        rows.append(BodyValidation(
-            name=fb.name,
-            shape=compare_curves(fb.upper, rb.upper, scale=thickness),
-            thickness=thickness,
-            measure="volume" if revolution else "area",
-            target=fb.target,
-            fast_final=fb.final,
-            reference_final=rb.volume_final if revolution else rb.area_final,
-            fast_error=(fb.final - fb.target) / fb.target,
-            reference_error=rb.relative_error,
-        ))
-    return AssemblyValidation(case=case, assembly=whole, reference=reference, bodies=tuple(rows),
-                              height=_assembly_height(case), fast_seconds=fast_s, reference_seconds=ref_s)
+        reference = solve_reference(problem, mesh_size=mesh_size, bulk_to_shear=bulk_to_shear, progress=progress)
+    if isinstance(reference, Reference):
+        reference = fem_run(reference)
+    rows = tuple(_row(problem, i, fb, rb) for i, (fb, rb) in enumerate(zip(fast.bodies, reference.bodies)))
+    uppers = np.concatenate([b.initial_upper for b in fast.bodies])
+    return Validation(problem=problem, fast=fast, reference=reference, bodies=rows,
+                      height=section_height(problem.layout.fine["support"], uppers), fast_seconds=fast_s)
 
 
-def draw_assembly_validation(validation: AssemblyValidation, fig=None):
-    """Overlay the fast and reference deformed bodies of an assembly.
+def draw_validation(validation: Validation, fig=None):
+    """Overlay the fast and reference deformed bodies.
 
     Each body: the reference's deformed mesh (grey edges) and outline
     (blue), the fast model's outline (dashed orange), its upper curve
-    coloured by the distance to the reference's.
+    coloured by the distance to the reference's; the largest pointwise gap in red.
 
     Returns
     -------
@@ -536,92 +353,43 @@ def draw_assembly_validation(validation: AssemblyValidation, fig=None):
     from matplotlib.collections import LineCollection, PolyCollection
 
     v = validation
-    r, u = v.reference, v.case.units
+    r, u = v.reference, v.problem.units
     if fig is None:
         from ..plot import new_figure
 
         fig = new_figure(figsize=(10, 6), layout="constrained")
     ax = fig.add_subplot(1, 1, 1)
-    tri = r.mesh.points[r.mesh.cells[:, :3]]
-    ax.add_collection(PolyCollection(tri, facecolors="none", edgecolors="0.75", linewidths=0.2, zorder=1))
-    dists = [point_to_curve_distance(fb.upper, rb.upper) for fb, rb in zip(v.assembly.bodies, r.bodies)]
+    for mesh in r.meshes:
+        corners = 3 if mesh.kind.startswith("triangle") else 4
+        ax.add_collection(PolyCollection(mesh.points[mesh.cells[:, :corners]], facecolors="none", edgecolors="0.75",
+                                         linewidths=0.2, zorder=1))
+    uppers = [np.asarray(rb.upper) for rb in r.bodies]
+    dists = [point_to_curve_distance(fb.upper, ru) for fb, ru in zip(v.fast.bodies, uppers)]
     top = max(float(d.max()) for d in dists) or 1.0
     lc = None
-    for k, (fb, rb, d) in enumerate(zip(v.assembly.bodies, r.bodies, dists)):
-        ax.fill(*fb.initial_contour.T, color="0.92", zorder=0, label="initial bodies" if k == 0 else None)
-        ref_contour = np.concatenate((fb.lower, rb.upper[1:-1], fb.lower[:1]))
-        ax.plot(*ref_contour.T, color="tab:blue", lw=1.2, zorder=2,
-                label="finite-element reference" if k == 0 else None)
-        fast_contour = np.concatenate((fb.contour, fb.contour[:1]))
-        ax.plot(*fast_contour.T, "--", color="tab:orange", lw=1.2, zorder=3,
-                label=f"fast ({v.model} model)" if k == 0 else None)
-        segs = np.stack((fb.upper[:-1], fb.upper[1:]), axis=1)
-        lc = LineCollection(segs, cmap="viridis", linewidths=3.0, zorder=4)
+    for k, (fb, ru, d) in enumerate(zip(v.fast.bodies, uppers, dists)):
+        first = k == 0
+        ax.fill(*fb.initial_contour.T, color="0.92", zorder=0, label="initial" if first else None)
+        ax.plot(*np.concatenate((fb.lower, ru[1:-1], fb.lower[:1])).T, color="tab:blue", lw=1.2, zorder=2,
+                label="reference" if first else None)
+        ax.plot(*np.concatenate((fb.contour, fb.contour[:1])).T, "--", color="tab:orange", lw=1.2, zorder=3,
+                label=f"fast ({v.model} model)" if first else None)
+        lc = LineCollection(np.stack((fb.upper[:-1], fb.upper[1:]), axis=1), cmap="viridis", linewidths=3.0, zorder=4)
         lc.set_array(0.5 * (d[:-1] + d[1:]))
         lc.set_clim(0.0, top)
         ax.add_collection(lc)
-    cb = fig.colorbar(lc, ax=ax, shrink=0.6, aspect=30)
-    cb.set_label(f"distance of the fast upper curves to the reference's ({u})")
+    worst = max(range(len(v.bodies)), key=lambda b: v.bodies[b].shape.max_pointwise)
+    i, gap = v.bodies[worst].shape.max_pointwise_index, v.bodies[worst].shape.max_pointwise
+    ax.plot(*np.stack((v.fast.bodies[worst].upper[i], uppers[worst][i])).T, "-o", color="tab:red", ms=3, lw=1,
+            zorder=5, label=f"largest pointwise gap {gap:.3g} {u}")
+    fig.colorbar(lc, ax=ax, shrink=0.6, aspect=30).set_label(f"distance of the fast upper curve to the reference ({u})")
     ax.set_aspect("equal")
     ax.autoscale_view()
     ax.grid(True, lw=0.3, alpha=0.5)
     ax.legend(loc="best", fontsize=8)
     per_body = "; ".join(f"{b.name} {b.shape.hausdorff:.3g} {u}" for b in v.bodies)
-    ax.set_title(f"{v.case.name}: Hausdorff per body {per_body}; {1e3 * v.fast_seconds:.1f} ms vs "
+    ax.set_title(f"{v.problem.name}: Hausdorff {per_body}; {1e3 * v.fast_seconds:.1f} ms vs "
                  f"{v.reference_seconds:.2f} s", fontsize=9)
-    return fig
-
-
-def draw_validation(validation: Validation, fig=None):
-    """Overlay the fast and reference deformed sections, the upper curve coloured by distance.
-
-    An :class:`AssemblyValidation` draws every body (:func:`draw_assembly_validation`).
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-    """
-    require("matplotlib", "plot", "drawing the validation figure")
-    from matplotlib.collections import LineCollection, PolyCollection
-
-    if isinstance(validation, AssemblyValidation):
-        return draw_assembly_validation(validation, fig)
-    v = validation
-    f, r, u = v.fast, v.reference, v.case.units
-    if fig is None:
-        from ..plot import new_figure
-
-        fig = new_figure(figsize=(10, 6), layout="constrained")
-    ax = fig.add_subplot(1, 1, 1)
-    ax.fill(*f.initial_contour.T, color="0.92", zorder=0, label="initial section")
-    tri = r.mesh.points[r.mesh.cells[:, :3]]
-    ax.add_collection(PolyCollection(tri, facecolors="none", edgecolors="0.7", linewidths=0.25, zorder=1))
-    ref_contour = np.concatenate((f.lower, r.upper[1:-1], f.lower[:1]))
-    ax.plot(*ref_contour.T, color="tab:blue", lw=1.4, zorder=2, label="finite-element reference")
-    fast_contour = np.concatenate((f.contour, f.contour[:1]))
-    ax.plot(*fast_contour.T, "--", color="tab:orange", lw=1.4, zorder=3, label=f"fast ({v.model} model)")
-    # Fast upper curve coloured by its distance to the reference upper curve.
-    d_pts = point_to_curve_distance(f.upper, r.upper)
-    segs = np.stack((f.upper[:-1], f.upper[1:]), axis=1)
-    lc = LineCollection(segs, cmap="viridis", linewidths=3.5, zorder=4)
-    lc.set_array(0.5 * (d_pts[:-1] + d_pts[1:]))
-    ax.add_collection(lc)
-    cb = fig.colorbar(lc, ax=ax, shrink=0.6, aspect=30)
-    cb.set_label(f"distance of the fast upper curve to the reference ({u})")
-    k = v.shape.max_pointwise_index
-    ax.plot(*np.stack((f.upper[k], r.upper[k])).T, "-o", color="tab:red", ms=3, lw=1, zorder=5,
-            label=f"largest pointwise gap {v.shape.max_pointwise:.3g} {u}")
-    ax.set_aspect("equal")
-    ax.autoscale_view()
-    ax.grid(True, lw=0.3, alpha=0.5)
-    ax.legend(loc="best", fontsize=8)
-    measure = (f"volumes {f.volume_final:.5g} (fast) / {v.reference.volume_final:.5g} (reference) {u}³" if v.revolution
-               else f"areas {f.area_final:.1f} (fast) / {v.area_reference:.1f} (reference) {u}²")
-    ax.set_title(
-        f"{v.case.name}: Hausdorff {v.shape.hausdorff:.3g} {u} = {v.shape.hausdorff_relative:.1%} of T; "
-        f"{measure}; {1e3 * v.fast_seconds:.1f} ms vs {v.reference_seconds:.2f} s",
-        fontsize=9,
-    )
     return fig
 
 
@@ -635,6 +403,7 @@ def save_validation_figure(validation: Validation, path) -> Path:
     MissingExtraError
         Without matplotlib.
     """
+    from ..io import check_figure_path
     from ..plot import write_figure
 
     check_figure_path(path)
