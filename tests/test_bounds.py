@@ -21,7 +21,7 @@ from conftest import box_case
 FOUND = Path(__file__).parent / "data" / "fuzz-found"
 
 
-def _bent_box(model: str) -> sd.Case:
+def _bent_box(model: str) -> sd.Problem:
     t = np.linspace(0.0, 1.0, 41)
     arc = np.column_stack((10.0 * np.sin(t), 10.0 * (1.0 - np.cos(t))))
     return sd.case_from_dict(box_case(target={"polyline": arc.tolist()}, ratio=0.9, model=model))

@@ -23,7 +23,7 @@ CASES = Path(__file__).parent / "data" / "cases"
 OFFSET = np.array([1e6, -1e6])
 
 
-def moved(case: sd.Case, scale: float, offset: np.ndarray, model: str) -> sd.Case:
+def moved(case: sd.Problem, scale: float, offset: np.ndarray, model: str) -> sd.Problem:
     """``case`` scaled about the origin by ``scale``, then moved by ``offset``, under ``model``."""
     m = scale * np.eye(2)
     curves = {k: getattr(case, k).transformed(m, offset) for k in ("lower", "upper", "target")}
