@@ -1,8 +1,8 @@
 """Calibration of the paper model's applicability warnings against the finite-element reference.
 
 For every case, and for variations of it whose target is an arc as long as
-the lower curve with a deeper or reversed sagitta (a fraction of the lower
-curve's length; > 0 bends the ends towards the section), prints one row:
+the support with a deeper or reversed sagitta (a fraction of the support's
+length; > 0 bends the ends towards the section), prints one row per body:
 the indicators of :mod:`sectiondeform.applicability` (overhang over height,
 bend change, virtual columns), the paper model's Hausdorff distance to the
 reference (units and % of the section's height) and whether a warning fired.
@@ -23,36 +23,48 @@ import numpy as np
 import sectiondeform as sd
 from sectiondeform.errors import SectionDeformError
 from sectiondeform.io.drawing import make_target_arc
-from sectiondeform.reference.validation import validate_case
+from sectiondeform.problem import V1
+from sectiondeform.reference.validation import validate
 
 
-def variations(case, sagittas):
-    """The case itself, then its arc-target variations."""
-    yield case.name, case
-    sec = sd.build_section(case)
-    a, b = case.lower.start, case.lower.end
-    side = float(sec.orientation)
+def variations(problem, sagittas):
+    """The problem itself, then its arc-target variations (an arc as long as the support)."""
+    yield problem.name, problem
+    support = problem.support
+    side = float(sd.build_section(problem.body_case(0)).orientation)  # the bodies lie on one side of the support
     for s in sagittas:
-        target = make_target_arc(a, b, case.lower.length, s * case.lower.length, side)
-        yield f"{case.name}, arc {s:+g} L", case.replace(target=target)
+        target = make_target_arc(support.start, support.end, support.length, s * support.length, side)
+        yield f"{problem.name}, arc {s:+g} L", problem.replace(target=target)
 
 
-def row(name, case) -> str:
+def _short(warning: str) -> str:
+    """A warning cut to its kind and subject (``applicability: overhang``)."""
+    head, _, rest = warning.partition(": ")
+    if head.startswith("bodies["):  # a warning of one body of several: ``bodies[i] 'name': kind: ...``
+        head, _, rest = rest.partition(": ")
+    return head + ": " + rest.split(":")[0].split(" by ")[0].split(",")[0].strip()
+
+
+def rows(name, problem) -> list[str]:
+    """One row per body: the indicators, the distance to the reference, the warnings."""
     try:
-        v = validate_case(case, model="paper", fast_runs=1)
+        v = validate(problem, model="paper", fast_runs=1)
     except SectionDeformError as exc:
-        return f"| {name} | refused: {str(exc)[:80]} |"
-    f, s = v.fast, v.shape
-    i = f.info
-    cols = sum(f.quality.initial.virtual_columns)
-    warned = [w.split(":")[0] + ": " + w.split(":")[1].split(" by ")[0].split(",")[0].strip() for w in f.warnings]
-    applic = any(w.startswith("applicability") for w in f.warnings)
-    return (
-        f"| {name} | {v.height:.2f} | {i.overhang:.2f} | {i.bend_change:.2f} | {cols} | {i.height_scale:.2f} "
-        f"| {i.stretch_min:.2f}–{i.stretch_max:.2f} | {i.aspect_change:.2f} "
-        f"| {s.hausdorff:.3f} | {s.hausdorff / v.height:.1%} | {'yes' if applic else 'no'} "
-        f"| {'; '.join(sorted(set(warned))) or '–'} |"
-    )
+        return [f"| {name} | refused: {str(exc)[:80]} |"]
+    warned = sorted({_short(w) for w in v.fast.warnings})
+    applic = any(w.startswith("applicability") for w in warned)
+    out = []
+    for bv, f in zip(v.bodies, v.fast.bodies):
+        i, s = f.info, bv.shape
+        cols = sum(f.quality.initial.virtual_columns)
+        label = name if problem.dialect == V1 else f"{name}, {bv.name}"
+        out.append(
+            f"| {label} | {v.height:.2f} | {i.overhang:.2f} | {i.bend_change:.2f} | {cols} | {i.height_scale:.2f} "
+            f"| {i.stretch_min:.2f}–{i.stretch_max:.2f} | {i.aspect_change:.2f} "
+            f"| {s.hausdorff:.3f} | {s.hausdorff / v.height:.1%} | {'yes' if applic else 'no'} "
+            f"| {'; '.join(warned) or '–'} |"
+        )
+    return out
 
 
 def main(argv=None) -> int:
@@ -66,7 +78,7 @@ def main(argv=None) -> int:
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|")
     for path in args.cases:
         for name, case in variations(sd.load_case(path), args.sagitta):
-            print(row(name, case), flush=True)
+            print(*rows(name, case), sep="\n", flush=True)
             print(f"done {name}", file=sys.stderr, flush=True)
     return 0
 

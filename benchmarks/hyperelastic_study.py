@@ -19,6 +19,9 @@ thickness T), prints and writes:
   (mean over the curve, and Hausdorff); ``raw_mean``/``raw_max`` the same
   before the area correction (the reference's points are not corrected).
 
+Any problem works, one body or several: each body's distances are relative
+to its own T, and a row gives the worst body's.
+
 The truth is the fine finite-element reference (:mod:`sectiondeform.reference`,
 extra ``[fem]``, element size ``T / --reference-div``) when it is installed,
 else the model itself at ``--fine`` elements through the thickness (a
@@ -34,7 +37,6 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import json
 import time
 from pathlib import Path
@@ -43,6 +45,8 @@ import numpy as np
 import shapely
 
 import sectiondeform as sd
+from sectiondeform.errors import MissingExtraError
+from sectiondeform.reference import solve_reference
 
 from speed import median_time  # benchmarks/, beside this file
 
@@ -57,38 +61,32 @@ def distances(a: np.ndarray, b: np.ndarray, T: float) -> tuple[float, float]:
     return float(np.mean(shapely.distance(pts, lb))) / T, shapely.hausdorff_distance(la, lb, densify=0.02) / T
 
 
-def _reference_upper(case, div: float) -> np.ndarray:
-    """Upper points of the fine reference (Triangle mesh of size T / div, scikit-fem, no area correction)."""
+def truth(case, fine: float, reference_div: float) -> tuple[list, str]:
+    """Each body's upper curve in the reference solution (or, without it, in a fine run of the model), and its label."""
     try:
-        from sectiondeform.reference import solve_reference  # type: ignore[attr-defined]
-    except ImportError:
-        solve_reference = None
-    if solve_reference is not None:
-        return np.asarray(solve_reference(case).upper)
-    from sectiondeform.reference.mesh import triangulate_section
-    from sectiondeform.reference.solver import MixedProblem, solve_mixed
-
-    sec = sd.build_section(case)
-    T = sec.thickness
-    mesh = triangulate_section(sec, T / div, lower_curve=case.lower)
-    pr = MixedProblem(mesh, bulk_to_shear=float(case.options.for_model("hyperelastic").bulk_to_shear))
-    support = case.target.at_fractions(pr.dirichlet_fractions)
-    x, _ = solve_mixed(pr, support, case.law.out_of_plane_stretch(sec.area), length_scale=T)
-    nd = pr.ubasis.nodal_dofs[:, mesh.upper_nodes]
-    return mesh.points[mesh.upper_nodes] + np.column_stack((x[nd[0]], x[nd[1]]))
-
-
-def truth(case, fine: float, reference_div: float):
-    """Upper curve of the reference solution (or, without it, of a fine run of the model), and its label."""
-    try:
-        return _reference_upper(case, reference_div), f"reference (h = T/{reference_div:g})"
-    except ImportError:
-        c = dataclasses.replace(case, options=case.options.replace(elements_through_thickness=fine))
-        return sd.Deformer(c, model="hyperelastic").deform().upper, f"self (n={fine:g})"
+        reference = solve_reference(case, mesh_size=1.0 / reference_div)
+        return [np.asarray(b.upper) for b in reference.bodies], f"reference (h = T/{reference_div:g})"
+    except MissingExtraError:
+        c = case.replace(options=case.options.replace(elements_through_thickness=fine))
+        return [b.upper for b in sd.Deformer(c, model="hyperelastic").deform().bodies], f"self (n={fine:g})"
 
 
 def _median_ms(fn, repeat: int) -> float:
     return 1e3 * median_time(fn, repeat, warmup=1)
+
+
+def _worst(uppers, truths, thicknesses) -> tuple[float, float]:
+    """The largest (mean, Hausdorff) distance of a body's upper curve to its truth, over the bodies, relative to its T."""
+    pairs = [distances(u, t, T) for u, t, T in zip(uppers, truths, thicknesses)]
+    return max(p[0] for p in pairs), max(p[1] for p in pairs)
+
+
+def raw_uppers(prepared, result) -> list:
+    """Each body's upper points of the coarse solve before the area correction."""
+    n = len(prepared.mesh.nodes)
+    x = result.state.state.z[: 2 * n].reshape(n, 2)
+    images = prepared.mesh.vertex_weights @ x
+    return [images[ids] for ids in prepared.upper_ids]
 
 
 def study(path: Path, levels, repeat: int, fine: float, reference_div: float) -> list[dict]:
@@ -96,33 +94,32 @@ def study(path: Path, levels, repeat: int, fine: float, reference_div: float) ->
     upper_true, label = truth(case, fine, reference_div)
     rows = []
     for n in levels:
-        c = dataclasses.replace(case, options=case.options.replace(elements_through_thickness=n))
+        c = case.replace(options=case.options.replace(elements_through_thickness=n))
         t0 = time.perf_counter()
         deformer = sd.Deformer(c, model="hyperelastic", check=False)
         prepare_ms = 1e3 * (time.perf_counter() - t0)
         prep = deformer.prepared
-        T = deformer.section.thickness
+        T = [sec.thickness for sec in deformer.stack.sections]
         nodes = deformer.target_nodes()
-        n_nodes = len(prep.mesh.nodes)
 
         full_ms = _median_ms(lambda: deformer.deform(target_nodes=nodes), repeat)
         result = deformer.deform(target_nodes=nodes)
-        mean, worst = distances(result.upper, upper_true, T)
-        x = result.state.z[: 2 * n_nodes].reshape(-1, 2)
-        raw_mean, raw_max = distances(prep.upper_weights @ x, upper_true, T)
-        moved = nodes + 0.005 * T * np.sin(np.linspace(0.0, np.pi, len(nodes)))[:, None] * np.array([0.0, 1.0])
+        mean, worst = _worst([b.upper for b in result.bodies], upper_true, T)
+        raw_mean, raw_max = _worst(raw_uppers(prep, result), upper_true, T)
+        moved = nodes + 0.005 * min(T) * np.sin(np.linspace(0.0, np.pi, len(nodes)))[:, None] * np.array([0.0, 1.0])
         redeform_cold_ms = _median_ms(lambda: deformer.deform(target_nodes=moved), repeat)
         redeform_ms = _median_ms(lambda: deformer.deform(target_nodes=moved, start=result), repeat)
         preview_ms = _median_ms(lambda: deformer.preview(target_nodes=moved, start=result), repeat)
-        exact = deformer.deform(target_nodes=moved, start=result).upper
-        preview_err = float(np.abs(deformer.preview(target_nodes=moved, start=result).upper - exact).max()) / T
+        exact = deformer.deform(target_nodes=moved, start=result).bodies
+        preview = deformer.preview(target_nodes=moved, start=result).bodies
+        preview_err = max(float(np.abs(p.upper - e.upper).max()) / t for p, e, t in zip(preview, exact, T))
         rows.append({
             "case": case.name, "through_thickness": n, "truth": label,
-            "unknowns": prep.quality.unknowns, "elements": prep.quality.elements,
+            "unknowns": int(prep.bodies[0].quality.unknowns), "elements": sum(b.quality.elements for b in prep.bodies),
             "prepare_ms": prepare_ms, "full_ms": full_ms, "redeform_cold_ms": redeform_cold_ms, "redeform_ms": redeform_ms,
             "preview_ms": preview_ms, "preview_err": preview_err, "mean": mean, "max": worst,
             "raw_mean": raw_mean, "raw_max": raw_max,
-            "area_correction": result.info.area_correction,
+            "area_correction": max(b.info.area_correction for b in result.bodies),
         })
         r = rows[-1]
         print(f"{case.name:22s} n={n:<4g} unknowns={r['unknowns']:5d} prepare={prepare_ms:7.2f}ms "

@@ -47,10 +47,11 @@ import numpy as np
 import sectiondeform as sd
 from sectiondeform.compare import compare_curves
 from sectiondeform.errors import ConvergenceError
-from sectiondeform.laws import AreaRatio
-from sectiondeform.reference import _material, _unpack
+from sectiondeform.laws import AreaRatio, VolumeRatio
+from sectiondeform.reference import body_material, body_ratio
 from sectiondeform.reference import solver as solver_module
-from sectiondeform.reference.mesh import triangulate_section
+from sectiondeform.reference.mesh import triangulate
+from sectiondeform.reference.revolution import axis_from_points
 from sectiondeform.reference.solver import MixedProblem, solve_mixed
 
 _original_newton = solver_module._newton
@@ -128,10 +129,14 @@ def stretches(pr, x):
 
 
 def surface_stretch(initial, deformed):
-    """Deformed over initial length of each upper edge, and the edges' initial midpoints."""
-    d0 = np.hypot(*np.diff(initial, axis=0).T)
-    d1 = np.hypot(*np.diff(deformed, axis=0).T)
-    return d1 / d0, 0.5 * (initial[1:] + initial[:-1])
+    """Deformed over initial length of each upper edge, and the edges' initial midpoints.
+
+    ``initial`` and ``deformed`` are lists of polylines (one per body, ``(m_b, 2)``); the edges of all, in order.
+    """
+    d0 = np.concatenate([np.hypot(*np.diff(a, axis=0).T) for a in initial])
+    d1 = np.concatenate([np.hypot(*np.diff(b, axis=0).T) for b in deformed])
+    mids = np.concatenate([0.5 * (a[1:] + a[:-1]) for a in initial])
+    return d1 / d0, mids
 
 
 def lowest_modes(pr, x, load, k=3):
@@ -166,18 +171,27 @@ def lowest_modes(pr, x, load, k=3):
     return vals[order], mode
 
 
+def _coarser(section, every: int):
+    """The section with its upper polyline through every k-th characteristic point, both ends kept."""
+    if every <= 1:
+        return section
+    up = np.asarray(section.upper)
+    keep = np.unique(np.r_[np.arange(0, len(up), every), len(up) - 1])
+    return dataclasses.replace(section, upper=up[keep])
+
+
 def run_reference(case, mesh_size, bulk_to_shear, initial_step, min_step, modes=False, trend=False, every=1):
-    section, target, law, lower_curve, _m, _a, _k = _unpack(case, None, None)
-    if every > 1:  # a coarser upper polyline: every k-th characteristic point, both ends kept
-        up = np.asarray(section.upper)
-        keep = np.unique(np.r_[np.arange(0, len(up), every), len(up) - 1])
-        section = dataclasses.replace(section, upper=up[keep])
-    rubber = _material(None, bulk_to_shear, None, explicit_bulk=True)
-    scale = section.mesh_scale
-    mesh = triangulate_section(section, mesh_size * scale, lower_curve)
-    pr = MixedProblem(mesh, material=rubber)
-    support = np.asarray(target.at_fractions(pr.dirichlet_fractions), dtype=np.float64)
-    ratio = float(law.area_ratio(section.area))
+    """The reference's own load stepping on the problem (every body), its refusals recorded; figures at the stop."""
+    bodies = range(len(case.bodies))
+    sections = [_coarser(sd.build_section(case.body_case(b)), every) for b in bodies]
+    rubbers = [body_material(case, b, bulk_to_shear) for b in bodies]
+    ax = None if case.revolution is None else axis_from_points(case.revolution.axis, np.concatenate([s.contour for s in sections]))
+    ratios = np.array([body_ratio(case.bodies[b].law, revolution=ax is not None, area=sections[b].area) for b in bodies])
+    load = ratios if ax is not None else 1.0 / ratios
+    scale = min(s.mesh_scale for s in sections)
+    mesh = triangulate(case, mesh_size, sections)
+    pr = MixedProblem(mesh, rubbers, axis=ax)
+    support = np.asarray(case.target.at_fractions(pr.dirichlet_fractions), dtype=np.float64)
     log, accepted = [], []
 
     def newton(pr_, x, load, lift, free, length_scale, tol, max_iterations):
@@ -190,7 +204,7 @@ def run_reference(case, mesh_size, bulk_to_shear, initial_step, min_step, modes=
     solver_module._newton = newton
     steps = []
     try:
-        solve_mixed(pr, support, 1.0 / ratio, length_scale=scale, initial_step=initial_step, min_step=min_step,
+        solve_mixed(pr, support, load, length_scale=scale, initial_step=initial_step, min_step=min_step,
                     progress=lambda line: steps.append(line))
         stop = None
     except ConvergenceError as exc:
@@ -199,32 +213,33 @@ def run_reference(case, mesh_size, bulk_to_shear, initial_step, min_step, modes=
         solver_module._newton = _original_newton
     loads = [float(s.split("load")[1].split("%")[0]) for s in steps if "converged" in s]
     out = {"mesh_size": mesh_size, "kappa/mu": bulk_to_shear, "initial_step": initial_step, "min_step": min_step,
-           "elements": len(mesh.triangles), "h": mesh.size, "seconds": time.perf_counter() - t0,
+           "elements": len(mesh.triangles), "h": [float(h) for h in mesh.sizes], "seconds": time.perf_counter() - t0,
            "last_load_%": loads[-1] if loads else 0.0, "finished": stop is None,
            "refusals": log[-3:], "problem": pr, "x": accepted[-1] if accepted else None, "mesh": mesh,
-           "section": section}
+           "sections": sections}
     x = out["x"]
     if x is not None:
         lam, X = stretches(pr, x)
         e, q = np.unravel_index(np.argmin(lam), lam.shape)
         out["min_stretch"] = (float(lam[e, q]), np.round(X[e, q], 2).tolist())
-        corners = mesh.points[[mesh.upper_nodes[0], mesh.upper_nodes[-1]]]
+        corners = mesh.points[[i for ids in mesh.upper_nodes for i in (ids[0], ids[-1])]]
         far = np.min(np.hypot(*(X[..., None, :] - corners).transpose(3, 0, 1, 2)), axis=-1) > 0.25 * scale
         e, q = np.unravel_index(np.argmin(np.where(far, lam, np.inf)), lam.shape)
         out["min_stretch_away_from_corners"] = (float(lam[e, q]), np.round(X[e, q], 2).tolist())
         u_nodes = x[: pr.n_u][pr.ubasis.nodal_dofs].T
-        p0 = mesh.points[mesh.upper_nodes]
-        s, mid = surface_stretch(p0, p0 + u_nodes[mesh.upper_nodes])
+        p0 = [mesh.points[ids] for ids in mesh.upper_nodes]
+        p1 = [mesh.points[ids] + u_nodes[ids] for ids in mesh.upper_nodes]
+        s, mid = surface_stretch(p0, p1)
         i = int(np.argmin(s))
         out["surface_stretch"] = (float(s[i]), np.round(mid[i], 2).tolist())
-        out["upper0"], out["upper"] = p0, p0 + u_nodes[mesh.upper_nodes]
+        out["upper0"], out["upper"] = np.concatenate(p0), np.concatenate(p1)
         top = int(np.argmax(mid[:, 1]))
         out["surface_stretch_at_top"] = (float(s[top]), np.round(mid[top], 2).tolist())
         if trend:
-            out["lowest_eigenvalue_by_load"] = [(load_, float(lowest_modes(pr, xa, 1.0 / ratio, k=1)[0][0]))
+            out["lowest_eigenvalue_by_load"] = [(load_, float(lowest_modes(pr, xa, load, k=1)[0][0]))
                                                 for load_, xa in zip(loads, accepted)]
         if modes:
-            vals, mode = lowest_modes(pr, x, 1.0 / ratio)
+            vals, mode = lowest_modes(pr, x, load)
             m = np.hypot(*mode.reshape(-1, 2).T)
             node = int(np.argmax(m))
             out["eigenvalues"] = np.round(vals, 5).tolist()
@@ -242,14 +257,15 @@ def run_calculix(case, mesh_size, at_load):
     t0 = time.perf_counter()
     results, info = run_ccx(deck_text(deck), job="section", timeout=900)
     m = deck.mesh
-    section = sd.build_section(case)
-    upper0 = np.asarray(section.upper, dtype=np.float64)
+    uppers = [np.asarray(sd.build_section(case.body_case(b)).upper, dtype=np.float64) for b in range(len(case.bodies))]
+    upper0 = np.concatenate(uppers)
+    ends = np.cumsum([len(u) for u in uppers])[:-1]
     rows = []
     for time_, ids, disp in results.blocks["DISP"]:
         u = np.zeros((len(m.points), 2))
         u[ids - 1] = disp[:, :2]
         up = map_points(m.points, deck.placed_points + u, m.cells, m.kind, upper0)
-        s, mid = surface_stretch(upper0 @ deck.rotation.T + deck.translation, up)
+        s, mid = surface_stretch([u @ deck.rotation.T + deck.translation for u in uppers], np.split(up, ends))
         i = int(np.argmin(s))
         top = int(np.argmax(mid[:, 1]))
         rows.append((float(time_), float(s[i]), np.round(mid[i], 2).tolist(), float(s[top]), up))
@@ -281,7 +297,9 @@ def main(argv=None):
     ap.add_argument("--at", type=float, default=None,
                     help="load (fraction) at which to read CalculiX; by default where the last reference run stopped")
     args = ap.parse_args(argv)
-    case = dataclasses.replace(sd.load_case(args.case), law=AreaRatio(1.0))
+    problem = sd.load_case(args.case)
+    law = VolumeRatio(1.0) if problem.revolution is not None else AreaRatio(1.0)
+    case = problem.replace(bodies=tuple(dataclasses.replace(b, law=law) for b in problem.bodies))
     last = None
     for h, k, every in itertools.product(args.mesh_size, args.bulk_to_shear, args.upper_every):
         r = run_reference(case, h, k, args.initial_step, args.min_step, modes=args.modes, trend=args.trend,

@@ -22,7 +22,7 @@ Prints, on a shared machine (times are indicative only):
    layers of shear moduli 1 (inner) and 3 (outer), expanded radially: the
    largest pressure error far from the ends, over the largest pressure,
    per layer.
-5. The two shared assemblies against their finite-element reference (mesh
+5. The two shared problems of several bodies against their finite-element reference (mesh
    size 0.1): per body the Hausdorff distance of the hyperelastic model's
    upper curve over its T, and its law correction over T.
 """
@@ -38,8 +38,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
-from sectiondeform.assembly import assembly_from_dict  # noqa: E402
-from sectiondeform.assembly_deform import AssemblyDeformer  # noqa: E402
+from sectiondeform import Deformer, case_from_dict  # noqa: E402
 from sectiondeform.reference import solve_reference  # noqa: E402
 
 DRUM = ROOT / "tests" / "data" / "cases" / "v2" / "tread-on-drum.json"
@@ -52,10 +51,10 @@ def undertread() -> None:
         data = json.loads(DRUM.read_text())
         data["bodies"] = data["bodies"][:1]
         data["bodies"][0]["material"] = material
-        reference = solve_reference(assembly_from_dict(data), mesh_size=0.2)
+        reference = solve_reference(case_from_dict(data), mesh_size=0.2).bodies[0]
         for through in (2.0, 4.0):
             data["options"] = {**data.get("options", {}), "elements_through_thickness": through}
-            body = AssemblyDeformer(assembly_from_dict(data), model="hyperelastic").deform().bodies[0]
+            body = Deformer(case_from_dict(data), model="hyperelastic").deform().bodies[0]
             d = np.hypot(*(body.upper - reference.upper).T) / 3.0
             print(f"undertread {name:14s} {through:.0f} through T: largest {d.max():.2e} T, median {np.median(d):.2e} T")
 
@@ -71,8 +70,8 @@ def ring() -> None:
         case["target"] = {"polyline": [[0.0, 14.0], [3 * T, 14.0]]}
         for through in (2.0, 4.0):
             case["options"]["elements_through_thickness"] = through
-            model[name, through] = AssemblyDeformer(assembly_from_dict(case)).deform().bodies[0].upper
-        reference[name] = solve_reference(assembly_from_dict(case), mesh_size=0.12).upper
+            model[name, through] = Deformer(case_from_dict(case)).deform().bodies[0].upper
+        reference[name] = solve_reference(case_from_dict(case), mesh_size=0.12).bodies[0].upper
     effect = reference["mr"] - reference["nh"]
     print(f"short ring: Mooney-Rivlin moves the upper curve by {np.hypot(*effect.T).max() / T:.2e} T (reference)")
     for through in (2.0, 4.0):
@@ -93,7 +92,7 @@ def stacked() -> None:
     case = {"format": "section-case/2", "name": "stack", "support": {"polyline": [[0, 0], [10, 0]]},
             "target": {"polyline": [[0, 0], [LAM * 10, 0]]}, "bodies": bodies,
             "options": {"model": "hyperelastic", "newton_tolerance": 1e-10}}
-    result = AssemblyDeformer(assembly_from_dict(case)).deform()
+    result = Deformer(case_from_dict(case)).deform()
     for body, data, mu in zip(result.bodies, result.to_json(fields=True)["bodies"], (1.0, 3.0)):
         off = np.abs(body.final_mesh.points - LAM * body.initial_mesh.points).max() / HEIGHT
         p = np.median(data["fields"]["pressure"]) / (mu * exact)
@@ -110,15 +109,14 @@ def layered_ring() -> None:
 
 def against_reference() -> None:
     from sectiondeform.compare import hausdorff_distance
-    from sectiondeform.reference.assembly import solve_assembly_reference
 
     for name in ("two-layer-strip", "tread-on-drum"):
-        assembly = assembly_from_dict(json.loads((DRUM.parent / f"{name}.json").read_text()))
-        reference = solve_assembly_reference(assembly, mesh_size=0.1)
-        deformer = AssemblyDeformer(assembly, model="hyperelastic")
+        problem = case_from_dict(json.loads((DRUM.parent / f"{name}.json").read_text()))
+        reference = solve_reference(problem, mesh_size=0.1)
+        deformer = Deformer(problem, model="hyperelastic")
         result = deformer.deform()
-        for body, ref, prepared in zip(result.bodies, reference.bodies, deformer.bodies):
-            t = prepared.section.thickness
+        for body, ref, section in zip(result.bodies, reference.bodies, deformer.stack.sections):
+            t = section.thickness
             d = hausdorff_distance(body.upper, ref.upper)
             print(f"{name} {body.name}: Hausdorff to the reference {100 * d / t:.2f} % T, "
                   f"law correction {body.info.area_correction:.2e} T")

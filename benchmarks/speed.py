@@ -1,4 +1,4 @@
-"""The speed benchmark: pipeline, re-deformation, scaling, peers and command line, in one run.
+"""The speed benchmark: pipeline, re-deformation, scaling, peers, command line, drawings and bodies, in one run.
 
 :func:`run_benchmark` measures, in one process, medians over repeated runs
 after a warm-up, and returns a JSON-ready report; :func:`to_markdown` turns
@@ -25,6 +25,9 @@ What is timed:
 6. ``io``: chaining 5,600 shuffled DXF LINEs into one ring, and reading the
    real seal scan kept in ``tests/data/real`` (chaining, snapping, closing
    its gap, simplifying).
+7. ``bodies``: the same calls (prepare, deform, warm re-deformation,
+   preview) on a problem of one body and on one of two bonded bodies, per
+   model, interleaved; the several bodies' time per body over the one body's.
 
 Times are seconds in the JSON; the Markdown shows ms or µs. No figure is
 asserted anywhere: the benchmark reports, the reader judges.
@@ -75,14 +78,7 @@ REFERENCE_CASE = "paper-example"
 
 def median_time(fn, repeats: int, warmup: int = 1) -> float:
     """Median wall time of ``fn()`` over ``repeats`` runs after ``warmup`` runs, seconds."""
-    for _ in range(warmup):
-        fn()
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
+    return median_times({0: fn}, repeats, warmup)[0]
 
 
 def median_times(fns: dict, repeats: int, warmup: int = 1) -> dict:
@@ -152,23 +148,23 @@ def bench_pipeline(cases: list, cfg: dict) -> list[dict]:
     of load from elsewhere falls on all of them alike.
     """
     from sectiondeform.deform import Deformer
-    from sectiondeform.models import get_model
-    from sectiondeform.section import build_section
+    from sectiondeform.stack import Stack
 
     rows, fns = [], {}
     for i, case in enumerate(cases):
         deformer = Deformer(case)
-        section = deformer.section
-        model = get_model(deformer.model_name)
+        stack, model = deformer.stack, deformer.model
+        options = case.options.for_model(model.name)
         rows.append({
             "case": case.name,
-            "elements": deformer.prepared.quality.elements,
-            "upper_points": int(len(section.upper)),
-            "relative_area_error": float(abs(deformer.deform().relative_error)),
+            "bodies": len(case.bodies),
+            "elements": sum(int(b.quality.elements) for b in deformer.prepared.bodies),
+            "upper_points": sum(int(len(sec.upper)) for sec in stack.sections),
+            "relative_area_error": max(float(abs(b.relative_error)) for b in deformer.deform().bodies),
         })
         fns[i, "full_s"] = lambda case=case: Deformer(case).deform()
-        fns[i, "section_s"] = lambda case=case: build_section(case)
-        fns[i, "prepare_s"] = lambda case=case, model=model, section=section: model.prepare(section, case.options.for_model(model.name))
+        fns[i, "section_s"] = lambda case=case: Stack(case)
+        fns[i, "prepare_s"] = lambda model=model, stack=stack, options=options: model.prepare(stack, options)
         fns[i, "deform_s"] = deformer.deform
     for (i, name), t in median_times(fns, cfg["repeats"], cfg["warmup"]).items():
         rows[i][name] = t
@@ -176,13 +172,13 @@ def bench_pipeline(cases: list, cfg: dict) -> list[dict]:
 
 
 def bent_targets(deformer, steps: int, extra: float = 0.1) -> list:
-    """Targets bent a little further each step: lower + (1 + extra * i / steps) (target - lower).
+    """Targets bent a little further each step: support + (1 + extra * i / steps) (target - support).
 
     Returned as polylines (curves), so each re-deformation resamples its target.
     """
     from sectiondeform.curves import Polyline
 
-    lower = deformer.section.lower
+    lower = deformer.problem.support.at_fractions(deformer.fractions)
     target = deformer.target_nodes()
     return [Polyline(lower + (1.0 + extra * i / max(steps - 1, 1)) * (target - lower)) for i in range(steps)]
 
@@ -215,7 +211,8 @@ def bench_redeform(cases: list, cfg: dict) -> list[dict]:
         deformer, unchecked = Deformer(case), Deformer(case, check=False)
         targets, extra = _working_targets(deformer, cfg["redeform_steps"])
         rows.append({"case": case.name, "steps": len(targets), "extra_bend": extra,
-                     "normal_smoothing_last": float(deformer.deform(targets[-1]).info.normal_smoothing)})
+                     "normal_smoothing_last": max(float(getattr(b.info, "normal_smoothing", 0.0))
+                                                  for b in deformer.deform(targets[-1]).bodies)})
         runs += [(len(rows) - 1, "redeform_s", deformer, targets), (len(rows) - 1, "redeform_unchecked_s", unchecked, targets)]
     times = {(i, key): [] for i, key, _, _ in runs}
     for _ in range(max(1, cfg["repeats"] // 10)):
@@ -236,11 +233,11 @@ def bench_redeform(cases: list, cfg: dict) -> list[dict]:
 
 
 def sample_inside(deformer, n: int, seed: int = 0) -> np.ndarray:
-    """``(n, 2)`` points drawn uniformly inside both the section and its initial mesh."""
+    """``(n, 2)`` points drawn uniformly inside both the first body's section and its initial mesh (paper model)."""
     import shapely
 
-    section_poly = shapely.Polygon(deformer.section.contour)
-    nodes = deformer.prepared.mesh.nodes
+    section_poly = shapely.Polygon(deformer.stack.sections[0].contour)
+    nodes = deformer.prepared.bodies[0].mesh.nodes
     ring = np.concatenate((nodes[0], nodes[1:, -1], nodes[-1, ::-1][1:], nodes[-2:0:-1, 0]))
     region = section_poly.intersection(shapely.Polygon(ring).buffer(0))
     rng = np.random.default_rng(seed)
@@ -255,13 +252,13 @@ def sample_inside(deformer, n: int, seed: int = 0) -> np.ndarray:
 
 
 def bench_locate_scaling(case, cfg: dict) -> dict:
-    """Locating N points in the initial mesh and placing them in the final one."""
+    """Locating N points in the first body's initial mesh and placing them in its final one (paper model)."""
     from sectiondeform.deform import Deformer
     from sectiondeform.locate import locate, place
 
-    deformer = Deformer(case)
-    mesh = deformer.prepared.mesh
-    final = deformer.deform().final_mesh.points
+    deformer = Deformer(case, "paper")
+    mesh = deformer.prepared.bodies[0].mesh
+    final = deformer.deform().bodies[0].final_mesh.points
     rows = []
     for n in cfg["sizes"]:
         x = sample_inside(deformer, n)
@@ -288,7 +285,7 @@ def bench_refinement(case, cfg: dict) -> dict:
     from sectiondeform.deform import Deformer
     from sectiondeform.errors import SectionDeformError
 
-    h0 = Deformer(case).section.element_size
+    h0 = min(sec.element_size for sec in Deformer(case).stack.sections)
     rows, refused = [], None
     for level in range(cfg["refinements"]):
         h = h0 / 2**level
@@ -302,7 +299,7 @@ def bench_refinement(case, cfg: dict) -> dict:
         t = median_time(lambda h=h: Deformer(case, element_size=h).deform(), reps, 1)
         rows.append({
             "element_size": h,
-            "elements": int(d.prepared.quality.elements),
+            "elements": sum(int(b.quality.elements) for b in d.prepared.bodies),
             "full_s": t,
             "redeform_s": median_time(d.deform, reps, 1),
             "peak_mb": peak_memory(lambda h=h: Deformer(case, element_size=h).deform()),
@@ -321,7 +318,7 @@ def bench_refinement(case, cfg: dict) -> dict:
 
 
 def rbf_morph(lower: np.ndarray, target_nodes: np.ndarray, upper: np.ndarray) -> tuple[np.ndarray, str]:
-    """Upper points moved by a thin-plate RBF of the lower nodes' displacement.
+    """Points ``upper`` moved by a thin-plate RBF of the support nodes' displacement (``lower`` to ``target_nodes``).
 
     A straight lower curve makes the linear polynomial part singular; the
     morph then falls back to a constant one (noted in the returned string).
@@ -343,17 +340,29 @@ def rbf_morph(lower: np.ndarray, target_nodes: np.ndarray, upper: np.ndarray) ->
 
 
 def bench_rbf(case, cfg: dict, ours: dict, ours_redeform: dict) -> dict:
-    """The RBF morph of the same section onto the same target: time and area error."""
+    """The RBF morph of the same bodies onto the same target: time and the worst body's area error.
+
+    Every body's contour (lower and upper points) is moved by the support's
+    displacement; a body on the support has its lower points moved onto
+    the target (the RBF interpolates its centres).
+    """
     from sectiondeform.deform import Deformer
     from sectiondeform.section import polygon_area
 
     deformer = Deformer(case)
-    sec = deformer.section
+    support = case.support.at_fractions(deformer.fractions)
     nodes = deformer.target_nodes()
-    upper, note = rbf_morph(sec.lower, nodes, sec.upper)
-    wanted = case.law.target_area(sec.area)
-    err = abs(abs(polygon_area(np.concatenate((nodes, upper[1:-1])))) - wanted) / wanted
-    t = median_time(lambda: rbf_morph(sec.lower, nodes, sec.upper), cfg["peer_repeats"], 1)
+    sections = deformer.stack.sections
+    points = np.concatenate([np.concatenate((sec.lower, sec.upper)) for sec in sections])
+    moved, note = rbf_morph(support, nodes, points)
+    err, start = 0.0, 0
+    for sec, body in zip(sections, case.bodies):
+        k, m = len(sec.lower), len(sec.upper)
+        lower, upper = moved[start:start + k], moved[start + k:start + k + m]
+        start += k + m
+        wanted = body.law.target_area(sec.area)
+        err = max(err, abs(abs(polygon_area(np.concatenate((lower, upper[1:-1])))) - wanted) / wanted)
+    t = median_time(lambda: rbf_morph(support, nodes, points), cfg["peer_repeats"], 1)
     ours_err = max(ours["relative_area_error"], 1e-17)
     return {
         "case": case.name,
@@ -457,6 +466,92 @@ def bench_io(cfg: dict) -> dict:
 
 
 # --------------------------------------------------------------------------
+# 7. One body and several
+
+
+BODIES_CASES = (("one body", "paper-example.json"), ("two bonded bodies", "v2/two-layer-strip.json"))
+BUMP = 0.005  # of the thinnest body's thickness
+
+
+def bumped(curve, height: float):
+    """``curve`` with a smooth bump of ``height`` (units) in y, as a 401-point polyline."""
+    from sectiondeform.curves import Polyline
+
+    s = np.linspace(0.0, 1.0, 401)
+    return Polyline(curve.at_fractions(s) + height * np.sin(np.pi * s)[:, None] * np.array([0.0, 1.0]))
+
+
+def _subject(case, model: str) -> dict:
+    """A problem prepared for ``model``, with its figures and the calls to time."""
+    from sectiondeform.deform import Deformer
+
+    deformer = Deformer(case, model)
+    first = deformer.deform()
+    thickness = min(sec.thickness for sec in deformer.stack.sections)
+    moved = bumped(case.target, BUMP * thickness)
+    warm, preview = deformer.deform(moved, start=first), deformer.preview(moved, start=first)
+    unknowns = first.bodies[0].quality.initial.unknowns
+    return {
+        "bodies": len(case.bodies), "unknowns": None if unknowns is None else int(unknowns),
+        "preview_error": max(float(np.abs(p.contour - w.contour).max()) for p, w in zip(preview.bodies, warm.bodies))
+        / thickness,
+        "calls": {"deform_s": deformer.deform, "warm_s": lambda: deformer.deform(moved, start=first),
+                  "preview_s": lambda: deformer.preview(moved, start=first)},
+        "prepare": lambda: Deformer(case, model),
+    }
+
+
+def bench_bodies(cfg: dict) -> list[dict]:
+    """One body against several bonded ones, per model: prepare, deform, warm re-deform, preview; medians, seconds.
+
+    ``deform`` goes onto the case's own target (cold: the hyperelastic solve
+    starts from the undeformed shape moved rigidly onto it); ``warm`` and
+    ``preview`` onto the target moved by a smooth bump of 0.5 % of the
+    thinnest body's thickness T, from the first result (``start=``; the
+    paper model has no path and ignores it). ``preview_error`` is the
+    preview's largest distance to the warm result's contour over T. The
+    calls of one model on both problems are interleaved.
+    """
+    from sectiondeform import load_case
+
+    folder = default_cases_dir()
+    cases = [(label, load_case(folder / path)) for label, path in BODIES_CASES]
+    rows = []
+    for model in ("paper", "hyperelastic"):
+        subjects = [(label, case, _subject(case, model)) for label, case in cases]
+        calls = {(i, key): fn for i, (_, _, s) in enumerate(subjects) for key, fn in s["calls"].items()}
+        times = median_times(calls, cfg["repeats"], cfg["warmup"])
+        for i, (label, case, s) in enumerate(subjects):
+            row = {"model": model, "case": case.name, "subject": label, "bodies": s["bodies"],
+                   "unknowns": s["unknowns"], "preview_error": s["preview_error"],
+                   "prepare_s": median_time(s["prepare"], max(1, cfg["repeats"] // 4), 1)}
+            row.update({key: times[i, key] for key in s["calls"]})
+            rows.append(row)
+    return rows
+
+
+def bodies_markdown(rows: list[dict]) -> list[str]:
+    """Section 7's table: each problem, then per model the several bodies' time per body (and per unknown) over the one body's."""
+    keys = ("prepare_s", "deform_s", "warm_s", "preview_s")
+    lines = ["| model | case | bodies | unknowns | prepare | deform (cold) | warm re-deform (`start=`) "
+             "| preview (`start=`) | preview's distance to the warm result / T |", "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for r in rows:
+        unknowns = "–" if r["unknowns"] is None else str(r["unknowns"])
+        lines.append(f"| {r['model']} | {r['case']} ({r['subject']}) | {r['bodies']} | {unknowns} | "
+                     + " | ".join(_fmt(r[k]) for k in keys) + f" | {r['preview_error']:.2g} |")
+    for model in dict.fromkeys(r["model"] for r in rows):
+        one, *others = [r for r in rows if r["model"] == model]
+        for r in others:
+            lines.append(f"| {model} | {r['case']}, per body / {one['case']} | | | "
+                         + " | ".join(f"{r[k] / r['bodies'] / one[k]:.2g}×" for k in keys) + " | |")
+            if r["unknowns"] and one["unknowns"]:  # a solve: its time per unknown too (the meshes differ in size)
+                per = one["unknowns"] / r["unknowns"]
+                lines.append(f"| {model} | {r['case']}, per unknown / {one['case']} | | | "
+                             + " | ".join(f"{r[k] * per / one[k]:.2g}×" for k in keys) + " | |")
+    return lines
+
+
+# --------------------------------------------------------------------------
 # The run
 
 
@@ -498,7 +593,7 @@ def run_benchmark(cases_dir=None, quick: bool = False, profile: bool = True, log
     log : callable
         Progress messages.
     """
-    from sectiondeform.case import load_case
+    from sectiondeform import load_case
 
     cfg = QUICK if quick else FULL
     paths = sorted(Path(cases_dir or default_cases_dir()).glob("*.json"))
@@ -523,6 +618,8 @@ def run_benchmark(cases_dir=None, quick: bool = False, profile: bool = True, log
     report["cli"] = bench_cli(paths[[p.stem for p in paths].index(ref_name)], cfg)
     log("drawings ...")
     report["io"] = bench_io(cfg)
+    log("one body and several ...")
+    report["bodies"] = bench_bodies(cfg)
     report["targets"] = check_targets(report)
     if profile and not quick:
         report["profile"] = profile_text(ref)
@@ -602,8 +699,7 @@ def to_markdown(report: dict, changes: str = "") -> str:
         "Other benchmarks, each with its own command: parametric studies (rows per second, "
         "1 → 2 workers, Dask, a 10⁵-row study) in [studies.md](studies.md#benchmark); the interactive "
         "page (pointer move to redrawn section) in [benchmarks-page.md](benchmarks-page.md); the "
-        "hyperelastic model's levels in [hyperelastic.md](hyperelastic.md); assemblies in "
-        "[benchmarks-assemblies.md](benchmarks-assemblies.md).",
+        "hyperelastic model's levels in [hyperelastic.md](hyperelastic.md).",
         "",
         "## Targets",
         "",
@@ -673,6 +769,8 @@ def to_markdown(report: dict, changes: str = "") -> str:
             lines.append(f"| reading the real seal scan (5,632 LINEs: chain, snap, close, simplify) | {_fmt(io['seal_read_s'])} |")
     else:
         lines.append(f"Not measured ({io.get('note', 'no figures')}).")
+    lines += ["", "## 7. One body and several (per model, the same calls on a problem of one body and one of two)", ""]
+    lines += bodies_markdown(report["bodies"])
     if changes:
         lines += ["", changes.strip()]
     if report.get("profile"):

@@ -54,10 +54,17 @@ def test_quick_benchmark_writes_json_and_markdown(tmp_path, runner, capsys):
     assert _positive(r["cli"]["cli_s"])
     if r["io"]["available"]:
         assert _positive(r["io"]["chain_s"]) and _positive(r["io"]["seal_read_s"])
+    for model in ("paper", "hyperelastic"):  # the one implementation on one body and on two bonded ones
+        rows = [row for row in r["bodies"] if row["model"] == model]
+        assert sorted(row["bodies"] for row in rows) == [1, 2]
+        for row in rows:
+            assert all(_positive(row[k]) for k in ("prepare_s", "deform_s", "warm_s", "preview_s"))
+            assert math.isfinite(row["preview_error"]) and row["preview_error"] >= 0
     for t in r["targets"]:
         assert math.isfinite(t["value"]) and isinstance(t["met"], bool)
     md = (tmp_path / "benchmarks.md").read_text()
     assert md.startswith("# Benchmarks") and "| figure | measured | target |" in md
+    assert "## 7. One body and several" in md and "per body /" in md
 
 
 def test_quick_run_without_output_goes_to_a_temporary_folder(runner, tmp_path):

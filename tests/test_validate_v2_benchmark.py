@@ -1,4 +1,4 @@
-"""``benchmarks/validation.py`` with version-2 cases: its own blocks only, a row per body of an assembly."""
+"""``benchmarks/validation.py`` with version-2 cases: its own blocks only, a row per body of a problem."""
 
 from __future__ import annotations
 
@@ -28,8 +28,8 @@ def cells(row: str) -> list[str]:
     return [c.strip() for c in row.strip().strip("|").split("|")]
 
 
-def test_an_assembly_is_one_row_per_body_and_model(bench):
-    table = bench.assembly_table([bench.sd.load_case(STRIP)], ["paper", "hyperelastic"], None, 0.8).splitlines()
+def test_a_problem_is_one_row_per_body_and_model(bench):
+    table = bench.bodies_table([bench.sd.load_case(STRIP)], ["paper", "hyperelastic"], None, 0.8).splitlines()
     width = len(cells(table[0]))
     assert len(table) == 2 + 2 * 2
     assert all(len(cells(row)) == width for row in table)
@@ -43,13 +43,12 @@ def test_an_assembly_is_one_row_per_body_and_model(bench):
 
 def test_a_reference_that_fails_is_a_row_saying_so(bench, monkeypatch):
     from sectiondeform.errors import ConvergenceError
-    from sectiondeform.reference import assembly
 
     def fail(*args, **kwargs):
         raise ConvergenceError("reference: Newton did not converge beyond load 40.0%")
 
-    monkeypatch.setattr(assembly, "solve_assembly_reference", fail)
-    table = bench.assembly_table([bench.sd.load_case(STRIP)], ["paper"], None, 0.8).splitlines()
+    monkeypatch.setattr(bench, "solve_reference", fail)
+    table = bench.bodies_table([bench.sd.load_case(STRIP)], ["paper"], None, 0.8).splitlines()
     assert len(table) == 3 and len(cells(table[2])) == len(cells(table[0]))
     assert cells(table[2])[6] == "reference failed: reference: Newton did not converge beyond load 40.0%"
 
