@@ -57,7 +57,7 @@ def test_convert_refusals_leave_no_file(tmp_path, capsys):
     out = tmp_path / "b.json"
     assert main(["convert", str(tmp_path / "a.dxf"), str(out), "--split", "0,0", "100,0"]) == 2
     err = capsys.readouterr().err.strip()
-    assert err.count("\n") == 0 and "--split" in err and "assembly" in err and not out.exists()
+    assert err.count("\n") == 0 and "--split" in err and "several bodies" in err and not out.exists()
     assert main(["convert", str(STRIP), str(out), "--area-ratio", "0.9"]) == 2
     err = capsys.readouterr().err.strip()
     assert "each body's law" in err and not out.exists()

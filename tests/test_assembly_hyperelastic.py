@@ -88,7 +88,7 @@ def test_result_json_is_section_result_2_with_one_mesh_per_body(strip_result):
 
 def test_shared_nodes_are_one_point_of_the_mesh(strip_result):
     assembly, _ = strip_result
-    joint = Deformer(assembly).joint
+    joint = Deformer(assembly).prepared
     mesh = joint.mesh
     backing_nodes = np.unique(mesh.cells[mesh.body == 0])
     cover_nodes = np.unique(mesh.cells[mesh.body == 1])
@@ -105,14 +105,14 @@ def test_each_body_is_meshed_at_its_own_thickness_over_elements_through_thicknes
     # finer one. Every cell of a body has edges near its own size (the mean edge over the size).
     assembly, result = strip_result
     deformer = Deformer(assembly)
-    sections = [b.section for b in deformer.bodies]
+    sections = deformer.stack.sections
     for body, section in zip(result.bodies, sections):
         h = section.mesh_scale / THROUGH
         assert body.quality.initial.element_size == pytest.approx(h)
         pts, cells = np.asarray(body.initial_mesh.points), np.asarray(body.initial_mesh.cells)[:, :3]
         edges = np.hypot(*(pts[cells] - pts[np.roll(cells, -1, axis=1)]).transpose(2, 0, 1))
         assert 0.6 * h <= float(np.median(edges)) <= 1.4 * h
-    assert deformer.joint.mesh.size == pytest.approx(min(s.mesh_scale for s in sections) / THROUGH)
+    assert deformer.prepared.mesh.size == pytest.approx(min(s.mesh_scale for s in sections) / THROUGH)
 
 
 def test_identity_and_rigid_motion_are_reproduced_per_body():
@@ -156,10 +156,10 @@ def test_equal_materials_in_two_stacked_bodies_give_the_shape_of_their_union():
     deformers = [Deformer(case_from_dict(strip_dict(ratios=(ratio, ratio), moduli=(1.0, 1.0), through=t)))
                  for t in (through, 2 * through)]
     coarse, fine = (d.deform() for d in deformers)
-    assembly = deformers[0].assembly
+    assembly = deformers[0].problem
     union = _union_case(assembly, ratio)
     thickness = Deformer(case_from_dict(union)).section.mesh_scale
-    h = deformers[0].joint.mesh.size
+    h = deformers[0].prepared.mesh.size
     single = Deformer(case_from_dict({**union, "options": {**union["options"], "elements_through_thickness": thickness / h}}))
     one = single.deform()
     top = coarse.body("cover")
@@ -169,7 +169,7 @@ def test_equal_materials_in_two_stacked_bodies_give_the_shape_of_their_union():
     assert same.sum() >= 88  # at least the flat top, 17 mm high
     diff = np.hypot(*(one.upper[d.argmin(axis=1)[same]] - top.upper[same]).T).max()
     corrections = one.info.area_correction * single.section.thickness + sum(
-        r.info.area_correction * b.section.thickness for r, b in zip(coarse.bodies, deformers[0].bodies))
+        r.info.area_correction * b.section.thickness for r, b in zip(coarse.bodies, deformers[0].stack.bodies))
     discretisation = 4.0 / 3.0 * np.hypot(*(top.upper - fine.body("cover").upper).T).max()
     assert 0 < diff <= corrections + discretisation
     assert diff <= 2e-3 * 17.0

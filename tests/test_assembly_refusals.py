@@ -107,7 +107,7 @@ def test_cli_deforms_an_assembly_to_section_result_2(tmp_path, capsys):
     assert "cover" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("extra", [["--area-ratio", "0.9"], ["--dxf-spline"]])
+@pytest.mark.parametrize("extra", [["--area-ratio", "0.9"]])
 def test_cli_refusals_on_assemblies_exit_2_and_write_nothing(tmp_path, capsys, extra):
     out = tmp_path / "r.json"
     extra = [str(tmp_path / e) if e.endswith(".vtu") else e for e in extra]

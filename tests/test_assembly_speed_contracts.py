@@ -172,18 +172,17 @@ def test_a_paper_re_deformation_depends_on_the_target_alone_whatever_ran_before(
 
 
 def test_other_laws_on_the_prepared_assembly_are_met_from_a_start_under_the_old_ones(solved):
-    from sectiondeform.app.engine import with_laws
     from sectiondeform.laws import AreaRatio
 
     a, d, first = solved
-    placed = with_laws(d, (AreaRatio(0.9), AreaRatio(0.85)))
-    r = placed.deform(start=first)  # no path from the old laws: a cold solve, the same as without start
-    assert same(r, placed.deform())
+    laws = (AreaRatio(0.9), AreaRatio(0.85))
+    r = d.deform(law=laws, start=first)  # no path from the old laws: a cold solve, the same as without start
+    assert same(r, d.deform(law=laws))
     assert all(abs(b.relative_error) <= 1e-9 for b in r.bodies)
     assert [b.info.out_of_plane_stretch for b in r.bodies] == pytest.approx([1 / 0.9, 1 / 0.85], rel=1e-12)
     assert not r.bodies[0].info.warm_start
-    again = placed.deform(bumped(a, 0.5), start=r)  # and from a start under the new laws, warm
+    again = d.deform(bumped(a, 0.5), laws, start=r)  # and from a start under the new laws, warm
     assert again.bodies[0].info.warm_start and all(abs(b.relative_error) <= 1e-9 for b in again.bodies)
-    p = placed.preview(bumped(a, 0.5), start=first)
+    p = d.preview(bumped(a, 0.5), laws, start=first)
     assert all(abs(b.relative_error) <= 1e-9 for b in p.bodies)
     assert same(d.deform(), first)  # the prepared deformer is untouched
