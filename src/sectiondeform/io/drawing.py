@@ -64,6 +64,7 @@ from .units import mm_per_unit
 __all__ = [
     "DrawingOptions",
     "case_from_drawing",
+    "drawing_file_of",
     "convert_units",
     "make_target_arc",
     "read_json_case",
@@ -610,7 +611,47 @@ def _plain_case(path: Path, options: DrawingOptions, given, report) -> Case:
     return convert_units(case, options.units, report) if options.units else case
 
 
-def read_json_case(path, *, report=None, **options) -> Case:
+def drawing_file_of(path, name, allow_files=True) -> Path:
+    """The drawing file a case JSON at ``path`` names, confined to the folder the caller allows.
+
+    Parameters
+    ----------
+    path : path-like
+        The case JSON; ``name`` is relative to its folder.
+    name : str
+        The JSON's ``drawing.file``.
+    allow_files : bool or path-like
+        True: files inside the JSON's own folder (or below it); a folder:
+        files inside that folder; False or None: no file at all.
+
+    Returns
+    -------
+    Path
+        ``path``'s folder / ``name``, not yet opened.
+
+    Raises
+    ------
+    CaseError
+        On ``drawing.file``, the same whether or not the file exists: no
+        files allowed, or one outside the allowed folder (an absolute path,
+        ``..`` or a link leading out of it).
+    """
+    if allow_files is None or allow_files is False:
+        raise CaseError("drawing.file", "this reader opens no drawing files; give the curves in the case, "
+                                        "or read the drawing itself")
+    base = Path(path).parent if allow_files is True else Path(allow_files)
+    wanted = Path(path).parent / name
+    try:
+        inside = wanted.resolve().is_relative_to(base.resolve())
+    except (OSError, RuntimeError, ValueError):
+        inside = False
+    if Path(name).is_absolute() or not inside:
+        raise CaseError("drawing.file", f"{name!r} is outside the case's folder; name a drawing file in the "
+                                        "case file's folder (or below it)")
+    return wanted
+
+
+def read_json_case(path, *, report=None, allow_files=True, **options) -> Case:
     """Read a case JSON file; one with a ``"drawing"`` key takes its curves from a DXF or SVG.
 
     ``"drawing": {"file": "profile.dxf", "layers": {"lower": "BASE"}, ...}``
@@ -622,6 +663,12 @@ def read_json_case(path, *, report=None, **options) -> Case:
     JSON's ``drawing`` keys; for a case JSON without a drawing only
     ``units``, ``law``, ``name`` and ``chordal_error`` apply, and the
     others are an error.
+
+    The drawing file must lie in the folder ``allow_files`` allows (see
+    :func:`drawing_file_of`): by default the JSON's own folder, never an
+    absolute path or one leading out of it with ``..``; ``False`` reads no
+    drawing file (a program reading cases from others, such as the page's
+    server, passes it).
     """
     path = Path(path)
     given = {k: v for k, v in options.items() if v is not None}
@@ -634,6 +681,7 @@ def read_json_case(path, *, report=None, **options) -> Case:
         raise CaseError("drawing.file", "expected {\"file\": \"profile.dxf\", ...} naming a DXF or SVG file")
     opts = {k: v for k, v in d.items() if k != "file"}
     DrawingOptions.from_mapping(opts, "drawing", allowed=JSON_KEYS)
+    drawing_path = drawing_file_of(path, d["file"], allow_files)
     opts.update(given)
     if data.get("format") == "section-case/2":
         from .assembly import assembly_from_json_and_drawing
@@ -644,7 +692,7 @@ def read_json_case(path, *, report=None, **options) -> Case:
     if "target" in data:
         opts["target"] = curve_from_json(data["target"], "target")
     chordal = (data.get("options") or {}).get("chordal_error")
-    drawing = read_drawing_file(path.parent / d["file"], opts.get("chordal_error") or chordal)
+    drawing = read_drawing_file(drawing_path, opts.get("chordal_error") or chordal)
     case = case_from_drawing(drawing, DrawingOptions.from_mapping(opts), report=report)
     merged = {"format": data.get("format", "section-case/1"), "lower": case.lower.to_json(), "upper": case.upper.to_json(),
               "target": case.target.to_json(), "law": case.law.to_json(), "name": data.get("name", case.name),
