@@ -29,6 +29,7 @@ import math
 import os
 import platform
 import re
+import secrets
 import shutil
 import statistics
 import subprocess
@@ -48,11 +49,16 @@ LAUNCH_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking
                "--disable-sync", "--no-first-run"]
 
 
-def start_server() -> tuple[subprocess.Popen, str]:
-    proc = subprocess.Popen([sys.executable, "-m", "sectiondeform", "serve", "--port", "0", "--no-browser"],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+TOKEN = "benchmark-" + secrets.token_urlsafe(16)
+"""The server's token for this run (given with --token; the page's address carries it)."""
+
+
+def start_server(*extra: str) -> tuple[subprocess.Popen, str]:
+    """The serve command on a free port of 127.0.0.1 with :data:`TOKEN`; its page's address (with ``?token=``)."""
+    proc = subprocess.Popen([sys.executable, "-m", "sectiondeform", "serve", "--port", "0", "--no-browser",
+                             "--token", TOKEN, *extra], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     line = proc.stdout.readline()
-    match = re.search(r"(http://\S+/)", line)
+    match = re.search(r"(http://\S+/\?token=\S+)", line)
     if not match:
         proc.kill()
         raise SystemExit(f"the server did not start: {line}")
@@ -176,13 +182,14 @@ def socket_run(requests: int, models=("paper", "hyperelastic")) -> list[dict]:
         return json.dumps({"seq": i, "final": final, "case": {**case, "target": target}, "model": model, "ratio": 0.8})
 
     proc, url = start_server()
-    host = url.split("//", 1)[1].rstrip("/")
+    host = url.split("//", 1)[1].split("/", 1)[0]
     rows = []
     try:
         for model in models:
             for _ in range(200):  # the address is printed just before the server listens
                 try:
-                    ws = connect(f"ws://{host}/ws", origin=f"http://{host}", compression="deflate", max_size=None)
+                    ws = connect(f"ws://{host}/ws?token={TOKEN}", origin=f"http://{host}", compression="deflate",
+                                 max_size=None)
                     break
                 except ConnectionRefusedError:
                     time.sleep(0.05)

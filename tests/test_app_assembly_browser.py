@@ -35,7 +35,7 @@ def server():
     proc = subprocess.Popen([sys.executable, "-m", "sectiondeform", "serve", str(STRIP), "--port", "0", "--no-browser"],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     line = proc.stdout.readline()
-    match = re.search(r"(http://\S+/)", line)
+    match = re.search(r"(http://\S+/\?token=\S+)", line)
     if not match:
         proc.kill()
         pytest.fail(f"the server did not start: {line}{proc.stdout.read()}")

@@ -37,7 +37,10 @@ def drum():
 
 @pytest.fixture(scope="module")
 def client(strip):
-    return TestClient(create_app(strip, ["testserver"], message_limit=400_000, upload_limit=400_000))
+    token = "test-token-of-this-run-0123456789"
+    client = TestClient(create_app(strip, ["testserver"], token=token, message_limit=400_000, upload_limit=400_000))
+    client.get(f"/?token={token}")  # the page's first load sets the token's cookie
+    return client
 
 
 def request(case, seq, final=True, model="paper"):

@@ -21,6 +21,7 @@ from sectiondeform.app.server import create_app
 from sectiondeform.commands.serve import hosts_for
 
 ORIGIN = {"origin": "http://testserver"}
+TOKEN = "test-token-of-this-run-0123456789"
 
 
 @pytest.fixture(scope="module")
@@ -30,7 +31,9 @@ def case_json():
 
 @pytest.fixture()
 def client(case_json):
-    return TestClient(create_app(case_json, ["testserver"], message_limit=200_000, upload_limit=100_000))
+    client = TestClient(create_app(case_json, ["testserver"], token=TOKEN, message_limit=200_000, upload_limit=100_000))
+    assert client.get(f"/?token={TOKEN}").status_code == 200  # the page's first load sets the token's cookie
+    return client
 
 
 def receive(ws) -> dict:
@@ -194,7 +197,7 @@ def test_an_invalid_file_gets_a_one_line_message(client, name, content, words):
 
 def test_an_upload_over_the_limit_is_refused(client):
     r = client.post("/api/open", headers=ORIGIN, files={"file": ("big.json", b" " * 200_000)})
-    assert r.status_code == 422 and "limit" in r.json()["error"]
+    assert r.status_code == 413 and "limit" in r.json()["error"] and "\n" not in r.json()["error"]
 
 
 @pytest.mark.parametrize("name", ["result.json", "result.svg", "case.json", "case.svg"])
@@ -290,10 +293,10 @@ def test_the_server_refuses_websocket_compression(case_json):
     proc = subprocess.Popen([sys.executable, "-m", "sectiondeform", "serve", "--port", "0", "--no-browser"],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     try:
-        host = re.search(r"http://(\S+)/", proc.stdout.readline()).group(1)
+        host, token = re.search(r"http://(\S+)/\?token=(\S+)", proc.stdout.readline()).groups()
         for _ in range(200):  # the address is printed just before the server listens
             try:
-                ws = ws_client.connect(f"ws://{host}/ws", origin=f"http://{host}", compression="deflate")
+                ws = ws_client.connect(f"ws://{host}/ws?token={token}", origin=f"http://{host}", compression="deflate")
                 break
             except ConnectionRefusedError:
                 time.sleep(0.05)

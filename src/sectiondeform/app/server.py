@@ -19,45 +19,72 @@ Routes
     The case (``what = case``: .json, .dxf, .svg) or its full deformation
     (``what = result``: .json, .dxf, .svg, .vtu) as a download.
 
-Safety: the ``Host`` header must be one of the server's own names (no DNS
-rebinding) and WebSocket and POST requests must come from the page's own
-``Origin``; request bodies and messages are size-limited; no path sent by the
-page is ever read or written.
+Safety: every request needs the run's secret token (``?token=`` once, then
+the cookie the page's first load sets); the ``Host`` header must be one of
+the server's own names (no DNS rebinding) and WebSocket and POST requests
+must come from the page's own ``Origin``; request bodies and messages share
+one size limit, checked before they are buffered; no path sent by the page
+is ever read or written; every answer forbids framing and content sniffing,
+and every error is one line without the server's paths.
+
+Load: every computation runs on a bounded pool of worker threads, never on
+the event loop; a connection has at most one request in the pool, and while
+it waits for a worker its newer requests replace the older (so a closed
+connection leaves at most the one being computed); connections are capped.
 """
 
 from __future__ import annotations
 
 import asyncio
+import concurrent.futures
+import contextlib
+import hashlib
+import hmac
 import json
+import os
+import re
 import struct
 import tempfile
+import weakref
 from importlib import resources
 from pathlib import Path
 
 import numpy as np
 from starlette.applications import Starlette
-from starlette.requests import Request
+from starlette.requests import HTTPConnection, Request
 from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Mount, Route, WebSocketRoute
 from starlette.staticfiles import StaticFiles
-from starlette.websockets import WebSocket, WebSocketDisconnect
+from starlette.websockets import WebSocket
 
 from ..errors import CaseError, SectionDeformError
 from . import engine
 
-__all__ = ["MAX_MESSAGE", "MAX_UPLOAD", "STATIC", "UVICORN_OPTIONS", "create_app"]
+__all__ = ["MAX_CONNECTIONS", "MAX_MESSAGE", "MAX_UPLOAD", "STATIC", "UVICORN_OPTIONS", "WORKERS", "cookie_name",
+           "create_app", "one_line"]
 
-MAX_UPLOAD = 8 * 1024 * 1024  # bytes of an uploaded drawing or a posted case
-MAX_MESSAGE = 1024 * 1024  # characters of one WebSocket message
-UVICORN_OPTIONS = {"ws_max_size": 4 * MAX_MESSAGE, "ws_per_message_deflate": False}
+MAX_MESSAGE = 2 * 1024 * 1024
+"""Bytes of one WebSocket message and of one request body (an upload or a posted case): one limit for both."""
+MAX_UPLOAD = MAX_MESSAGE
+MAX_CONNECTIONS = 64
+"""Open WebSocket connections (pages) at once; one more is refused with a message."""
+WORKERS = max(2, min(4, os.cpu_count() or 2))
+"""Worker threads computing for all connections (the bound of the pool: nothing waits in its queue)."""
+CACHE_SIZE = 2
+"""Prepared sections kept per connection (the section being dragged and one other, e.g. the other model)."""
+MAX_DEPTH = 32
+"""Deepest nesting of a request's JSON (a case needs about eight levels)."""
+UVICORN_OPTIONS = {"ws_max_size": MAX_MESSAGE, "ws_per_message_deflate": False}
 """The WebSocket settings of the server (``uvicorn.Config`` keywords).
 
-No per-message compression (uvicorn offers permessage-deflate by default):
-on the loopback it only costs time, deflating each answer (about 20 kB of
-float64 that hardly compress) on the server and inflating it in the
-browser, and each request the other way; measured, about a millisecond per
-round trip at the median and several at the 95th percentile
-(docs/benchmarks-page.md).
+``ws_max_size`` is :data:`MAX_MESSAGE`, the same limit as for uploads: a
+larger message is refused by the WebSocket layer before it is buffered
+(close code 1009, which the page reports). No per-message compression
+(uvicorn offers permessage-deflate by default): on the loopback it only
+costs time, deflating each answer (about 20 kB of float64 that hardly
+compress) on the server and inflating it in the browser, and each request
+the other way; measured, about a millisecond per round trip at the median
+and several at the 95th percentile (docs/benchmarks-page.md).
 """
 STATIC = Path(str(resources.files(__package__) / "static"))
 OPEN_FORMATS = (".json", ".dxf", ".svg")
@@ -65,6 +92,76 @@ CASE_FORMATS = (".json", ".dxf", ".svg")
 RESULT_FORMATS = (".json", ".dxf", ".svg", ".vtu")
 MEDIA = {".json": "application/json", ".dxf": "application/dxf", ".svg": "image/svg+xml",
          ".vtu": "application/octet-stream"}
+SECURITY_HEADERS = [
+    (b"x-frame-options", b"DENY"),
+    (b"content-security-policy", b"frame-ancestors 'none'"),
+    (b"x-content-type-options", b"nosniff"),
+    (b"referrer-policy", b"no-referrer"),
+]
+"""Added to every HTTP answer: no framing by another page (clickjacking), no content sniffing, no token in a Referer."""
+
+# An absolute path in a message (POSIX, or a Windows drive): the server's folders are nobody else's business.
+_PATH = re.compile(r"(?<![\w.:/\\])/(?:[^\s'\"/]+/)+[^\s'\",;)]*|\b[A-Za-z]:\\[^\s'\",;)]*")
+
+
+def one_line(text: str, names: dict | None = None, limit: int = 400) -> str:
+    """A message for the page: its first non-blank line, the server's paths replaced.
+
+    Parameters
+    ----------
+    text : str
+    names : dict, optional
+        Strings to replace first (a temporary path -> the uploaded file's own name).
+    limit : int
+        Longest message (characters); a longer one ends with "...".
+    """
+    if names:
+        pattern = re.compile("|".join(re.escape(k) for k in sorted(names, key=len, reverse=True) if k))
+        text = pattern.sub(lambda m: names[m.group(0)], text)
+    line = next((s.strip() for s in text.splitlines() if s.strip()), "")
+    line = _PATH.sub("(a file of the server)", line)
+    return line if len(line) <= limit else line[:limit - 3] + "..."
+
+
+class Refused(Exception):
+    """A request the page gets one line back for (``message``), with an HTTP status for the routes."""
+
+    def __init__(self, message: str, status: int = 422):
+        super().__init__(message)
+        self.message, self.status = message, status
+
+
+def _failure(exc: BaseException, what: str, names: dict | None = None) -> str:
+    """The one line for an exception raised by work done for the page (never its class name or a path)."""
+    if isinstance(exc, SectionDeformError):
+        return one_line(str(exc), names)
+    detail = one_line(str(exc), names)
+    if isinstance(exc, RecursionError):
+        detail = "nested too deeply"
+    elif isinstance(exc, MemoryError):
+        detail = "out of memory"
+    return f"{what}: failed ({detail})" if detail else f"{what}: failed; the server keeps running"
+
+
+def _guarded(fn, what: str, names: dict | None = None):
+    """``fn`` wrapped so that whatever it raises comes back as a value: ``(True, result)`` or ``(False, line)``.
+
+    Run in a worker thread: no exception crosses into the event loop, not
+    even ``StopIteration``, which an asyncio future cannot carry (the request
+    would never be answered).
+    """
+    def call(*args):
+        try:
+            return True, fn(*args)
+        except Exception as exc:  # noqa: BLE001 - any failure of one request is that request's answer
+            return False, _failure(exc, what, names)
+
+    return call
+
+
+def cookie_name(token: str) -> str:
+    """The name of the cookie carrying ``token``: its own per run, so that two servers on one machine do not clash."""
+    return "sectiondeform-" + hashlib.sha256(token.encode("utf-8")).hexdigest()[:16]
 
 
 def host_ok(headers, hosts: frozenset) -> bool:
@@ -134,25 +231,74 @@ def _refusal(status: int, message: str) -> JSONResponse:
     return JSONResponse({"error": message}, status_code=status)
 
 
+def _no_constant(name: str):
+    raise CaseError("request", f"{name} is not a number JSON allows; send finite numbers")
+
+
+def depth_of(value) -> int:
+    """How deeply lists and dicts nest in ``value`` (iteratively: no recursion limit)."""
+    deepest, stack = 0, [(value, 1)]
+    while stack:
+        item, depth = stack.pop()
+        if isinstance(item, (list, dict)):
+            deepest = max(deepest, depth)
+            if depth > MAX_DEPTH:
+                return depth
+            stack.extend((v, depth + 1) for v in (item.values() if isinstance(item, dict) else item))
+    return deepest
+
+
+def parse_json(text: str | bytes, what: str) -> object:
+    """JSON from the page: finite numbers only, nested at most :data:`MAX_DEPTH` deep; else a one-line CaseError."""
+    try:
+        value = json.loads(text, parse_constant=_no_constant)
+    except CaseError:
+        raise
+    except RecursionError:
+        raise CaseError(what, f"nested too deeply; at most {MAX_DEPTH} levels") from None
+    except ValueError as exc:  # JSONDecodeError, UnicodeDecodeError
+        raise CaseError(what, one_line(f"not valid JSON ({exc})")) from None
+    if depth_of(value) > MAX_DEPTH:
+        raise CaseError(what, f"nested too deeply; at most {MAX_DEPTH} levels")
+    return value
+
+
+def parse_request(text: str) -> dict:
+    """One WebSocket request: a JSON object with a whole ``seq`` in [0, 2^53); else a one-line CaseError."""
+    msg = parse_json(text, "request")
+    if not isinstance(msg, dict):
+        raise CaseError("request", "expected a JSON object {\"seq\", \"final\", \"case\", \"model\", \"ratio\"}")
+    seq = msg.get("seq")
+    if isinstance(seq, bool) or not isinstance(seq, int) or not 0 <= seq < 2 ** 53:
+        raise CaseError("seq", f"expected a whole number from 0 to 2^53, got {one_line(repr(seq), limit=40)}")
+    return msg
+
+
 async def _body(request: Request, limit: int) -> bytes:
-    """The request body, refused past ``limit`` bytes without reading it all."""
+    """The request body, refused (413) past ``limit`` bytes without reading it all."""
     declared = request.headers.get("content-length")
     if declared is not None and declared.isdigit() and int(declared) > limit:
-        raise CaseError("request", f"too large ({int(declared)} bytes); the limit is {limit} bytes")
+        raise Refused(f"request: too large ({int(declared)} bytes); the limit is {limit} bytes", 413)
     chunks, size = [], 0
     async for chunk in request.stream():
         size += len(chunk)
         if size > limit:
-            raise CaseError("request", f"too large; the limit is {limit} bytes")
+            raise Refused(f"request: too large; the limit is {limit} bytes", 413)
         chunks.append(chunk)
     return b"".join(chunks)
 
 
 def _read_upload(name: str, data: bytes, form: dict) -> dict:
-    """Read an uploaded case file in a private temporary folder; the case as JSON."""
+    """Read an uploaded case file in a private temporary folder; the case as JSON.
+
+    A case JSON naming a drawing file (``"drawing": {"file": ...}``) is
+    refused before anything is read: the server reads no path the page
+    sends (and the library is told to read no drawing file at all).
+    """
     from ..io import read_case
 
-    ext = Path(name or "").suffix.lower()
+    shown = Path(name or "").name or "the file"
+    ext = Path(shown).suffix.lower()
     if ext not in OPEN_FORMATS:
         raise CaseError("file", f"unknown case format {ext or '(none)'!r}; open a .json, .dxf or .svg file")
     options = {}
@@ -161,29 +307,49 @@ def _read_upload(name: str, data: bytes, form: dict) -> dict:
             try:
                 options[key] = float(form[key])
             except ValueError:
-                raise CaseError(key, f"expected a number, got {form[key]!r}") from None
+                raise CaseError(key, f"expected a number, got {one_line(repr(form[key]), limit=40)}") from None
     report: list[str] = []
     if ext == ".json":
-        try:
-            data_json = json.loads(data.decode("utf-8"))
-        except (UnicodeDecodeError, json.JSONDecodeError) as exc:
-            raise CaseError("file", f"not valid JSON ({exc})".splitlines()[0]) from None
+        data_json = parse_json(data, "file")
+        if isinstance(data_json, dict) and "drawing" in data_json:
+            raise CaseError("drawing", "the page reads no file a case names; open the drawing (.dxf, .svg) "
+                                       "itself, or give the curves in the case")
         if engine.is_assembly(data_json):
             return _assembly_opened(data_json)
+        options["allow_files"] = False
     with tempfile.TemporaryDirectory(prefix="sectiondeform-") as tmp:
         path = Path(tmp) / f"upload{ext}"  # the server's own name, never the page's
-        path.write_bytes(data)
+        names = {str(path): shown, str(tmp): "", path.name: shown}
         try:
-            case = read_case(path, report=report, **options)
-        except CaseError as exc:
-            if exc.field != "law" or ext == ".json":
-                raise
-            ratio = float(form.get("area_ratio") or 0.8)
-            case = read_case(path, report=report, law=engine.law_of(ratio), **options)
-            report.append(f"the drawing gives no law: area ratio {ratio} used")
-        except UnicodeDecodeError:
-            raise CaseError("file", "not a text file") from None
-    return {"case": engine.case_json_of(case), "model": engine.case_model(case), "report": report}
+            path.write_bytes(data)
+            try:
+                case = read_case(path, report=report, **options)
+            except CaseError as exc:
+                if exc.field != "law" or ext == ".json":
+                    raise
+                ratio = float(form.get("area_ratio") or 0.8)
+                case = read_case(path, report=report, law=engine.law_of(ratio), **options)
+                report.append(f"the drawing gives no law: area ratio {ratio} used")
+            except UnicodeDecodeError:
+                raise CaseError("file", "not a text file") from None
+            out = {"case": engine.case_json_of(case), "model": engine.case_model(case), "report": report}
+        except SectionDeformError as exc:
+            raise CaseError("file", one_line(str(exc), names)) from None
+        except Exception as exc:  # noqa: BLE001 - any unreadable upload is the user's file, not a crash
+            raise CaseError("file", "cannot be read" + (f" ({one_line(str(exc), names)})" if str(exc) else "")) from None
+    return {**out, "report": [one_line(line, names) for line in report]}
+
+
+def _opened(name: str, data: bytes, form: dict, limit: int) -> bytes:
+    """The answer to an upload (JSON bytes), refused if the page could not send its case back in one message."""
+    out = _read_upload(name, data, form)
+    size = len(json.dumps(out["case"]).encode("utf-8"))
+    room = limit - 4096  # the request around the case: seq, model, ratio
+    if size > room:
+        raise CaseError("file", f"the case read from it takes {size} bytes, more than the page can send per "
+                                f"request ({room}); simplify the drawing (the simplify option) or deform it with "
+                                "the command line")
+    return json.dumps(packed_json(out)).encode("utf-8")
 
 
 def _assembly_opened(case_json: dict) -> dict:
@@ -202,10 +368,14 @@ def _assembly_opened(case_json: dict) -> dict:
             "outline": engine.outline(case_json)}
 
 
-def _write(case_json: dict, model: str, what: str, ext: str) -> bytes:
+def _write(case_json, model, what: str, ext: str) -> bytes:
     """The bytes of a case or result file, written in a private temporary folder."""
     from ..io import write_case, write_result
 
+    if not isinstance(case_json, dict):
+        raise CaseError("case", "expected the case as a JSON object")
+    if not isinstance(model, str):
+        raise CaseError("model", f"expected one of {', '.join(engine.MODELS)}")
     with tempfile.TemporaryDirectory(prefix="sectiondeform-") as tmp:
         path = Path(tmp) / f"out{ext}"
         if what == "case":
@@ -215,8 +385,67 @@ def _write(case_json: dict, model: str, what: str, ext: str) -> bytes:
         return path.read_bytes()
 
 
-def create_app(case_json: dict, hosts, message_limit: int = MAX_MESSAGE, upload_limit: int = MAX_UPLOAD):
-    """The ASGI application of the page (a Starlette app behind a Host check).
+def _compute(cache: engine.DeformerCache, msg: dict) -> bytes:
+    """The answer to one WebSocket request, framed (run on a worker thread)."""
+    out = engine.answer(cache, msg.get("case"), msg.get("model", "paper"), msg.get("ratio"), bool(msg.get("final")),
+                        key=cache.ready(msg.get("case"), msg.get("model", "paper")))
+    return framed({"type": "result", "seq": msg["seq"], **out})
+
+
+class Workers:
+    """A bounded pool of worker threads shared by all connections.
+
+    A job first takes one of ``size`` slots on the event loop (waiting
+    there, not in the pool's queue, so that a waiting job can still be
+    replaced by a newer one or dropped with its connection), then runs on a
+    thread; the slot comes back when the thread is done, even if the one
+    waiting for the answer has gone. So the pool's queue stays empty and
+    no more than ``size`` jobs ever run.
+    """
+
+    def __init__(self, size: int = WORKERS):
+        self.size = size
+        self.pool = concurrent.futures.ThreadPoolExecutor(max_workers=size, thread_name_prefix="sectiondeform")
+        self._slots: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # one semaphore per event loop
+
+    def slots(self) -> asyncio.Semaphore:
+        loop = asyncio.get_running_loop()
+        if loop not in self._slots:
+            self._slots[loop] = asyncio.Semaphore(self.size)
+        return self._slots[loop]
+
+    async def acquire(self) -> None:
+        """Wait for a free worker (cancellable: a job never started holds nothing)."""
+        await self.slots().acquire()
+
+    def release(self) -> None:
+        """Give back a slot taken by :meth:`acquire` and not used."""
+        self.slots().release()
+
+    async def run(self, fn, *args):
+        """Run ``fn(*args)`` on a worker, after :meth:`acquire`; the slot is given back when it ends."""
+        loop, slots = asyncio.get_running_loop(), self.slots()
+        try:
+            future = self.pool.submit(fn, *args)
+        except BaseException:
+            slots.release()
+            raise
+        future.add_done_callback(lambda _: loop.call_soon_threadsafe(slots.release))
+        return await asyncio.wrap_future(future)
+
+    async def call(self, fn, *args):
+        """Wait for a worker and run ``fn(*args)`` on it."""
+        await self.acquire()
+        return await self.run(fn, *args)
+
+    def close(self) -> None:
+        self.pool.shutdown(wait=False, cancel_futures=True)
+
+
+def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_MESSAGE,
+               upload_limit: int = MAX_UPLOAD, max_connections: int = MAX_CONNECTIONS, workers: int = WORKERS,
+               cache_size: int = CACHE_SIZE):
+    """The ASGI application of the page (a Starlette app behind the token, Host and header checks).
 
     Parameters
     ----------
@@ -224,144 +453,180 @@ def create_app(case_json: dict, hosts, message_limit: int = MAX_MESSAGE, upload_
         The ``section-case/1`` object shown first.
     hosts : iterable of str
         Accepted ``Host`` header values (``"127.0.0.1:8765"``...).
+    token : str
+        The run's secret: every request carries it as ``?token=`` or in the
+        cookie :func:`cookie_name` that a page load with ``?token=`` sets.
     message_limit, upload_limit : int
-        Largest WebSocket message (characters) and request body (bytes).
+        Largest WebSocket message and request body (bytes); the serve
+        command gives both :data:`MAX_MESSAGE`, the WebSocket layer's limit.
+    max_connections : int
+        Open WebSocket connections at once; one more gets a refusal and is closed (code 1013).
+    workers : int
+        Worker threads computing for all connections.
+    cache_size : int
+        Prepared sections kept per connection.
     """
+    if not isinstance(token, str) or not token:
+        raise ValueError("create_app needs a non-empty token")
     hosts = frozenset(h.lower() for h in hosts)
+    secret = token.encode("utf-8")
+    cookie = cookie_name(token)
     start_model = engine.model_of_json(case_json)
-    first = {"case": case_json, "model": start_model, "models": list(engine.MODELS)}
+    first = {"case": case_json, "model": start_model, "models": list(engine.MODELS),
+             "limit": message_limit}
     if engine.is_assembly(case_json):
         first["outline"] = engine.outline(case_json)
+    shared = Workers(workers)
+    connections = 0
+
+    async def offload(fn, *args, what: str, names: dict | None = None):
+        ok, value = await shared.call(_guarded(fn, what, names), *args)
+        if not ok:
+            raise Refused(value)
+        return value
 
     async def index(request: Request):
-        if not host_ok(request.headers, hosts):
-            return _refusal(400, "unknown host")
         return FileResponse(STATIC / "index.html", headers={"Cache-Control": "no-store"})
 
     async def start(request: Request):
-        if not host_ok(request.headers, hosts):
-            return _refusal(400, "unknown host")
-        return JSONResponse(packed_json(first))
+        return JSONResponse(packed_json(first), headers={"Cache-Control": "no-store"})
 
     async def open_file(request: Request):
         if not origin_ok(request.headers, hosts):
-            return _refusal(403, "requests from another origin are refused")
+            return _refusal(403, "request: from another origin; use the page this server serves")
         try:
             declared = request.headers.get("content-length")
             if declared is None or not declared.isdigit():
-                raise CaseError("request", "a Content-Length is required")
+                raise Refused("request: a Content-Length is required", 411)
             if int(declared) > upload_limit:
-                raise CaseError("file", f"too large ({int(declared)} bytes); the limit is {upload_limit} bytes")
-            async with request.form(max_files=1, max_fields=20) as form:
+                raise Refused(f"file: too large ({int(declared)} bytes); the limit is {upload_limit} bytes", 413)
+            async with request.form(max_files=1, max_fields=20, max_part_size=64 * 1024) as form:
                 upload = form.get("file")
                 if upload is None or isinstance(upload, str):
                     raise CaseError("file", "no file was sent")
                 data = await upload.read()
                 fields = {k: v for k, v in form.items() if isinstance(v, str)}
                 name = upload.filename or ""
-            out = await asyncio.to_thread(_read_upload, name, data, fields)
+            body = await offload(_opened, name, data, fields, message_limit, what="file")
+        except Refused as exc:
+            return _refusal(exc.status, exc.message)
         except SectionDeformError as exc:
-            return _refusal(422, str(exc))
-        except Exception as exc:  # noqa: BLE001 - any unreadable upload is the user's file, not a crash
-            return _refusal(422, f"file: cannot be read ({type(exc).__name__}: {exc})".splitlines()[0])
-        return JSONResponse(packed_json(out))
+            return _refusal(422, one_line(str(exc)))
+        except Exception as exc:  # noqa: BLE001 - a malformed form is the user's request, not a crash
+            return _refusal(400, _failure(exc, "request"))
+        return Response(body, media_type="application/json")
 
     async def save(request: Request):
         if not origin_ok(request.headers, hosts):
-            return _refusal(403, "requests from another origin are refused")
+            return _refusal(403, "request: from another origin; use the page this server serves")
         what, ext = request.path_params["what"], "." + request.path_params["ext"].lower()
         formats = CASE_FORMATS if what == "case" else RESULT_FORMATS if what == "result" else ()
         if ext not in formats:
-            return _refusal(404, f"cannot save {what}{ext}")
+            return _refusal(404, one_line(f"save: cannot save {what}{ext}; save case.json/.dxf/.svg or "
+                                          "result.json/.dxf/.svg/.vtu", limit=120))
         try:
-            body = json.loads(await _body(request, upload_limit))
+            raw = await _body(request, upload_limit)
+            body = await offload(parse_json, raw, "request", what="request")
             if not isinstance(body, dict):
-                raise CaseError("request", "expected a JSON object")
-            data = await asyncio.to_thread(_write, body.get("case"), body.get("model", "paper"), what, ext)
-        except json.JSONDecodeError:
-            return _refusal(422, "request: not valid JSON")
+                raise CaseError("request", "expected a JSON object {\"case\", \"model\"}")
+            data = await offload(_write, body.get("case"), body.get("model", "paper"), what, ext, what="save")
+        except Refused as exc:
+            return _refusal(exc.status, exc.message)
         except SectionDeformError as exc:
-            return _refusal(422, str(exc))
+            return _refusal(422, one_line(str(exc)))
+        except Exception as exc:  # noqa: BLE001 - a broken request gets its line, never a bare 500
+            return _refusal(400, _failure(exc, "request"))
         name = f"{what}{ext}"
         return Response(data, media_type=MEDIA[ext], headers={"Content-Disposition": f'attachment; filename="{name}"'})
 
     async def live(ws: WebSocket):
+        nonlocal connections
         if not origin_ok(ws.headers, hosts):
             await ws.close(code=1008)
             return
         await ws.accept()
-        cache = engine.DeformerCache()
+        if connections >= max_connections:
+            await ws.send_json({"type": "refused", "seq": None,
+                                "message": f"server: busy, {connections} pages are connected, the most it serves; "
+                                           "close another page and reload this one"})
+            await ws.close(code=1013)
+            return
+        connections += 1
+        cache = engine.DeformerCache(size=cache_size)
         pending: dict = {}
         wake = asyncio.Event()
-        closed = False
+
+        async def refuse(seq, message: str) -> None:
+            await ws.send_json({"type": "refused", "seq": seq, "message": message})
 
         async def receive():
-            nonlocal closed
-            try:
-                while True:
-                    text = await ws.receive_text()
-                    if len(text) > message_limit:
-                        await ws.send_json({"type": "refused", "seq": None,
-                                            "message": f"request: too large; the limit is {message_limit} characters"})
-                        continue
-                    try:
-                        msg = json.loads(text)
-                        seq = int(msg["seq"])
-                    except (ValueError, KeyError, TypeError):
-                        await ws.send_json({"type": "refused", "seq": None, "message": "request: not a valid message"})
-                        continue
-                    if pending.get("seq", -1) < seq:
-                        if pending:
-                            await ws.send_json({"type": "dropped", "seq": pending["seq"]})
-                        pending.clear()
-                        pending.update(msg, seq=seq)
-                        wake.set()
-            except WebSocketDisconnect:
-                pass
-            finally:
-                closed = True
-                wake.set()
+            while True:
+                message = await ws.receive()
+                if message["type"] == "websocket.disconnect":
+                    return
+                text = message.get("text")
+                if text is None:
+                    await refuse(None, "request: a binary message; send the request as JSON text")
+                    continue
+                if len(text) > message_limit:
+                    await refuse(None, f"request: too large; the limit is {message_limit} characters")
+                    continue
+                try:
+                    if len(text) > 64 * 1024:  # parsing a large case takes milliseconds: not on the event loop
+                        ok, msg = await asyncio.to_thread(_guarded(parse_request, "request"), text)
+                        if not ok:
+                            raise CaseError("request", msg.removeprefix("request: "))
+                    else:
+                        msg = parse_request(text)
+                except SectionDeformError as exc:
+                    await refuse(None, one_line(str(exc)))
+                    continue
+                seq = msg["seq"]
+                if pending.get("seq", -1) < seq:
+                    if pending:
+                        await ws.send_json({"type": "dropped", "seq": pending["seq"]})
+                    pending.clear()
+                    pending.update(msg, seq=seq)
+                    wake.set()
 
         async def work():
             last = -1
             while True:
                 await wake.wait()
                 wake.clear()
-                if closed:
-                    return
                 if not pending:
+                    continue
+                await shared.acquire()  # newer requests keep replacing the pending one meanwhile
+                if not pending or pending["seq"] <= last:
+                    shared.release()
+                    pending.clear()
                     continue
                 msg = dict(pending)
                 pending.clear()
-                if msg["seq"] <= last:
-                    continue
                 last = msg["seq"]
-                case, model, final = msg.get("case"), msg.get("model", "paper"), bool(msg.get("final"))
-                try:
-                    key = cache.ready(case, model)
-                    if final or key is None:
-                        out = await asyncio.to_thread(engine.answer, cache, case, model, msg.get("ratio"), final)
-                    else:  # a preview of a prepared section: under a millisecond, not worth a thread hop
-                        out = engine.answer(cache, case, model, msg.get("ratio"), final, key=key)
-                    reply = framed({"type": "result", "seq": msg["seq"], **out})
-                except SectionDeformError as exc:
-                    reply = {"type": "refused", "seq": msg["seq"], "message": str(exc)}
-                except Exception as exc:  # noqa: BLE001 - the server keeps running whatever one request does
-                    reply = {"type": "refused", "seq": msg["seq"],
-                             "message": f"internal error: {type(exc).__name__}: {exc}".splitlines()[0]}
-                try:
-                    if isinstance(reply, bytes):
-                        await ws.send_bytes(reply)
-                    else:
-                        await ws.send_json(reply)
-                except (WebSocketDisconnect, RuntimeError):
-                    return
+                ok, reply = await shared.run(_guarded(_compute, "request"), cache, msg)
+                if not ok:
+                    reply = {"type": "refused", "seq": msg["seq"], "message": reply}
+                if isinstance(reply, bytes):
+                    await ws.send_bytes(reply)
+                else:
+                    await ws.send_json(reply)
 
         reader = asyncio.create_task(receive())
-        try:
-            await work()
+        worker = asyncio.create_task(work())
+        try:  # until the page goes (or a send to it fails)
+            await asyncio.wait({reader, worker}, return_when=asyncio.FIRST_COMPLETED)
         finally:
-            reader.cancel()
+            connections -= 1
+            for task in (reader, worker):
+                task.cancel()  # a request waiting for a worker is dropped; one being computed ends on its own
+            with contextlib.suppress(BaseException):
+                await asyncio.gather(reader, worker, return_exceptions=True)
+
+    @contextlib.asynccontextmanager
+    async def lifespan(app):
+        yield
+        shared.close()
 
     routes = [
         Route("/", index),
@@ -371,19 +636,51 @@ def create_app(case_json: dict, hosts, message_limit: int = MAX_MESSAGE, upload_
         WebSocketRoute("/ws", live),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
-    app = Starlette(routes=routes)
+    app = Starlette(routes=routes, lifespan=lifespan)
+
+    def token_in(conn: HTTPConnection) -> tuple[bool, bool]:
+        """Whether the request carries the token, and whether in its query (then the page's cookie is set)."""
+        given = conn.query_params.get("token")
+        if given is not None and hmac.compare_digest(given.encode("utf-8"), secret):
+            return True, True
+        kept = conn.cookies.get(cookie)
+        return kept is not None and hmac.compare_digest(kept.encode("utf-8"), secret), False
 
     async def guarded(scope, receive, send):
-        """Refuse any request whose Host is not one of the server's own names (DNS rebinding)."""
-        if scope["type"] in ("http", "websocket"):
-            headers = {k.decode("latin-1"): v.decode("latin-1") for k, v in scope.get("headers", [])}
-            if not host_ok(headers, hosts):
-                if scope["type"] == "http":
-                    await _refusal(400, "unknown host")(scope, receive, send)
-                else:
-                    await send({"type": "websocket.close", "code": 1008})
-                return
-        await app(scope, receive, send)
+        """The checks in front of every route: security headers, the Host (DNS rebinding), the token."""
+        if scope["type"] not in ("http", "websocket"):
+            await app(scope, receive, send)
+            return
+        set_cookie = False
+
+        async def send_with_headers(message):
+            if message["type"] == "http.response.start":
+                headers = [h for h in message.get("headers", []) if h[0].lower() not in dict(SECURITY_HEADERS)]
+                headers += SECURITY_HEADERS
+                if set_cookie:
+                    headers.append((b"set-cookie", f"{cookie}={token}; Path=/; HttpOnly; SameSite=Strict".encode()))
+                message = {**message, "headers": headers}
+            await send(message)
+
+        conn = HTTPConnection(scope)
+        if not host_ok(conn.headers, hosts):
+            if scope["type"] == "http":
+                await _refusal(400, "request: unknown host; open the address the serve command printed")(
+                    scope, receive, send_with_headers)
+            else:
+                await send({"type": "websocket.close", "code": 1008})
+            return
+        ok, in_query = token_in(conn)
+        if not ok:
+            if scope["type"] == "http":
+                await _refusal(403, "token: missing or wrong; open the address the serve command printed "
+                                    "(it ends in ?token=...)")(scope, receive, send_with_headers)
+            else:
+                await send({"type": "websocket.close", "code": 1008})
+            return
+        set_cookie = in_query and scope["type"] == "http"
+        await app(scope, receive, send_with_headers)
 
     guarded.app = app
+    guarded.cookie = cookie
     return guarded

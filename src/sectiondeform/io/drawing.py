@@ -51,7 +51,7 @@ from .stacking import bodies_from_drawing, check_options, revolution_from_drawin
 from .units import mm_per_unit
 
 __all__ = [
-    "DrawingOptions", "case_from_drawing", "convert_units", "make_target_arc", "read_json_case", "read_drawing_file",
+    "DrawingOptions", "case_from_drawing", "drawing_file_of", "convert_units", "make_target_arc", "read_json_case", "read_drawing_file",
     "ROLES", "SIDES", "SPLIT_FRACTION",
 ]
 
@@ -224,7 +224,47 @@ def _plain_case(path: Path, options: DrawingOptions, given, report) -> Problem:
     return convert_units(case, options.units, report) if options.units else case
 
 
-def read_json_case(path, *, report=None, **options) -> Problem:
+def drawing_file_of(path, name, allow_files=True) -> Path:
+    """The drawing file a case JSON at ``path`` names, confined to the folder the caller allows.
+
+    Parameters
+    ----------
+    path : path-like
+        The case JSON; ``name`` is relative to its folder.
+    name : str
+        The JSON's ``drawing.file``.
+    allow_files : bool or path-like
+        True: files inside the JSON's own folder (or below it); a folder:
+        files inside that folder; False or None: no file at all.
+
+    Returns
+    -------
+    Path
+        ``path``'s folder / ``name``, not yet opened.
+
+    Raises
+    ------
+    CaseError
+        On ``drawing.file``, the same whether or not the file exists: no
+        files allowed, or one outside the allowed folder (an absolute path,
+        ``..`` or a link leading out of it).
+    """
+    if allow_files is None or allow_files is False:
+        raise CaseError("drawing.file", "this reader opens no drawing files; give the curves in the case, "
+                                        "or read the drawing itself")
+    base = Path(path).parent if allow_files is True else Path(allow_files)
+    wanted = Path(path).parent / name
+    try:
+        inside = wanted.resolve().is_relative_to(base.resolve())
+    except (OSError, RuntimeError, ValueError):
+        inside = False
+    if Path(name).is_absolute() or not inside:
+        raise CaseError("drawing.file", f"{name!r} is outside the case's folder; name a drawing file in the "
+                                        "case file's folder (or below it)")
+    return wanted
+
+
+def read_json_case(path, *, report=None, allow_files=True, **options) -> Problem:
     """Read a case JSON file; one with a ``"drawing"`` key takes its curves from a DXF or SVG.
 
     ``"drawing": {"file": "profile.dxf", "layers": {"lower": "BASE"}, ...}``
@@ -237,6 +277,12 @@ def read_json_case(path, *, report=None, **options) -> Problem:
     ``units``, ``law``, ``name`` and ``chordal_error`` apply, and the
     others are an error. A ``section-case/2`` JSON gives the bodies' laws
     and materials by name (:func:`_bodies_with_drawing`).
+
+    The drawing file must lie in the folder ``allow_files`` allows (see
+    :func:`drawing_file_of`): by default the JSON's own folder, never an
+    absolute path or one leading out of it with ``..``; ``False`` reads no
+    drawing file (a program reading cases from others, such as the page's
+    server, passes it).
     """
     path = Path(path)
     given = {k: v for k, v in options.items() if v is not None}
@@ -249,14 +295,15 @@ def read_json_case(path, *, report=None, **options) -> Problem:
         raise CaseError("drawing.file", "expected {\"file\": \"profile.dxf\", ...} naming a DXF or SVG file")
     opts = {k: v for k, v in d.items() if k != "file"}
     DrawingOptions.from_mapping(opts, "drawing", allowed=JSON_KEYS)
+    drawing_path = drawing_file_of(path, d["file"], allow_files)
     opts.update(given)
     if data.get("format") == V2:
-        return _bodies_with_drawing(path, data, opts, report)
+        return _bodies_with_drawing(drawing_path, data, opts, report)
     if "law" in data and overrides.law is None:
         opts["law"] = law_from_json(data["law"])
     if "target" in data:
         opts["target"] = curve_from_json(data["target"], "target")
-    drawing = _drawing_of(path, data, opts)
+    drawing = _drawing_of(drawing_path, data, opts)
     case = case_from_drawing(drawing, DrawingOptions.from_mapping(opts), report=report)
     merged = {"format": data.get("format", V1), "lower": case.lower.to_json(), "upper": case.upper.to_json(),
               "target": case.target.to_json(), "law": case.law.to_json(), "name": data.get("name", case.name),
@@ -267,17 +314,17 @@ def read_json_case(path, *, report=None, **options) -> Problem:
     return case_from_dict(merged)
 
 
-def _drawing_of(path: Path, data: dict, opts: dict) -> Drawing:
-    """The drawing a case JSON names, read with the chordal error of the options or of the case."""
+def _drawing_of(drawing_path: Path, data: dict, opts: dict) -> Drawing:
+    """The drawing a case JSON names (at ``drawing_path``, already confined), read with the chordal error of the options or of the case."""
     chordal = (data.get("options") or {}).get("chordal_error")
-    return read_drawing_file(path.parent / data["drawing"]["file"], opts.get("chordal_error") or chordal)
+    return read_drawing_file(drawing_path, opts.get("chordal_error") or chordal)
 
 
 JSON_BODY_KEYS = ("name", "law", "material", "note")
 BODIES_JSON_KEYS = ("format", "name", "units", "target", "revolution", "bodies", "options", "drawing", "note")
 
 
-def _bodies_with_drawing(path: Path, data: dict, opts: dict, report=None) -> Problem:
+def _bodies_with_drawing(drawing_path: Path, data: dict, opts: dict, report=None) -> Problem:
     """A ``section-case/2`` problem whose curves are a drawing's and whose laws and materials a case JSON gives.
 
     ``{"format": "section-case/2", "drawing": {"file": "layup.dxf", ...},
@@ -310,7 +357,7 @@ def _bodies_with_drawing(path: Path, data: dict, opts: dict, report=None) -> Pro
     axis = revolution.axis if revolution is not None else None
     if "target" in data:
         opts["target"] = curve_from_json(data["target"], "target")
-    drawing = _drawing_of(path, data, opts)
+    drawing = _drawing_of(drawing_path, data, opts)
     meta = dict(drawing.meta or {})
     stored = stored_bodies(meta)
     merged = []

@@ -308,8 +308,16 @@ function connect() {
     onAnswer(typeof e.data === "string" ? JSON.parse(e.data) : unframe(e.data), t);
   };
   socket.onopen = () => { if (queued) { socket.send(queued); queued = null; } };
-  socket.onclose = () => { message("connection to the server lost; reload the page when it runs again", "error"); };
+  socket.onclose = (e) => {
+    svg.dataset.closed = String(e.code);
+    if (e.code === 1013) return;   // the server is full: its refusal, already shown, says so
+    message(CLOSED[e.code] || "connection to the server lost; reload the page when it runs again", "error");
+  };
 }
+const CLOSED = {
+  1008: "the server refused this page (wrong or missing token): open the address the serve command printed",
+  1009: "the case is too large to send to the server; simplify it (open it again with the simplify option)",
+};
 
 function request(final, t0) {
   state.seq += 1;
@@ -601,8 +609,8 @@ async function openFile(file) {
   }
   try {
     const r = await fetch("/api/open", { method: "POST", body: form });
+    if (!r.ok) { message(`cannot open ${file.name}: ${await failure(r)}`, "error"); return; }
     const data = await r.json();
-    if (!r.ok) { message(`cannot open ${file.name}: ${data.error}`, "error"); return; }
     load(data);
     message(`opened ${file.name}` + (data.report.length ? ": " + data.report.join("; ") : ""), "info");
   } catch (err) {
@@ -628,15 +636,24 @@ function download(blob, name) {
   setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
 }
 
+// The one line a failed request gets: the server's own message, else the HTTP status.
+async function failure(r) {
+  try { return (await r.json()).error || `HTTP ${r.status}`; } catch (err) { return `HTTP ${r.status}`; }
+}
+
 document.querySelectorAll("[data-save]").forEach((b) => b.addEventListener("click", async () => {
   const name = b.dataset.save;
   if (!isAssembly()) state.case.law = { area_ratio: state.ratio };   // an assembly's laws are its bodies'
-  const r = await fetch("/api/save/" + name, {
-    method: "POST", headers: { "Content-Type": "application/json" },
-    body: JSON.stringify({ case: state.case, model: state.model }),
-  });
-  if (!r.ok) { message(`cannot save ${name}: ${(await r.json()).error}`, "error"); return; }
-  download(await r.blob(), (state.case.name || "section") + "-" + name);
+  try {
+    const r = await fetch("/api/save/" + name, {
+      method: "POST", headers: { "Content-Type": "application/json" },
+      body: JSON.stringify({ case: state.case, model: state.model }),
+    });
+    if (!r.ok) { message(`not saved: ${name}: ${await failure(r)}`, "error"); return; }
+    download(await r.blob(), (state.case.name || "section") + "-" + name);
+  } catch (err) {
+    message(`not saved: ${name}: the server cannot be reached (${err.message || err}); nothing was written`, "error");
+  }
 }));
 
 // The view as PNG: the SVG (with its own style) drawn on a canvas.
@@ -666,5 +683,7 @@ window.addEventListener("resize", () => applyView());
 
 // ---- start -------------------------------------------------------------
 
+// The address carried the run's token: the server has set it as a cookie; keep it off the address bar.
+if (new URLSearchParams(location.search).has("token")) history.replaceState(null, "", location.pathname);
 connect();
 fetch("/api/start").then((r) => r.json()).then((data) => load(data));
