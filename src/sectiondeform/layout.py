@@ -126,7 +126,7 @@ def layout(problem) -> Layout:
         lower curves, overlapping interiors (with the area), a cycle.
     """
     bodies = problem.bodies
-    label = problem.label
+    label = lambda i: problem.label(i) or "the section"  # noqa: E731
     size = problem_size(problem.support, bodies)
     tol = problem.options.contact_tolerance
     if tol is None:
@@ -154,10 +154,12 @@ def layout(problem) -> Layout:
                     "a shared piece belongs to the lower curve of exactly one of them"
                 )
 
+    support_json = problem.support.to_json()
     foundations, on_support = [], []
     for i in range(n):
         found = []
-        gaps = [("the support", _distance(low_pts[i], support))]
+        is_support = bodies[i].lower.to_json() == support_json  # the paper's one body: its lower curve is the support
+        gaps = [("the support", np.zeros(len(low_pts[i])) if is_support else _distance(low_pts[i], support))]
         for j in range(n):
             if j == i:
                 continue
@@ -173,7 +175,7 @@ def layout(problem) -> Layout:
                 f"{label(i)}: its lower curve rests on nothing near {_where(low_pts[i][k])}: gap {d[k]:.6g} to {nearest} "
                 f"(contact tolerance {tol:.3g}); put every point of a lower curve on the support or on another body's upper curve"
             )
-        support_length, _ = _shared_length(low_pts[i], support, tol)
+        support_length = 1.0 if is_support else _shared_length(low_pts[i], support, tol)[0]
         foundations.append(tuple(found))
         on_support.append(support_length > 0)
 
