@@ -73,6 +73,16 @@ class CalculixSolution:
         return self.deck.bodies[0].bulk_to_shear
 
     @property
+    def material(self):
+        """The rubber of the (one) body: a model of :mod:`sectiondeform.materials.models`."""
+        return self.deck.bodies[0].material
+
+    @property
+    def revolution(self) -> bool:
+        """True for a body of revolution (an axisymmetric deck)."""
+        return self.deck.axis is not None
+
+    @property
     def volume_change(self) -> float:
         """(final − initial) / initial area: at area ratio 1, what compressibility gave up."""
         return (self.area_final - self.area_initial) / self.area_initial

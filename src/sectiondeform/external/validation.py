@@ -12,7 +12,7 @@ import time
 
 import numpy as np
 
-from ..compare import compare_curves
+from ..compare import compare_curves, section_height
 from ..deform import Deformer
 from ..section import polygon_area
 from .deck import DEFAULT_MESH_SIZE
@@ -54,7 +54,8 @@ def validate_with_calculix(case, *, model: str | None = None, mesh_size: float |
     thickness = fast.area_initial / case.lower.length
     return Validation(
         case=case, fast=fast, reference=ref, shape=compare_curves(fast.upper, ref.upper, scale=thickness),
-        thickness=thickness, area_reference=ref.area_final,
+        thickness=thickness, height=section_height(fast.initial_lower, fast.initial_upper),
+        area_reference=ref.area_final,
         area_reference_polygon=abs(polygon_area(np.concatenate((fast.lower, ref.upper[1:-1])))),
         fast_seconds=statistics.median(times), reference_seconds=ref.seconds,
     )
