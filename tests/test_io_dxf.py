@@ -189,12 +189,22 @@ def bad_drawings():
         gap_free(msp)
         msp.add_solid([(0, 0), (1, 0), (1, 1)], dxfattribs={"layer": "UPPER"})
 
+    def nan(msp):
+        gap_free(msp)
+        msp.add_line((10, 5), (float("nan"), 7), dxfattribs={"layer": "UPPER"})
+
+    def all_collapsed(msp):  # a far stray piece makes the default join tolerance larger than the section
+        gap_free(msp)
+        msp.add_line((0, 0), (1e8, 1e8), dxfattribs={"layer": "STRAY"})
+
     return {
         "missing": (missing, "'UPPER' not found"),
         "gap": (gap, "nearest gap is 0.5"),
         "branch": (branch, "branch at (10, 5)"),
         "zero": (zero, "zero-length LINE"),
         "unsupported": (unsupported, "unsupported entity SOLID"),
+        "nan": (nan, "coordinates must be finite numbers"),
+        "all_collapsed": (all_collapsed, "every piece is shorter than twice the join tolerance"),
     }
 
 
@@ -212,6 +222,35 @@ def test_bad_drawing_one_clear_error(tmp_path, capsys, kind):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and message in err[0]
     assert not out.exists() and not list(tmp_path.glob(".out*"))
+
+
+def test_an_ellipse_too_fine_to_flatten_is_refused_before_any_point_is_computed(tmp_path):
+    from sectiondeform.io.dxf import read_drawing
+
+    doc, msp = new_doc()
+    msp.add_ellipse((5, 5), major_axis=(1e5, 0), ratio=1e-3, dxfattribs={"layer": "UPPER"})
+    doc.saveas(tmp_path / "e.dxf")
+    with pytest.raises(CaseError, match=r"layer UPPER: ELLIPSE \(handle \w+\): [0-9.e+]+ points needed, more than "
+                                        r"the bound 200000; .*--chordal-error"):
+        read_drawing(tmp_path / "e.dxf", chordal_error=1e-9)
+    assert len(read_drawing(tmp_path / "e.dxf", chordal_error=1e-2).pieces) == 1
+
+
+TRUNCATED_HEADER = "0\nSECTION\n2\nHEADER\n"
+EMPTY_NUMBER = "0\nSECTION\n2\nHEADER\n9\n$EXTMIN\n10\n\n20\n0.0\n0\nENDSEC\n0\nEOF\n"
+
+
+@pytest.mark.parametrize("text", [TRUNCATED_HEADER, EMPTY_NUMBER, "0\nSECTION\n2\n", "\xff\xfe0\n"],
+                         ids=["truncated", "empty-number", "cut-in-a-tag", "binary"])
+def test_a_damaged_dxf_file_is_one_clear_error(tmp_path, capsys, text):
+    path = tmp_path / "bad.dxf"
+    path.write_text(text, encoding="latin-1")
+    with pytest.raises(CaseError, match="DXF file"):
+        read_case(path, law=AreaRatio(0.8))
+    assert main(["convert", str(path), str(tmp_path / "out.json")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "bad.dxf: " in err[0] and "DXF file" in err[0]
+    assert not (tmp_path / "out.json").exists()
 
 
 def test_no_law_and_no_target_errors(tmp_path):

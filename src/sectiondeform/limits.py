@@ -9,6 +9,8 @@ shared cases needs (documented in docs/reliability.md).
 
 from __future__ import annotations
 
+import math
+
 from .errors import GeometryError
 
 __all__ = [
@@ -21,6 +23,7 @@ __all__ = [
     "MAX_SPLINE_PIECES",
     "MAX_UPPER_POINTS",
     "bounded",
+    "flattening_points",
     "newton_budget",
 ]
 
@@ -55,8 +58,10 @@ tread at 16 elements through the thickness: 5 iterations on 11 805 unknowns).
 """
 
 
-def bounded(count: float, limit: int, what: str, fix: str, error=GeometryError) -> float:
+def bounded(count: float, limit: int, what: str, fix: str, error=GeometryError, where: str = "section") -> float:
     """``count`` unchanged, or raise ``error`` naming it, the bound and the fix.
+
+    ``where`` starts the message: the input or stage at fault.
 
     Examples
     --------
@@ -68,8 +73,34 @@ def bounded(count: float, limit: int, what: str, fix: str, error=GeometryError) 
     sectiondeform.errors.GeometryError: section: inf lower nodes needed, more than the bound 100; raise options.element_size
     """
     if not count <= limit:  # also NaN
-        raise error(f"section: {count:.6g} {what} needed, more than the bound {limit}; {fix}")
+        raise error(f"{where}: {count:.6g} {what} needed, more than the bound {limit}; {fix}")
     return count
+
+
+def flattening_points(radius: float, sweep: float, tol: float) -> float:
+    """Points of a polyline within the chordal error ``tol`` of an arc of ``radius`` turning ``sweep`` radians.
+
+    A chord of angle θ misses its arc by r (1 − cos(θ/2)), so θ = 2 acos(1 − tol / r);
+    for tol ≪ r that is 2 √(2 tol / r), written so to keep its digits. For an
+    ellipse, ``radius`` is its larger semi-axis (its flattest curvature
+    radius is smaller, so this is an underestimate, never an overestimate
+    that would refuse a fair input). Meant to be passed to :func:`bounded`
+    *before* the points are computed.
+
+    Examples
+    --------
+    >>> flattening_points(1.0, 2 * 3.141592653589793, 2.0)
+    2.0
+    >>> round(flattening_points(1e5, 6.283185307179586, 3.7e-11))
+    115487244
+    """
+    if not radius > 0:
+        return 2.0
+    if not (math.isfinite(radius) and tol > 0):
+        return float("inf")
+    ratio = min(tol / radius, 2.0)
+    step = 2.0 * math.acos(1.0 - ratio) if ratio > 1e-6 else 2.0 * math.sqrt(2.0 * ratio)
+    return max(2.0, math.ceil(abs(sweep) / step) + 1.0)
 
 
 

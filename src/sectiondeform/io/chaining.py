@@ -371,6 +371,10 @@ def one_chain(pieces: list[Piece], where: str, tol: float, snap: float = 0.0, cl
     if not pieces:
         raise CaseError(where, "has no curve pieces")
     paths, report = connect(pieces, where, tol, snap, close_gap)
+    if not paths:
+        raise CaseError(where, f"every piece is shorter than twice the join tolerance {tol:.3g} (by default 1e-6 of "
+                               "the drawing's diagonal, which a far stray piece makes large): give a smaller join_tol "
+                               "or delete the stray pieces")
     if len(paths) > 1:
         opened = [p for p in paths if not p.closed]
         if len(opened) >= 2:
