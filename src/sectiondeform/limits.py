@@ -21,6 +21,7 @@ __all__ = [
     "MAX_NEWTON_ITERATIONS",
     "MAX_NEWTON_WORK",
     "MAX_SPLINE_PIECES",
+    "MAX_STUDY_ROWS",
     "MAX_UPPER_POINTS",
     "bounded",
     "flattening_points",
@@ -45,6 +46,10 @@ MAX_LAYERED_NODES = 2_000_000
 MAX_FE_VERTICES = 3_000
 """Triangle vertices of the hyperelastic model's mesh (about twice as many triangles), also
 after the mesher's passes that split boundary segments to conform to the contour."""
+
+MAX_STUDY_ROWS = 100_000
+"""Rows of one parametric study (all its cases' products of axes together), checked before they are built:
+at a few milliseconds a row on the paper model that is minutes of work, and a table of tens of megabytes."""
 
 MAX_NEWTON_ITERATIONS = 100
 """Newton iterations of one hyperelastic solve, all load steps together (a step's predictor counts one)."""
