@@ -137,3 +137,32 @@ def test_mesh_writer_names_quads_plane_strain(tmp_path):
     text = path.read_text()
     assert "CAX4P" not in text.upper()
     assert re.search(r"(?i)type\s*=\s*CPE4\b", text)
+
+
+@pytest.mark.parametrize("name", ["square.json", "paper-example.json", "thick-block-s-curve.json"])
+@pytest.mark.parametrize("mesh_size", [0.05, 0.2])
+def test_the_triangle_estimate_is_a_lower_bound_of_the_mesh(name, mesh_size):
+    """The bound refuses only what would really be too large: the estimate never exceeds the elements made."""
+    from sectiondeform.external.mesh import check_deck_size
+
+    case = sd.load_case(DATA / name)
+    deck = build_deck(case, "CPE3", mesh_size)
+    section = sd.build_section(case)
+    estimate = check_deck_size([section], [mesh_size * section.mesh_scale])
+    assert 0.2 * len(deck.mesh.cells) <= estimate <= len(deck.mesh.cells)
+
+
+@pytest.mark.parametrize("name", ["square.json", "two-layer-strip.json"])
+def test_a_mesh_size_too_small_is_refused_up_front_with_the_number(tmp_path, capsys, name):
+    """--mesh-size 0.0001 ran without end (2e8 triangles); now one line, before meshing, nothing written."""
+    import time
+
+    source = DATA / name if (DATA / name).exists() else Path(__file__).parent / "data" / "cases" / "v2" / name
+    out = tmp_path / "deck.inp"
+    t0 = time.process_time()
+    assert main(["export-fe", str(source), "-o", str(out), "--mesh-size", "0.0001"]) == 2
+    assert time.process_time() - t0 < 5.0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and re.search(r"solver mesh: [0-9.e+]+ triangles needed, more than the bound 500000; "
+                                       r"raise --mesh-size", err[0]), err
+    assert not out.exists()

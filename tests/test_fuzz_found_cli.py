@@ -33,7 +33,7 @@ def test_exit_0_with_a_checked_result_or_2_with_one_line_and_no_file(path, tmp_p
 
 
 def test_the_v2_command_line_runs_are_present():
-    assert len(BUNDLES) >= 10
+    assert len(BUNDLES) >= 11
 
 
 @pytest.mark.parametrize("path", BUNDLES, ids=[p.stem for p in BUNDLES])

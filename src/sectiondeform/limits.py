@@ -15,6 +15,7 @@ from .errors import GeometryError
 
 __all__ = [
     "MAX_CURVE_POINTS",
+    "MAX_DECK_TRIANGLES",
     "MAX_FE_VERTICES",
     "MAX_LAYERED_NODES",
     "MAX_LOWER_NODES",
@@ -26,6 +27,7 @@ __all__ = [
     "bounded",
     "flattening_points",
     "newton_budget",
+    "triangles_needed",
 ]
 
 MAX_CURVE_POINTS = 200_000
@@ -50,6 +52,10 @@ after the mesher's passes that split boundary segments to conform to the contour
 MAX_STUDY_ROWS = 100_000
 """Rows of one parametric study (all its cases' products of axes together), checked before they are built:
 at a few milliseconds a row on the paper model that is minutes of work, and a table of tens of megabytes."""
+
+MAX_DECK_TRIANGLES = 500_000
+"""Triangles of a solver deck's mesh (``export-fe``, ``solve-fe``, ``validate --reference calculix``), estimated
+from the area and the element size before meshing: a deck of a few hundred megabytes, hours of CalculiX."""
 
 MAX_NEWTON_ITERATIONS = 100
 """Newton iterations of one hyperelastic solve, all load steps together (a step's predictor counts one)."""
@@ -120,3 +126,23 @@ def newton_budget(unknowns: int) -> int:
     (100, 6)
     """
     return max(1, min(MAX_NEWTON_ITERATIONS, MAX_NEWTON_WORK // max(int(unknowns), 1)))
+
+
+def triangles_needed(area: float, perimeter: float, size: float) -> float:
+    """At least how many triangles of side about ``size`` a region of ``area`` and ``perimeter`` takes.
+
+    The area over an equilateral triangle's, plus a triangle per boundary
+    segment: a lower estimate (quality meshes hold more), so that a bound on
+    it refuses no fair mesh. Infinite for a size that is not a positive
+    number.
+
+    Examples
+    --------
+    >>> round(triangles_needed(100.0, 40.0, 1.0))
+    271
+    >>> triangles_needed(1.0, 4.0, 0.0)
+    inf
+    """
+    if not size > 0:
+        return math.inf
+    return abs(area) / (math.sqrt(3.0) / 4.0 * size * size) + perimeter / size

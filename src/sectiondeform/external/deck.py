@@ -43,7 +43,7 @@ from .axis import AxisFrame, axis_frame, reverse_orientation
 from .fe_assembly import FeAssembly
 from .inp_number import inp_real
 from .material_cards import hyperelastic_card, material_summary
-from .mesh import FeMesh, element_areas, fe_mesh
+from .mesh import FeMesh, check_deck_size, element_areas, fe_mesh
 
 __all__ = [
     "DEFAULT_AXI_ELEMENT",
@@ -395,6 +395,7 @@ def build_assembly_deck(fe: FeAssembly, element: str | None = None, mesh_size: f
     a = fe.assembly
     sections = [build_section(a.body_case(i)) for i in range(len(a.bodies))]
     sizes = [mesh_size * s.mesh_scale for s in sections]
+    check_deck_size(sections, sizes)
     rings = [body_ring(s, h) for s, h in zip(sections, sizes)]
     mesh, body_of = assembly_mesh(rings, sizes, a.layout.fine["support"], a.layout.tolerance, el.family, el.nodes)
     order = np.argsort(body_of, kind="stable")  # each body's elements in one run of numbers

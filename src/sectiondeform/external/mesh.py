@@ -22,6 +22,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import MeshError
+from ..limits import MAX_DECK_TRIANGLES, bounded, triangles_needed
+
 __all__ = ["FeMesh", "add_mid_nodes", "element_areas", "fe_mesh", "split_into_quads", "thin_polyline"]
 
 #: meshio's name of each (family, nodes) mesh kind.
@@ -182,6 +185,20 @@ def thin_polyline(points: np.ndarray, spacing: float, corner_deg: float = 10.0) 
     return np.asarray(keep, dtype=np.int64)
 
 
+def check_deck_size(sections, sizes) -> float:
+    """The triangles the sections need at their element sizes, or a :class:`MeshError` naming them and the bound.
+
+    Checked before anything is meshed or split (:data:`~sectiondeform.limits.MAX_DECK_TRIANGLES`).
+    """
+    count = 0.0
+    for section, size in zip(sections, sizes):
+        upper = np.asarray(section.upper, dtype=np.float64)
+        perimeter = section.lower_length + float(np.hypot(*np.diff(upper, axis=0).T).sum())
+        count += triangles_needed(section.area, perimeter, size)
+    return bounded(count, MAX_DECK_TRIANGLES, "triangles",
+                   "raise --mesh-size (a fraction of the section's mean thickness)", MeshError, "solver mesh")
+
+
 def fe_mesh(section, lower_curve, size: float, family: str, nodes: int) -> FeMesh:
     """Mesh a section for a solver deck.
 
@@ -206,6 +223,7 @@ def fe_mesh(section, lower_curve, size: float, family: str, nodes: int) -> FeMes
 
     from ..reference.mesh import triangulate_section
 
+    check_deck_size([section], [size])
     # The upper curve as its characteristic points about size / 3 apart (the rest are mapped by
     # the shape functions), so a finely discretised curve does not flood the mesh with elements.
     kept = thin_polyline(np.asarray(section.upper), size / 3.0)
