@@ -405,15 +405,17 @@ def outcome_cli_file(path: Path, out: Path, limit_s: float = TIME_LIMIT_S, extra
 def _checked_output(out: Path, seconds: float) -> Outcome:
     """The promise on a written result file: finite contour, law met, simple (recomputed here)."""
     data = json.loads(out.read_text(encoding="utf-8"))
-    contour = np.asarray(data["contour"], dtype=np.float64)
-    target = float(data["area"]["target"])
     fails = []
-    if not np.isfinite(contour).all():
-        fails.append("finite")
-    elif abs(area_of(contour) - target) > 1e-8 * target:
-        fails.append(f"area_law: {area_of(contour)!r} vs {target!r}")
-    elif not shapely.is_simple(shapely.linearrings(contour)):
-        fails.append("simple")
+    for body in data.get("bodies", [data]):  # section-result/2: each body's contour
+        contour = np.asarray(body["contour"], dtype=np.float64)
+        target = body["area"].get("target")
+        where = f"{body['name']}: " if "bodies" in data else ""
+        if not np.isfinite(contour).all():
+            fails.append(f"{where}finite")
+        elif target is not None and abs(area_of(contour) - target) > 1e-8 * target:
+            fails.append(f"{where}area_law: {area_of(contour)!r} vs {target!r}")
+        elif not shapely.is_simple(shapely.linearrings(contour)):
+            fails.append(f"{where}simple")
     if fails:
         return Outcome("failure:wrong", "; ".join(fails), seconds)
     return Outcome("ok", "", seconds)
