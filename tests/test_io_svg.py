@@ -143,3 +143,22 @@ def test_an_ellipse_within_the_bound_is_still_flattened_within_the_chordal_error
     mid = 0.5 * (pts[1:] + pts[:-1]) - [50, -50]
     r = np.hypot(mid[:, 0] / 40, mid[:, 1] / 10)
     assert np.all(r <= 1.0) and np.all((1.0 - r) * 10 <= 1e-3 * 1.01)
+
+
+BULB = ('<path id="lower" d="M0,0 L20,0"/><path id="upper" d="M20,0 L20,-10 A10,10 0 0 0 0,-10 L0,0"/>'
+        '<path id="target" d="M0,0 L20,0"/>')
+
+
+def test_an_svg_hole_is_refused_and_other_shapes_reported(tmp_path):
+    """A <circle id="hole"> inside the section was dropped without a word (the area 46 % too large)."""
+    path = tmp_path / "seal.svg"
+    path.write_text(_svg(BULB + '<circle id="hole" cx="10" cy="-10" r="6"/>'))
+    with pytest.raises(CaseError, match=r"^id/class hole: a closed contour inside the section .* holes are not "
+                                        r"supported yet"):
+        read_case(path, law=AreaRatio(0.9))
+    path.write_text(_svg(BULB + '<circle id="hole" cx="60" cy="-10" r="6"/><rect class="frame" x="-50" y="-80" '
+                                'width="200" height="130"/><line x1="0" y1="5" x2="20" y2="5"/>'))
+    report = []
+    read_case(path, law=AreaRatio(0.9), report=report)
+    assert "ignored: 3 entities not used by the case: 1 on id/class frame, 1 on id/class hole, 1 without an id " \
+           "or class" in report

@@ -57,7 +57,7 @@ from ..curves import (
 )
 from ..errors import CaseError
 from ..laws import Law, law_from_json
-from .chaining import fmt_point, one_chain
+from .chaining import fmt_point, holes_inside, one_chain, unused_summary
 from .pieces import Drawing, Piece, pin_ends
 from .units import mm_per_unit
 
@@ -496,6 +496,28 @@ def convert_units(case: Case, units: str, report=None) -> Case:
                    units=units, options=options)
 
 
+def _unused(pieces, ctx: _Context) -> list[Piece]:
+    """The pieces no curve of the case comes from (the target's too when ``target_arc`` replaces it)."""
+    o = ctx.options
+    target = ctx.roles["target"].upper()
+    drawn_target = ctx.has(pieces, "target") and o.target_arc is None
+    if o.split is not None and not ctx.has(pieces, "contour"):
+        return [] if drawn_target else [p for p in pieces if target in p.tags]
+    used = {ctx.roles[r].upper() for r in (("contour",) if o.split is not None else ("lower", "upper"))}
+    if drawn_target:
+        used.add(target)
+    return [p for p in pieces if not p.tags & used]
+
+
+def _check_unused(drawing: Drawing, unused, ctx: _Context, lower: Curve, upper: Curve, report) -> None:
+    """Refuse a hole among the unused pieces; report how many entities are unused, and where."""
+    ring = np.vstack((lower.characteristic_points(ctx.chord), upper.characteristic_points(ctx.chord)[1:-1]))
+    holes_inside(unused, ring, ctx.tol, ctx.chord, drawing.labels, ctx.what)
+    line = unused_summary(unused, drawing.ignored, drawing.labels, ctx.what)
+    if line is not None:
+        _say(report, line)
+
+
 def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *, report=None, **keywords) -> Case:
     """Build a case from the pieces of a drawing (see the module docstring).
 
@@ -519,7 +541,13 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
     ------
     CaseError
         A missing layer, a gap, a branch, an unsupported entity, no law,
-        no target, an unknown option; each names where.
+        no target, an unknown option; each names where. A closed contour
+        of unused pieces inside the section (a hole: not supported yet).
+
+    Notes
+    -----
+    Entities no curve of the case comes from (other layers, ids or classes,
+    annotation) are reported in ``report``: how many, and where.
     """
     if options is None:
         options = DrawingOptions.from_mapping(keywords)
@@ -555,6 +583,7 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
         _say(report, f"simplified within {o.simplify:g}: {before} -> {lower.point_count + upper.point_count} points "
                      f"(lower {lower.point_count}, upper {upper.point_count})")
     target = _target(pieces, lower, upper, ctx, meta, drawing.path, report)
+    _check_unused(drawing, _unused(pieces, ctx), ctx, lower, upper, report)
     law = o.law
     if law is None:
         if "law" not in meta:
