@@ -205,3 +205,26 @@ def test_the_thick_block_is_as_close_to_the_reference_as_the_neo_hookean_model(m
     ref = solve_reference(case, material=material)
     d = _distance(placement.upper, ref.upper, section.thickness)
     assert d < 0.012  # the neo-Hookean model: 0.9 % of T (docs/validation.md)
+
+
+def test_an_unstable_rubber_is_named_as_such_not_blamed_on_the_mesh():
+    """Yeoh with c20 = -0.5 loses stability beyond an equibiaxial stretch of 1.12: Newton finds no equilibrium.
+
+    It was reported as "Newton stopped at its bound ... try a lower elements_through_thickness".
+    """
+    import dataclasses
+
+    from sectiondeform.errors import ConvergenceError
+    from sectiondeform.laws import AreaRatio
+    from sectiondeform.materials.homogeneous import unstable_modes
+
+    unstable = Yeoh(0.5, -0.5, 0.0, bulk_to_shear=1e3)
+    assert "equibiaxial: unstable beyond stretch 1.12" in unstable_modes(unstable, 1.5)
+    case = dataclasses.replace(_block(stretch=1.3), law=AreaRatio(1.0))
+    with pytest.raises(ConvergenceError, match=r"^hyperelastic: the rubber \(yeoh, c10 = 0\.5, c20 = -0\.5, c30 = 0\) "
+                                               r"is unstable beyond stretch 1\.12 \(equibiaxial\)") as info:
+        _place(case, unstable)
+    assert "elements_through_thickness" not in str(info.value)
+    # The same target with a stable rubber of the same initial modulus is solved.
+    _, _, placement = _place(case, Yeoh(0.5, 0.0, 0.0, bulk_to_shear=1e3))
+    assert np.isfinite(placement.upper).all()
