@@ -34,7 +34,9 @@ import shapely
 from hypothesis import strategies as st
 
 import sectiondeform as sd
-from sectiondeform.verify import area_of, check_result
+from sectiondeform.pappus import volume as pappus_volume
+from sectiondeform.problem import V1
+from sectiondeform.verify import AREA_LAW_TOLERANCE, ENDS_TOLERANCE, area_of, check_result, inverted
 
 __all__ = ["Outcome", "cases", "outcome_api", "outcome_cli", "outcome_cli_file", "TIME_LIMIT_S"]
 
@@ -313,7 +315,8 @@ def outcome_api(case: dict | Path, limit_s: float = TIME_LIMIT_S) -> Outcome:
     """Run ``case`` (a dict, or a case file) through ``case_from_dict`` (``load_case``) and ``deform``; classify.
 
     ``ok`` needs a result that passes every check of
-    :func:`~sectiondeform.verify.check_result` and no ``RuntimeWarning``
+    :func:`~sectiondeform.verify.check_result` (a ``section-case/1`` case)
+    or of :func:`check_bodies` (``section-case/2``) and no ``RuntimeWarning``
     (numpy's overflow, invalid value...) on the way.
 
     The time limit is on the process's CPU time (``ITIMER_PROF``, main
@@ -335,7 +338,7 @@ def outcome_api(case: dict | Path, limit_s: float = TIME_LIMIT_S) -> Outcome:
                 else:  # as a JSON file would give it: a fresh copy, tuples as lists
                     parsed = sd.case_from_dict(json.loads(json.dumps(case)))
                 result = sd.deform(parsed)
-                fails = check_result(result, parsed)
+                fails = check_result(result, parsed) if parsed.dialect == V1 else check_bodies(result)
             except sd.SectionDeformError as exc:
                 message = str(exc)
                 if not message or "\n" in message:
@@ -355,6 +358,49 @@ def outcome_api(case: dict | Path, limit_s: float = TIME_LIMIT_S) -> Outcome:
     if fails:
         return Outcome("failure:wrong", "; ".join(fails), seconds)
     return Outcome("ok", "", seconds)
+
+
+def check_bodies(result) -> list[str]:
+    """Every failed check of a result body by body, as one-line strings naming the body; empty when it passes.
+
+    For each body: finite points and figures, its law met by the area (or
+    the volume of revolution) recomputed from its deformed contour, its
+    reported final area and initial area those of its contours, a simple
+    deformed contour whose upper points run from the lower curve's end back
+    to its start, and no inverted element in either mesh.
+    """
+    fails = []
+    for body in result.bodies:
+        fails += [f"{body.name}: {f}" for f in _body_fails(body, result.axis)]
+    return fails
+
+
+def _body_fails(body, axis) -> list[str]:
+    arrays = [body.lower, body.upper, body.contour, body.initial_contour, body.initial_mesh.points,
+              body.final_mesh.points]
+    if not all(np.isfinite(np.asarray(a, dtype=np.float64)).all() for a in arrays) \
+            or not np.isfinite([body.area_initial, body.area_final, body.target, body.final]).all():
+        return ["finite: the result holds NaN or infinite values"]
+    contour = np.asarray(body.contour, dtype=np.float64)
+    final = area_of(contour) if body.measure == "area" else pappus_volume(contour, axis)
+    fails = []
+    if abs(final - body.target) > AREA_LAW_TOLERANCE * body.target:
+        fails.append(f"{body.measure}_law: final {final!r} vs target {body.target!r}")
+    for what, reported, points in (("area_reported", body.area_final, contour),
+                                   ("initial_reported", body.area_initial, body.initial_contour)):
+        recomputed = area_of(np.asarray(points, dtype=np.float64))
+        if abs(recomputed - reported) > AREA_LAW_TOLERANCE * recomputed:
+            fails.append(f"{what}: reported {reported!r} vs recomputed {recomputed!r}")
+    if not shapely.is_simple(shapely.linearrings(contour)):
+        fails.append("simple: the deformed contour crosses itself")
+    lo, up = np.asarray(body.lower), np.asarray(body.upper)
+    if max(np.hypot(*(up[0] - lo[-1])), np.hypot(*(up[-1] - lo[0]))) > ENDS_TOLERANCE * np.hypot(*np.ptp(contour, axis=0)):
+        fails.append("ends: the upper points do not run from the lower curve's end back to its start")
+    for mesh, name in ((body.initial_mesh, "initial_mesh"), (body.final_mesh, "final_mesh")):
+        bad = inverted(mesh)
+        if bad:
+            fails.append(f"{name}: {bad}")
+    return fails
 
 
 def outcome_cli(case: dict, folder: Path, limit_s: float = TIME_LIMIT_S) -> Outcome:
@@ -405,15 +451,17 @@ def outcome_cli_file(path: Path, out: Path, limit_s: float = TIME_LIMIT_S, extra
 def _checked_output(out: Path, seconds: float) -> Outcome:
     """The promise on a written result file: finite contour, law met, simple (recomputed here)."""
     data = json.loads(out.read_text(encoding="utf-8"))
-    contour = np.asarray(data["contour"], dtype=np.float64)
-    target = float(data["area"]["target"])
     fails = []
-    if not np.isfinite(contour).all():
-        fails.append("finite")
-    elif abs(area_of(contour) - target) > 1e-8 * target:
-        fails.append(f"area_law: {area_of(contour)!r} vs {target!r}")
-    elif not shapely.is_simple(shapely.linearrings(contour)):
-        fails.append("simple")
+    for body in data.get("bodies", [data]):  # section-result/2: each body's contour
+        contour = np.asarray(body["contour"], dtype=np.float64)
+        target = body["area"].get("target")
+        where = f"{body['name']}: " if "bodies" in data else ""
+        if not np.isfinite(contour).all():
+            fails.append(f"{where}finite")
+        elif target is not None and abs(area_of(contour) - target) > 1e-8 * target:
+            fails.append(f"{where}area_law: {area_of(contour)!r} vs {target!r}")
+        elif not shapely.is_simple(shapely.linearrings(contour)):
+            fails.append(f"{where}simple")
     if fails:
         return Outcome("failure:wrong", "; ".join(fails), seconds)
     return Outcome("ok", "", seconds)

@@ -157,3 +157,36 @@ def test_round_trip_json():
         assert curve_from_json(obj).to_json() == obj
     chain = {"chain": objs[:1] + [{"polyline": [[1.0, 2.0], [5.0, 5.0]]}]}
     assert curve_from_json(chain).to_json() == chain
+
+
+def _nested(curve, depth: int) -> Chain:
+    for _ in range(depth):
+        curve = Chain((curve,))
+    return curve
+
+
+def test_the_ends_of_a_deeply_nested_chain_take_linear_work():
+    """A chain of one chain of one chain...: each level asked its only piece twice, 2**depth work."""
+    import time
+
+    line = Polyline([[0.0, 0.0], [3.0, 4.0]])
+    t0 = time.process_time()
+    chain = _nested(line, 200)
+    start, end = chain.ends
+    assert time.process_time() - t0 < 1.0
+    assert start.tolist() == [0.0, 0.0] and end.tolist() == [3.0, 4.0]
+    assert chain.length == 5.0 and len(chain.parts()) == 1
+
+
+def test_a_case_whose_lower_curve_is_nested_50_chains_deep_deforms_in_time():
+    """tests/data/fuzz-found/v2/api-HANG-curves-py-ends-400.json: minutes before, now well under a second."""
+    import time
+    from pathlib import Path
+
+    import sectiondeform as sd
+
+    path = Path(__file__).parent / "data" / "fuzz-found" / "v2" / "api-HANG-curves-py-ends-400.json"
+    t0 = time.process_time()
+    result = sd.deform(sd.load_case(path))
+    assert time.process_time() - t0 < 10.0
+    assert all(abs(b.volume_final - b.volume_target) <= 1e-9 * b.volume_target for b in result.bodies)

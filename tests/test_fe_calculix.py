@@ -68,6 +68,24 @@ def test_solve_fe_cli_writes_a_section_result(ccx, tmp_path, capsys):
     assert abs(data["area"]["relative_error"]) < 2e-3
 
 
+def test_validate_against_calculix_writes_the_report_and_the_figure(ccx, tmp_path, capsys):
+    report, fig = tmp_path / "v.json", tmp_path / "v.png"
+    args = ["validate", str(DATA / "square.json"), "--reference", "calculix", "--mesh-size", "0.5", "-q"]
+    assert main([*args, "-o", str(report), "--plot", str(fig)]) == 0
+    out = capsys.readouterr().out
+    assert "Hausdorff" in out and "of the height" in out and "wrote" in out
+    r = json.loads(report.read_text())
+    case = sd.load_case(DATA / "square.json")
+    section = sd.build_section(case)
+    height = float(np.max(section.upper[:, 1]) - np.min(section.lower[:, 1]))
+    assert r["height"] == pytest.approx(height)
+    assert r["hausdorff_over_height"] == pytest.approx(r["shape"]["hausdorff"] / height)
+    assert r["reference"]["model"].startswith("CalculiX")
+    assert r["reference"]["solver"]["solver"] == "calculix"
+    assert len(r["fast"]["upper"]) == len(r["reference"]["upper"])
+    assert fig.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
 def test_missing_and_failing_ccx_are_one_line_errors(tmp_path, capsys, monkeypatch):
     monkeypatch.setenv("SECTIONDEFORM_CCX", str(tmp_path / "no-ccx"))
     assert main(["solve-fe", str(DATA / "square.json"), "-q"]) == 2

@@ -137,3 +137,62 @@ def test_mesh_writer_names_quads_plane_strain(tmp_path):
     text = path.read_text()
     assert "CAX4P" not in text.upper()
     assert re.search(r"(?i)type\s*=\s*CPE4\b", text)
+
+
+V2_CASES = Path(__file__).parent / "data" / "cases" / "v2"
+
+
+def _case_path(name: str) -> Path:
+    return DATA / name if (DATA / name).exists() else V2_CASES / name
+
+
+def _sections(problem) -> list:
+    return [sd.build_section(problem.body_case(b)) for b in range(len(problem.bodies))]
+
+
+@pytest.mark.parametrize("name", ["square.json", "paper-example.json", "thick-block-s-curve.json",
+                                  "two-layer-strip.json", "tread-on-drum.json"])
+@pytest.mark.parametrize("mesh_size", [0.05, 0.2])
+def test_the_triangle_estimate_is_a_lower_bound_of_the_mesh(name, mesh_size):
+    """The bound refuses only what would really be too large: the estimate never exceeds the elements made.
+
+    Over every body: the estimate is the sum of each body's, and the deck meshes them all.
+    """
+    from sectiondeform.external.mesh import check_deck_size
+
+    case = sd.load_case(_case_path(name))
+    deck = build_deck(case, "CPE3" if case.revolution is None else "CAX3", mesh_size)
+    sections = _sections(case)
+    estimate = check_deck_size(sections, [mesh_size * s.mesh_scale for s in sections])
+    each = [check_deck_size([s], [mesh_size * s.mesh_scale]) for s in sections]
+    assert estimate == pytest.approx(sum(each))
+    assert 0.2 * len(deck.mesh.cells) <= estimate <= len(deck.mesh.cells)
+
+
+@pytest.mark.parametrize("name", ["square.json", "two-layer-strip.json"])
+def test_the_deck_size_is_checked_before_anything_is_triangulated(monkeypatch, name):
+    import sectiondeform.reference.mesh as reference_mesh
+    from sectiondeform.errors import MeshError
+
+    def never(*args, **kwargs):
+        raise AssertionError("triangulated before the size was checked")
+
+    monkeypatch.setattr(reference_mesh, "triangulate", never)
+    with pytest.raises(MeshError, match=r"^solver mesh: [0-9.e+]+ triangles needed, more than the bound 500000"):
+        build_deck(sd.load_case(_case_path(name)), "CPE8", 1e-4)
+
+
+@pytest.mark.parametrize("name", ["square.json", "two-layer-strip.json"])
+def test_a_mesh_size_too_small_is_refused_up_front_with_the_number(tmp_path, capsys, name):
+    """--mesh-size 0.0001 ran without end (2e8 triangles); now one line, before meshing, nothing written."""
+    import time
+
+    source = _case_path(name)
+    out = tmp_path / "deck.inp"
+    t0 = time.process_time()
+    assert main(["export-fe", str(source), "-o", str(out), "--mesh-size", "0.0001"]) == 2
+    assert time.process_time() - t0 < 5.0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and re.search(r"solver mesh: [0-9.e+]+ triangles needed, more than the bound 500000; "
+                                       r"raise --mesh-size", err[0]), err
+    assert not out.exists()

@@ -189,12 +189,22 @@ def bad_drawings():
         gap_free(msp)
         msp.add_solid([(0, 0), (1, 0), (1, 1)], dxfattribs={"layer": "UPPER"})
 
+    def nan(msp):
+        gap_free(msp)
+        msp.add_line((10, 5), (float("nan"), 7), dxfattribs={"layer": "UPPER"})
+
+    def all_collapsed(msp):  # a far stray piece makes the default join tolerance larger than the section
+        gap_free(msp)
+        msp.add_line((0, 0), (1e8, 1e8), dxfattribs={"layer": "STRAY"})
+
     return {
         "missing": (missing, "'UPPER' not found"),
         "gap": (gap, "nearest gap is 0.5"),
         "branch": (branch, "branch at (10, 5)"),
         "zero": (zero, "zero-length LINE"),
         "unsupported": (unsupported, "unsupported entity SOLID"),
+        "nan": (nan, "coordinates must be finite numbers"),
+        "all_collapsed": (all_collapsed, "every piece is shorter than twice the join tolerance"),
     }
 
 
@@ -212,6 +222,35 @@ def test_bad_drawing_one_clear_error(tmp_path, capsys, kind):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and message in err[0]
     assert not out.exists() and not list(tmp_path.glob(".out*"))
+
+
+def test_an_ellipse_too_fine_to_flatten_is_refused_before_any_point_is_computed(tmp_path):
+    from sectiondeform.io.dxf import read_drawing
+
+    doc, msp = new_doc()
+    msp.add_ellipse((5, 5), major_axis=(1e5, 0), ratio=1e-3, dxfattribs={"layer": "UPPER"})
+    doc.saveas(tmp_path / "e.dxf")
+    with pytest.raises(CaseError, match=r"layer UPPER: ELLIPSE \(handle \w+\): [0-9.e+]+ points needed, more than "
+                                        r"the bound 200000; .*--chordal-error"):
+        read_drawing(tmp_path / "e.dxf", chordal_error=1e-9)
+    assert len(read_drawing(tmp_path / "e.dxf", chordal_error=1e-2).pieces) == 1
+
+
+TRUNCATED_HEADER = "0\nSECTION\n2\nHEADER\n"
+EMPTY_NUMBER = "0\nSECTION\n2\nHEADER\n9\n$EXTMIN\n10\n\n20\n0.0\n0\nENDSEC\n0\nEOF\n"
+
+
+@pytest.mark.parametrize("text", [TRUNCATED_HEADER, EMPTY_NUMBER, "0\nSECTION\n2\n", "\xff\xfe0\n"],
+                         ids=["truncated", "empty-number", "cut-in-a-tag", "binary"])
+def test_a_damaged_dxf_file_is_one_clear_error(tmp_path, capsys, text):
+    path = tmp_path / "bad.dxf"
+    path.write_text(text, encoding="latin-1")
+    with pytest.raises(CaseError, match="DXF file"):
+        read_case(path, law=AreaRatio(0.8))
+    assert main(["convert", str(path), str(tmp_path / "out.json")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "bad.dxf: " in err[0] and "DXF file" in err[0]
+    assert not (tmp_path / "out.json").exists()
 
 
 def test_no_law_and_no_target_errors(tmp_path):
@@ -279,3 +318,104 @@ def test_real_seal_scan_read_and_deformed(tmp_path, capsys):
     assert main(argv) == 0, capsys.readouterr().err
     doc = ezdxf.readfile(out)
     assert len(doc.modelspace().query("LWPOLYLINE[layer=='DEFORMED']")) == 1
+
+
+def bulb_seal(hole_center=(10.0, 10.0)):
+    """A bulb seal 20 wide: a 10-high block under a half disc of radius 10, with a hole of radius 6 on HOLE."""
+    doc, msp = new_doc()
+    msp.add_line((0, 0), (20, 0), dxfattribs={"layer": "LOWER"})
+    msp.add_line((20, 0), (20, 10), dxfattribs={"layer": "UPPER"})
+    msp.add_arc((10, 10), 10, 0, 180, dxfattribs={"layer": "UPPER"})
+    msp.add_line((0, 10), (0, 0), dxfattribs={"layer": "UPPER"})
+    msp.add_line((0, 0), (20, 0), dxfattribs={"layer": "TARGET"})
+    msp.add_circle(hole_center, 6, dxfattribs={"layer": "HOLE"})
+    return doc, msp
+
+
+def test_a_hole_on_a_layer_nobody_reads_is_refused_not_dropped(tmp_path, capsys):
+    """Read without its hole the seal's area was 46 % too large, without a word."""
+    doc, _ = bulb_seal()
+    doc.saveas(tmp_path / "seal.dxf")
+    with pytest.raises(CaseError, match=r"^layer HOLE: a closed contour inside the section \(area 113\.\d+, 31\.7% of "
+                                        r"the section's\): holes are not supported yet"):
+        read_case(tmp_path / "seal.dxf", law=AreaRatio(0.9))
+    assert main(["convert", str(tmp_path / "seal.dxf"), str(tmp_path / "out.json"), "--area-ratio", "0.9"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "holes are not supported yet" in err[0]
+    assert not (tmp_path / "out.json").exists()
+
+
+def test_entities_not_used_are_reported_with_their_layers(tmp_path, capsys):
+    doc, msp = bulb_seal(hole_center=(60.0, 10.0))  # beside the section: no hole
+    msp.add_lwpolyline([(-50, -50), (150, -50), (150, 80), (-50, 80)], close=True, dxfattribs={"layer": "BORDER"})
+    msp.add_text("seal", dxfattribs={"layer": "NOTES"})
+    doc.saveas(tmp_path / "seal.dxf")
+    report = []
+    case = read_case(tmp_path / "seal.dxf", law=AreaRatio(0.9), report=report)
+    assert polygon_area(np.vstack((case.lower.characteristic_points(1e-3), case.upper.characteristic_points(1e-3)))) \
+        == pytest.approx(200 + 50 * math.pi, rel=1e-4)
+    assert "ignored: 3 entities not used by the case: 1 on layer BORDER, 1 on layer HOLE, 1 on layer NOTES " \
+           "(annotation: TEXT)" in report
+    assert main(["convert", str(tmp_path / "seal.dxf"), str(tmp_path / "out.json"), "--area-ratio", "0.9"]) == 0
+    assert "ignored: 3 entities not used by the case" in capsys.readouterr().out
+
+
+def test_a_drawing_whose_every_entity_is_used_reports_nothing_ignored(tmp_path):
+    doc = fix_section(section_doc())
+    doc.saveas(tmp_path / "s.dxf")
+    report = []
+    read_case(tmp_path / "s.dxf", law=AreaRatio(0.9), report=report)
+    assert not [line for line in report if line.startswith("ignored")]
+
+
+def two_bodies(hole_center=None):
+    """Two 20 x 5 blocks on a support: ``base`` on BODY-base-LOWER/-UPPER, ``top`` a contour on BODY-top."""
+    doc, msp = new_doc()
+    msp.add_line((0, 0), (20, 0), dxfattribs={"layer": "SUPPORT"})
+    msp.add_line((0, -1), (20, -1), dxfattribs={"layer": "TARGET"})
+    msp.add_line((0, 0), (20, 0), dxfattribs={"layer": "BODY-base-LOWER"})
+    msp.add_lwpolyline([(20, 0), (20, 5), (0, 5), (0, 0)], dxfattribs={"layer": "BODY-base-UPPER"})
+    msp.add_lwpolyline([(0, 5), (20, 5), (20, 10), (0, 10)], close=True, dxfattribs={"layer": "BODY-top"})
+    if hole_center is not None:
+        msp.add_circle(hole_center, 2, dxfattribs={"layer": "HOLE"})
+    return doc, msp
+
+
+@pytest.mark.parametrize("center", [(10, 7.5), (10, 5)], ids=["inside-a-body", "across-the-interface"])
+def test_a_hole_in_a_drawing_of_bodies_is_refused_not_dropped(tmp_path, capsys, center):
+    """A closed contour on a layer nobody reads, inside the bodies (also half in each): refused, naming its layer."""
+    doc, _ = two_bodies(center)
+    doc.saveas(tmp_path / "layup.dxf")
+    with pytest.raises(CaseError, match=r"^layer HOLE: a closed contour inside the section \(area 12\.5\d*, 6\.3% of "
+                                        r"the section's\): holes are not supported yet"):
+        read_case(tmp_path / "layup.dxf", law=AreaRatio(0.9))
+    assert main(["convert", str(tmp_path / "layup.dxf"), str(tmp_path / "out.json"), "--area-ratio", "0.9"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "holes are not supported yet" in err[0]
+    assert not (tmp_path / "out.json").exists()
+
+
+def test_entities_a_drawing_of_bodies_does_not_use_are_reported_with_their_layers(tmp_path, capsys):
+    doc, msp = two_bodies(hole_center=(60, 5))  # beside the bodies: no hole
+    msp.add_lwpolyline([(-50, -50), (150, -50), (150, 80), (-50, 80)], close=True, dxfattribs={"layer": "BORDER"})
+    msp.add_line((0, -9), (20, -9), dxfattribs={"layer": "Dims"})
+    msp.add_text("layup", dxfattribs={"layer": "NOTES"})
+    doc.saveas(tmp_path / "layup.dxf")
+    report = []
+    problem = read_case(tmp_path / "layup.dxf", law=AreaRatio(0.9), report=report)
+    assert [b.name for b in problem.bodies] == ["base", "top"]
+    for body in problem.bodies:  # each read solid
+        ring = np.vstack((body.lower.characteristic_points(1e-3), body.upper.characteristic_points(1e-3)))
+        assert abs(polygon_area(ring)) == pytest.approx(100.0)
+    assert "ignored: 4 entities not used by the case: 1 on layer BORDER, 1 on layer Dims, 1 on layer HOLE, " \
+           "1 on layer NOTES (annotation: TEXT)" in report
+    assert main(["convert", str(tmp_path / "layup.dxf"), str(tmp_path / "out.json"), "--area-ratio", "0.9"]) == 0
+    assert "ignored: 4 entities not used by the case" in capsys.readouterr().out
+
+
+def test_a_drawing_of_bodies_whose_every_entity_is_used_reports_nothing_ignored(tmp_path):
+    doc, _ = two_bodies()
+    doc.saveas(tmp_path / "layup.dxf")
+    report = []
+    read_case(tmp_path / "layup.dxf", law=AreaRatio(0.9), report=report)
+    assert not [line for line in report if line.startswith("ignored")]

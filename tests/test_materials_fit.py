@@ -71,7 +71,10 @@ def test_separate_files_per_mode(tmp_path):
 @pytest.mark.parametrize("text, where", [
     ("mode,stretch,nominal_stress\nuniaxial,1.5,0.3\nuniaxial,abc,0.4\n", "line 3, column stretch: expected a number, got 'abc'"),
     ("mode,stretch,nominal_stress\nuniaxial,1.5,nan\n", "line 2, column nominal_stress: expected a finite number"),
-    ("mode,stretch,nominal_stress\nuniaxial,-1.5,0.3\n", "line 2, column stretch: must be > 0"),
+    ("mode,stretch,nominal_stress\nuniaxial,-1.5,0.3\n", "line 2, column stretch: must be within [0.001, 1000]"),
+    # These two crashed the fit (SVD did not converge) and printed nan constants.
+    ("mode,stretch,nominal_stress\nequibiaxial,1e-300,0.48\n", "line 2, column stretch: must be within [0.001, 1000]"),
+    ("mode,stretch,nominal_stress\nplanar,3.4,1e+308\n", "line 2, column nominal_stress: must be within +-1e+06 MPa"),
     ("mode,stretch,nominal_stress\nshear,1.5,0.3\n", "line 2, column mode: unknown test mode 'shear'"),
     ("# c\nmode,stretch\nuniaxial,1.5\n", "line 2: no column 'nominal_stress'"),
     ("stretch,nominal_stress\n1.5,0.3\n", "line 1: no column 'mode'"),
@@ -93,6 +96,22 @@ def test_too_few_points_are_refused():
     curves = [TestCurve("uniaxial", np.array([1.5, 2.0]), np.array([0.3, 0.5]))]
     with pytest.raises(CaseError, match="2 point\\(s\\) for 3 constants of yeoh"):
         fit_material("yeoh", curves)
+
+
+@pytest.mark.parametrize("lam, stress", [([1e-300, 1.5], [0.5, 0.3]), ([1.5, 2.0, 2.5], [0.3, 0.5, 1e300])],
+                         ids=["tiny-stretch", "huge-stress"])
+@pytest.mark.parametrize("model", ["neo-hookean", "mooney-rivlin", "yeoh"])
+def test_curves_built_in_python_out_of_range_are_one_line_not_nan(model, lam, stress):
+    curves = [TestCurve("equibiaxial", np.array(lam), np.array(stress))]
+    with np.errstate(all="raise"), pytest.raises(CaseError, match="^data: "):
+        fit_material(model, curves)
+
+
+@pytest.mark.parametrize("model", ["neo-hookean", "mooney-rivlin", "yeoh"])
+def test_data_at_the_stretch_and_stress_bounds_give_finite_constants(model):
+    lam = np.array([1e-3, 0.5, 2.0, 1e3])
+    fit = fit_material(model, [TestCurve("uniaxial", lam, nominal_stress(NeoHookean(0.5), "uniaxial", lam))])
+    assert np.isfinite(fit.material.shear_modulus) and all(np.isfinite(list(fit.errors.values())))
 
 
 def test_falling_data_is_refused():

@@ -151,6 +151,10 @@ def test_csv_rows(tmp_path):
         ({"area_ratio": [0.8, 0.8]}, None, "cases[0]"),
         ({}, {"format": "section-study/9"}, "format"),
         ({}, {"cases": [{"case": "missing.json"}]}, "cases[0].case"),
+        # Sizes bounded before the rows are built (this product of 3e11 rows ran without end).
+        ({"area_ratio": {"start": 0.5, "stop": 1, "num": 10**12}}, None, "cases[0].vary.area_ratio.num"),
+        ({"area_ratio": {"start": 0.5, "stop": 1, "num": 10000}, "crown": {"start": 0, "stop": 1, "num": 3000},
+          "translate_x": {"start": 0, "stop": 1, "num": 10000}}, None, "cases[0]"),
     ],
 )
 def test_bad_study_one_line_exit_2(tmp_path, capsys, vary, extra, field):
@@ -161,6 +165,28 @@ def test_bad_study_one_line_exit_2(tmp_path, capsys, vary, extra, field):
     assert not (tmp_path / "out").exists()
     with pytest.raises(StudyError):
         load_study(study)
+
+
+@pytest.mark.parametrize("data, message", [
+    (b"case\xff\xfe,area_ratio\nx.json,0.8\n", "not UTF-8 text (byte 0xff at position 4)"),
+    (b"case,area_ratio\n" + b"x" * 200_000 + b",0.8\n", "not a readable CSV file (field larger than"),
+], ids=["not-utf8", "huge-field"])
+def test_an_unreadable_csv_is_one_line(tmp_path, capsys, data, message):
+    path = tmp_path / "rows.csv"
+    path.write_bytes(data)
+    assert main(["sweep", str(path), "-o", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and f"error: {path}: {message}" in err
+    assert not (tmp_path / "out").exists()
+
+
+def test_the_rows_of_all_the_cases_together_are_bounded(tmp_path):
+    (tmp_path / "p.json").write_text((DATA / "paper-example.json").read_text())
+    half = {"area_ratio": {"start": 0.5, "stop": 1.0, "num": 250}, "crown": {"start": 0.0, "stop": 1.0, "num": 240}}
+    study = {"format": "section-study/1", "cases": [{"case": "p.json", "vary": half}] * 2}
+    (tmp_path / "s.json").write_text(json.dumps(study))
+    with pytest.raises(StudyError, match=r"^cases\[1\]: 120000 rows needed, more than the bound 100000"):
+        load_study(tmp_path / "s.json")
 
 
 def test_bad_csv_column(tmp_path, capsys):

@@ -106,3 +106,44 @@ def test_a_non_positive_size_is_refused_with_one_line():
     box = _box(0.0, 0.0, 1.0, 1.0, 1)
     with pytest.raises(MeshError, match=r"^assembly: the element sizes \[1\.0, 0\.0\] are not positive finite lengths"):
         union_mesh([box, box + [0.0, 1.0]], [np.array([0, 1])] * 2, [1.0, 0.0], 1e-9)
+
+
+def test_contours_touching_without_sharing_a_point_are_one_line_not_a_hang():
+    """A T-junction: the upper body's contour point (1, 1) lies on the lower body's edge, which lacks it.
+
+    No split makes the triangulation hold both pieces; the conforming loop halved the missing segments
+    and re-ran Delaunay on twice the points per pass, for minutes. It now stops when the missing
+    segments stop falling, and names the point in the way.
+    """
+    import time
+
+    low = np.array([[0, 0], [2, 0], [2, 1], [0, 1]], float)
+    top = np.array([[0, 1], [1, 1], [2, 1], [2, 2], [0, 2]], float)
+    t0 = time.process_time()
+    with pytest.raises(MeshError, match=r"^assembly: the mesh \(h = 0\.1\) cannot follow the contour segment .* the "
+                                        r"contour point \([0-9.]+, 1\) of another piece lies on it"):
+        union_mesh([low, top], [np.array([0, 1]), np.array([0, 2])], 0.1, 1e-9)
+    assert time.process_time() - t0 < 2.0
+
+
+def test_the_conforming_loop_checks_the_vertex_bound_before_each_delaunay(monkeypatch):
+    """Whatever the splitting does, no Delaunay call gets more points than MAX_FE_VERTICES."""
+    from scipy.spatial import Delaunay
+
+    from sectiondeform.fem import union_mesh as module
+    from sectiondeform.limits import MAX_FE_VERTICES
+
+    sizes = []
+
+    def counting(points, *args, **kwargs):
+        sizes.append(len(points))
+        return Delaunay(points, *args, **kwargs)
+
+    monkeypatch.setattr(module, "Delaunay", counting)
+    monkeypatch.setattr(module, "STALL_ITERATIONS", 10**6)  # only the vertex bound stops the T-junction now
+    low = np.array([[0, 0], [2, 0], [2, 1], [0, 1]], float)
+    top = np.array([[0, 1], [1, 1], [2, 1], [2, 2], [0, 2]], float)
+    with pytest.raises(MeshError, match=r"^assembly: \d+ mesh vertices \(h = 0\.1, splitting .*\) needed, more than "
+                                        r"the bound 3000"):
+        module.union_mesh([low, top], [np.array([0, 1]), np.array([0, 2])], 0.1, 1e-9)
+    assert sizes and max(sizes) <= MAX_FE_VERTICES

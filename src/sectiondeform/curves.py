@@ -778,8 +778,10 @@ class Chain(Curve):
     def to_json(self):
         return {"chain": [p.to_json() for p in self.pieces]}
 
-    @property
+    @cached_property
     def ends(self):
+        # Once per chain: a chain nested n deep asks its first and its last piece, which may be one
+        # and the same chain, so an uncached property did 2**n work.
         return self.pieces[0].ends[0], self.pieces[-1].ends[1]
 
     def reversed(self):

@@ -9,19 +9,25 @@ shared cases needs (documented in docs/reliability.md).
 
 from __future__ import annotations
 
+import math
+
 from .errors import GeometryError
 
 __all__ = [
     "MAX_CURVE_POINTS",
+    "MAX_DECK_TRIANGLES",
     "MAX_FE_VERTICES",
     "MAX_LAYERED_NODES",
     "MAX_LOWER_NODES",
     "MAX_NEWTON_ITERATIONS",
     "MAX_NEWTON_WORK",
     "MAX_SPLINE_PIECES",
+    "MAX_STUDY_ROWS",
     "MAX_UPPER_POINTS",
     "bounded",
+    "flattening_points",
     "newton_budget",
+    "triangles_needed",
 ]
 
 MAX_CURVE_POINTS = 200_000
@@ -43,6 +49,14 @@ MAX_FE_VERTICES = 3_000
 """Triangle vertices of the hyperelastic model's mesh (about twice as many triangles), also
 after the mesher's passes that split boundary segments to conform to the contour."""
 
+MAX_STUDY_ROWS = 100_000
+"""Rows of one parametric study (all its cases' products of axes together), checked before they are built:
+at a few milliseconds a row on the paper model that is minutes of work, and a table of tens of megabytes."""
+
+MAX_DECK_TRIANGLES = 500_000
+"""Triangles of a solver deck's mesh (``export-fe``, ``solve-fe``, ``validate --reference calculix``), estimated
+from the area and the element size before meshing: a deck of a few hundred megabytes, hours of CalculiX."""
+
 MAX_NEWTON_ITERATIONS = 100
 """Newton iterations of one hyperelastic solve, all load steps together (a step's predictor counts one)."""
 
@@ -55,8 +69,10 @@ tread at 16 elements through the thickness: 5 iterations on 11 805 unknowns).
 """
 
 
-def bounded(count: float, limit: int, what: str, fix: str, error=GeometryError) -> float:
+def bounded(count: float, limit: int, what: str, fix: str, error=GeometryError, where: str = "section") -> float:
     """``count`` unchanged, or raise ``error`` naming it, the bound and the fix.
+
+    ``where`` starts the message: the input or stage at fault.
 
     Examples
     --------
@@ -68,8 +84,34 @@ def bounded(count: float, limit: int, what: str, fix: str, error=GeometryError) 
     sectiondeform.errors.GeometryError: section: inf lower nodes needed, more than the bound 100; raise options.element_size
     """
     if not count <= limit:  # also NaN
-        raise error(f"section: {count:.6g} {what} needed, more than the bound {limit}; {fix}")
+        raise error(f"{where}: {count:.6g} {what} needed, more than the bound {limit}; {fix}")
     return count
+
+
+def flattening_points(radius: float, sweep: float, tol: float) -> float:
+    """Points of a polyline within the chordal error ``tol`` of an arc of ``radius`` turning ``sweep`` radians.
+
+    A chord of angle θ misses its arc by r (1 − cos(θ/2)), so θ = 2 acos(1 − tol / r);
+    for tol ≪ r that is 2 √(2 tol / r), written so to keep its digits. For an
+    ellipse, ``radius`` is its larger semi-axis (its flattest curvature
+    radius is smaller, so this is an underestimate, never an overestimate
+    that would refuse a fair input). Meant to be passed to :func:`bounded`
+    *before* the points are computed.
+
+    Examples
+    --------
+    >>> flattening_points(1.0, 2 * 3.141592653589793, 2.0)
+    2.0
+    >>> round(flattening_points(1e5, 6.283185307179586, 3.7e-11))
+    115487244
+    """
+    if not radius > 0:
+        return 2.0
+    if not (math.isfinite(radius) and tol > 0):
+        return float("inf")
+    ratio = min(tol / radius, 2.0)
+    step = 2.0 * math.acos(1.0 - ratio) if ratio > 1e-6 else 2.0 * math.sqrt(2.0 * ratio)
+    return max(2.0, math.ceil(abs(sweep) / step) + 1.0)
 
 
 
@@ -84,3 +126,23 @@ def newton_budget(unknowns: int) -> int:
     (100, 6)
     """
     return max(1, min(MAX_NEWTON_ITERATIONS, MAX_NEWTON_WORK // max(int(unknowns), 1)))
+
+
+def triangles_needed(area: float, perimeter: float, size: float) -> float:
+    """At least how many triangles of side about ``size`` a region of ``area`` and ``perimeter`` takes.
+
+    The area over an equilateral triangle's, plus a triangle per boundary
+    segment: a lower estimate (quality meshes hold more), so that a bound on
+    it refuses no fair mesh. Infinite for a size that is not a positive
+    number.
+
+    Examples
+    --------
+    >>> round(triangles_needed(100.0, 40.0, 1.0))
+    271
+    >>> triangles_needed(1.0, 4.0, 0.0)
+    inf
+    """
+    if not size > 0:
+        return math.inf
+    return abs(area) / (math.sqrt(3.0) / 4.0 * size * size) + perimeter / size

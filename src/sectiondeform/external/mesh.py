@@ -23,7 +23,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["FeMesh", "add_mid_nodes", "element_areas", "fe_mesh", "split_into_quads"]
+from ..errors import MeshError
+from ..limits import MAX_DECK_TRIANGLES, bounded, triangles_needed
+
+__all__ = ["FeMesh", "add_mid_nodes", "check_deck_size", "element_areas", "fe_mesh", "split_into_quads"]
 
 #: meshio's name of each (family, nodes) mesh kind.
 KINDS = {("triangle", 3): "triangle", ("triangle", 6): "triangle6", ("quad", 4): "quad", ("quad", 8): "quad8"}
@@ -158,6 +161,32 @@ def element_areas(points: np.ndarray, cells: np.ndarray, corners: int) -> np.nda
     return poly + bulge
 
 
+def check_deck_size(sections, sizes) -> float:
+    """The triangles the sections need at their element sizes, or a :class:`MeshError` naming them and the bound.
+
+    Checked before anything is meshed or split (:data:`~sectiondeform.limits.MAX_DECK_TRIANGLES`), over
+    every body: a lower estimate from each body's area and outline (:func:`~sectiondeform.limits.triangles_needed`).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> unit = SimpleNamespace(upper=np.array([[1.0, 0], [1, 1], [0, 1], [0, 0]]), lower_length=1.0, area=1.0)
+    >>> round(check_deck_size([unit, unit], [0.5, 0.5]))
+    34
+    >>> check_deck_size([unit], [1e-6])
+    Traceback (most recent call last):
+    ...
+    sectiondeform.errors.MeshError: solver mesh: 2.30941e+12 triangles needed, more than the bound 500000; raise --mesh-size (a fraction of the section's mean thickness)
+    """
+    count = 0.0
+    for section, size in zip(sections, sizes):
+        upper = np.asarray(section.upper, dtype=np.float64)
+        perimeter = section.lower_length + float(np.hypot(*np.diff(upper, axis=0).T).sum())
+        count += triangles_needed(section.area, perimeter, size)
+    return bounded(count, MAX_DECK_TRIANGLES, "triangles",
+                   "raise --mesh-size (a fraction of the section's mean thickness)", MeshError, "solver mesh")
+
+
 def fe_mesh(problem, mesh_size: float, family: str, nodes: int) -> tuple[FeMesh, np.ndarray]:
     """Mesh a problem's bodies for a solver deck: one conforming mesh, each element with its body.
 
@@ -177,12 +206,21 @@ def fe_mesh(problem, mesh_size: float, family: str, nodes: int) -> tuple[FeMesh,
     mesh : FeMesh
     body : (M,) int64 ndarray
         The body of each element.
+
+    Raises
+    ------
+    MeshError
+        If the bodies need more than :data:`~sectiondeform.limits.MAX_DECK_TRIANGLES`
+        triangles at this size (estimated before anything is meshed), or Triangle fails.
     """
     from ..reference.mesh import triangulate
+    from ..section import build_section
 
+    sections = [build_section(problem.body_case(b)) for b in range(len(problem.bodies))]
+    check_deck_size(sections, [mesh_size * s.mesh_scale for s in sections])
     # Upper points about size / 3 apart (the rest are mapped by the shape functions),
     # so a finely discretised curve does not flood the mesh with elements.
-    tri = triangulate(problem, mesh_size, thin=True)
+    tri = triangulate(problem, mesh_size, sections, thin=True)
     p, c, body = np.asarray(tri.points), np.asarray(tri.triangles), np.asarray(tri.body)
     ln, lf = np.asarray(tri.lower_nodes), np.asarray(tri.lower_fractions)
     if family == "quad":

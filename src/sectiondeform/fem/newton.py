@@ -121,6 +121,64 @@ class State:
     fields: object = None
 
 
+STABILITY_MARGIN = 1.25
+"""How far beyond the stretches of the last solved state a rubber's stability is checked when Newton stops: the
+load step that failed went further."""
+
+
+def _stretch_reach(fields, idx: np.ndarray) -> float:
+    """The largest principal stretch, or inverse one, at the quadrature points of elements ``idx``."""
+    sv = np.linalg.svd(fields.F[idx], compute_uv=False)
+    lz = (fields.J / fields.det)[idx]
+    both = np.concatenate((sv.ravel(), lz.ravel()))
+    both = both[np.isfinite(both) & (both > 0)]
+    return float(np.max(np.maximum(both, 1.0 / both))) if both.size else 1.0
+
+
+def _raise_if_unstable(physics, state: State, t: float) -> None:
+    """Raise a :class:`ConvergenceError` naming the rubber if it loses stability within reach of the stopped solve.
+
+    A rubber whose homogeneous tests lose stability (Drucker:
+    :func:`~sectiondeform.materials.homogeneous.unstable_modes`) at
+    stretches the deformation reaches makes Newton stop for want of an
+    equilibrium, not of a mesh: the message says so, and from which stretch.
+    Nothing is raised for a stable rubber, or for the closed-form
+    neo-Hookean physics (always stable).
+    """
+    from ..materials.homogeneous import unstable_modes
+
+    groups = getattr(physics, "_groups", None)
+    fields = state.fields if state.fields is not None else physics.fields(state.z, state.lz)
+    if not groups or fields is None:
+        return
+    for material, idx in groups:
+        if not len(idx):
+            continue
+        reach = _stretch_reach(fields, idx)
+        lost = unstable_modes(material, max(reach * STABILITY_MARGIN, 1.01))
+        if lost:
+            constants = ", ".join(f"{k} = {getattr(material, k):g}" for k in material.constants)
+            raise ConvergenceError(
+                f"hyperelastic: the rubber ({material.model}, {constants}) is unstable {_onsets(lost)}, and this "
+                f"deformation reaches stretches of {reach:.3g} (Newton stopped {t:.3g} of the way to the target): "
+                "there is no equilibrium to find; give a rubber stable over the stretches of interest (check its "
+                "constants or their fit, e.g. a smaller negative c20)")
+
+
+def _onsets(lost: list[str]) -> str:
+    """``"beyond stretch 1.12 (equibiaxial) and below 0.886 (equibiaxial)"`` from lines of :func:`unstable_modes`."""
+    tension = [(float(line.rsplit(" ", 1)[1]), line.split(":")[0]) for line in lost if "beyond" in line]
+    compression = [(float(line.rsplit(" ", 1)[1]), line.split(":")[0]) for line in lost if "below" in line]
+    parts = []
+    if tension:
+        at, mode = min(tension)
+        parts.append(f"beyond stretch {at:.3g} ({mode})")
+    if compression:
+        at, mode = max(compression)
+        parts.append(f"below stretch {at:.3g} ({mode})")
+    return " and ".join(parts)
+
+
 class NewtonSolver:
     """Equilibrium solver of one mesh's mixed problem.
 
@@ -300,6 +358,7 @@ class NewtonSolver:
         used = 0
         while t < 1.0:
             if used >= budget:
+                _raise_if_unstable(self.physics, state, t)
                 raise ConvergenceError(
                     f"hyperelastic: Newton stopped at its bound of {budget} iterations for {unknowns} unknowns "
                     f"(at most {MAX_NEWTON_ITERATIONS}, and {MAX_NEWTON_WORK} iterations x unknowns), {t:.3g} of the way "
@@ -315,6 +374,7 @@ class NewtonSolver:
             if new is None:
                 dt *= 0.5
                 if dt < 0.5**MAX_HALVINGS:
+                    _raise_if_unstable(self.physics, state, t)
                     raise ConvergenceError(
                         f"hyperelastic: Newton did not converge even with load steps of 1/{2**MAX_HALVINGS} "
                         f"(stopped at {t:.3g} of the way to the target); the target or the law is too severe"

@@ -200,6 +200,27 @@ def _at(pts: np.ndarray, s: np.ndarray, at: np.ndarray) -> np.ndarray:
     return np.column_stack((np.interp(at, s, pts[:, 0]), np.interp(at, s, pts[:, 1])))
 
 
+STALL_ITERATIONS = 3
+"""Passes of the conforming loop without fewer missing segments than its best, after which it gives up."""
+
+
+def _blocked_message(bpts: np.ndarray, missing: np.ndarray, h: float) -> str:
+    """Why contour segments stay out of the triangulation: where, and the contour node in the way if there is one."""
+    a, b = bpts[missing[:, 0]], bpts[missing[:, 1]]
+    mid, rad = 0.5 * (a + b), 0.5 * np.hypot(*(b - a).T)
+    tree = cKDTree(bpts)
+    for i, near in enumerate(tree.query_ball_point(mid, rad * (1 + 1e-9))):
+        others = [j for j in near if j not in (missing[i, 0], missing[i, 1])]
+        if others:
+            p = bpts[others[0]]
+            return (f"assembly: the mesh (h = {h:.4g}) cannot follow the contour segment ({a[i, 0]:.6g}, {a[i, 1]:.6g})-"
+                    f"({b[i, 0]:.6g}, {b[i, 1]:.6g}): the contour point ({p[0]:.6g}, {p[1]:.6g}) of another piece lies "
+                    "on it or next to it; let touching bodies share their points there (or keep them apart)")
+    return (f"assembly: the mesh (h = {h:.4g}) cannot be made to follow {len(missing)} contour segment(s), the first "
+            f"({a[0, 0]:.6g}, {a[0, 1]:.6g})-({b[0, 0]:.6g}, {b[0, 1]:.6g}), however they are split; "
+            "check that the bodies' contours do not cross or touch without sharing their points")
+
+
 def union_mesh(rings, fixed, h, tol: float) -> UnionMesh:
     """Mesh several bodies, given by their contours, with P2 triangles of size about ``h`` (per body).
 
@@ -263,6 +284,7 @@ def union_mesh(rings, fixed, h, tol: float) -> UnionMesh:
         geo.append((np.asarray(path), s, ns))
     interior = np.concatenate([_lattice(p, float(hb)) for p, hb in zip(polys, sizes)] + [np.zeros((0, 2))])
     corner_index = {v: k for k, v in enumerate(corners)}
+    best, stalled = math.inf, 0
     for _ in range(CONFORM_ITERATIONS):
         # Chain nodes: corners first, then each chain's inner nodes in order.
         bpts = [points[corners]]
@@ -282,11 +304,18 @@ def union_mesh(rings, fixed, h, tol: float) -> UnionMesh:
             bad = np.unique(np.concatenate([np.asarray(x, dtype=np.int64) for x in hits] + [np.zeros(0, np.int64)]))
             interior = np.delete(interior, bad, axis=0)
         pts = np.concatenate((bpts, interior))
+        bounded(len(pts), MAX_FE_VERTICES, f"mesh vertices (h = {h:.4g}, splitting the contour segments the "
+                "triangulation misses)", "lower options.elements_through_thickness, or simplify the bodies' small "
+                "features", MeshError, "assembly")
         tri = Delaunay(pts).simplices
         e = np.concatenate((tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]))
         missing = ~np.isin(_edge_keys(seg, len(pts)), _edge_keys(e, len(pts)))
         if not missing.any():
             break
+        count = int(missing.sum())
+        best, stalled = (count, 0) if count < best else (best, stalled + 1)
+        if stalled >= STALL_ITERATIONS:  # halving does not help: something other than lattice points blocks them
+            raise MeshError(_blocked_message(bpts, seg[missing], h))
         start = 0
         for c, (path, s, ns) in enumerate(geo):
             m = missing[start : start + len(ns) - 1]

@@ -31,7 +31,7 @@ from ..curves import Chain, Curve, Polyline
 from ..errors import CaseError
 from .pieces import Piece, merge_runs
 
-__all__ = ["ChainReport", "Path", "connect", "one_chain", "fmt_point"]
+__all__ = ["ChainReport", "Path", "connect", "one_chain", "fmt_point", "holes_inside", "unused_summary"]
 
 
 def fmt_point(p) -> str:
@@ -371,6 +371,10 @@ def one_chain(pieces: list[Piece], where: str, tol: float, snap: float = 0.0, cl
     if not pieces:
         raise CaseError(where, "has no curve pieces")
     paths, report = connect(pieces, where, tol, snap, close_gap)
+    if not paths:
+        raise CaseError(where, f"every piece is shorter than twice the join tolerance {tol:.3g} (by default 1e-6 of "
+                               "the drawing's diagonal, which a far stray piece makes large): give a smaller join_tol "
+                               "or delete the stray pieces")
     if len(paths) > 1:
         opened = [p for p in paths if not p.closed]
         if len(opened) >= 2:
@@ -399,3 +403,96 @@ def one_chain(pieces: list[Piece], where: str, tol: float, snap: float = 0.0, cl
     if closed is False and path.closed:
         raise CaseError(where, "is a closed loop; an open curve is expected here")
     return path, report
+
+
+def unused_summary(pieces, annotation, labels: dict, what: str) -> str | None:
+    """One line saying which entities a case does not use: how many, on which layers (ids/classes); None if all are.
+
+    Parameters
+    ----------
+    pieces : sequence of Piece
+        The pieces no curve of the case was built from.
+    annotation : sequence of str
+        Entities the reader skipped (DXF text, dimensions...), as their sources
+        ``"TEXT #3 (handle 2F, layer NOTES)"``.
+    labels : dict
+        Upper-cased tag -> its spelling in the file.
+    what : str
+        ``"layer"`` or ``"id/class"``.
+
+    Examples
+    --------
+    >>> ps = [Piece(Polyline([[0, 0], [1, 0]]), frozenset({"HOLE"}), "CIRCLE #4")] * 2
+    >>> unused_summary(ps, ["TEXT #5 (handle 31, layer NOTES)"], {"HOLE": "Hole"}, "layer")
+    'ignored: 3 entities not used by the case: 2 on layer Hole, 1 on layer NOTES (annotation: TEXT)'
+    """
+    counts: dict[str, int] = {}
+    for p in pieces:
+        name = "/".join(sorted(labels.get(t, t) for t in p.tags)) if p.tags else None
+        key = f"on {what} {name}" if name else f"without {'a layer' if what == 'layer' else 'an id or class'}"
+        counts[key] = counts.get(key, 0) + 1
+    kinds = []
+    for source in annotation:
+        kind, _, rest = source.partition(" #")
+        layer = rest.rsplit("layer ", 1)[-1].rstrip(")") if "layer " in rest else None
+        key = f"on {what} {layer}" if layer else "in the drawing"
+        counts[key] = counts.get(key, 0) + 1
+        if kind not in kinds:
+            kinds.append(kind)
+    total = len(pieces) + len(annotation)
+    if not total:
+        return None
+    where = ", ".join(f"{n} {key}" for key, n in sorted(counts.items(), key=lambda kv: (-kv[1], kv[0])))
+    note = f" (annotation: {', '.join(kinds)})" if kinds else ""
+    return f"ignored: {total} {'entity' if total == 1 else 'entities'} not used by the case: {where}{note}"
+
+
+def holes_inside(pieces, rings, tol: float, chord: float, labels: dict, what: str) -> None:
+    """Refuse a closed contour among unused ``pieces`` that lies inside the section (the bodies' ``rings``).
+
+    A section with a hole (a seal's bulb) is not supported: read without it,
+    its area would be too large, silently. A contour counts as a hole when
+    at least half of its area lies inside the section (the union of the
+    bodies); a frame drawn round the whole drawing does not.
+
+    Parameters
+    ----------
+    pieces : sequence of Piece
+        Pieces the case does not use (with curves).
+    rings : sequence of (n, 2) float64 ndarray
+        Each body's contour, lower then upper points.
+    tol, chord : float
+        Join tolerance and chordal error, drawing units.
+    labels : dict
+    what : str
+
+    Raises
+    ------
+    CaseError
+        Naming the layer (id/class) of the contour, its area and the share
+        of the section's.
+    """
+    import shapely
+
+    section = shapely.union_all([shapely.make_valid(shapely.Polygon(ring)) for ring in rings])
+    if section.area <= 0:
+        return
+    groups: dict[frozenset, list] = {}
+    for p in pieces:
+        if p.curve is not None:
+            groups.setdefault(p.tags, []).append(p)
+    for tags, group in groups.items():
+        try:
+            paths, _ = connect(group, "unused", tol)
+        except CaseError:  # a branching set of unused pieces is no closed contour
+            continue
+        for path in paths:
+            if not path.closed:
+                continue
+            loop = shapely.make_valid(shapely.Polygon(path.curve.characteristic_points(chord)))
+            if loop.area > 0 and shapely.intersection(loop, section).area >= 0.5 * loop.area:
+                name = "/".join(sorted(labels.get(t, t) for t in tags)) or "(none)"
+                raise CaseError(f"{what} {name}", f"a closed contour inside the section (area {loop.area:.6g}, "
+                                                  f"{loop.area / section.area:.1%} of the section's): holes are not "
+                                                  "supported yet; delete the contour (the section is then read as "
+                                                  "solid) or move it out of the section")

@@ -15,7 +15,9 @@ Both are read by :func:`case_from_drawing` along one path: the pieces are
 chained into the bodies' curves, the target is drawn or built
 (``target_arc``), each body's law is ``law=`` or the one the drawing
 stores, and ``units`` converts the problem at the end. The options are a
-:class:`DrawingOptions`.
+:class:`DrawingOptions`. Entities no curve of the problem comes from are
+reported (how many, on which layers); a closed contour of them inside the
+bodies (a hole) is refused: holes are not supported yet.
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ from ..laws import law_from_json
 from ..options import is_user_key, unknown_key
 from ..problem import V1, V2, Body, Problem, Revolution
 from .case import case_from_dict, load_case, material_from_json, read_json, revolution_from_json
+from .chaining import holes_inside, unused_summary
 from .layers import AXIS, SUPPORT, TARGET, is_bodies_drawing
 from .outline import (
     JSON_KEYS,
@@ -45,9 +48,10 @@ from .outline import (
     inside_bbox,
     make_target_arc,
     say,
+    unused_pieces,
 )
 from .pieces import Drawing
-from .stacking import bodies_from_drawing, check_options, revolution_from_drawing, stored_bodies
+from .stacking import bodies_from_drawing, check_options, revolution_from_drawing, stored_bodies, unused_body_pieces
 from .units import mm_per_unit
 
 __all__ = [
@@ -103,9 +107,15 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
     ------
     CaseError
         A missing layer, a gap, a branch, an unsupported entity, no law,
-        no target, an unknown option; each names where.
+        no target, an unknown option; each names where. A closed contour
+        of unused pieces inside the bodies (a hole: not supported yet).
     GeometryError
         If the bodies do not rest on each other as the format says.
+
+    Notes
+    -----
+    Entities no curve of the problem comes from (other layers, ids or
+    classes, annotation) are reported in ``report``: how many, and where.
     """
     if options is None:
         options = DrawingOptions.from_mapping(keywords)
@@ -131,6 +141,8 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
     found = [_simplified(f, o.simplify, dialect, report) for f in found] if o.simplify else found
     support = found[0][1] if dialect == V1 else support
     target = find_target(pieces, support, [c for _, lo, up in found for c in (lo, up)], ctx, meta, drawing.path, report)
+    unused = unused_pieces(pieces, ctx) if dialect == V1 else unused_body_pieces(pieces, ctx)
+    _check_unused(drawing, unused, ctx, found, report)
     name = o.name or meta.get("name") or drawing.path.stem
     case_options = {**(meta.get("options") or {}), **({"chordal_error": o.chordal_error} if o.chordal_error else {})}
     if dialect == V1:
@@ -161,6 +173,16 @@ def _selection(drawing: Drawing, o: DrawingOptions, roles: dict, report) -> tupl
                   tol=o.join_tol if o.join_tol is not None else 1e-6 * diag,
                   chord=o.chordal_error or DEFAULT_CHORDAL_FRACTION * diag, diag=diag, options=o)
     return pieces, ctx
+
+
+def _check_unused(drawing: Drawing, unused: list, ctx: Context, found: list, report) -> None:
+    """Refuse a hole among the unused pieces (inside any body); report how many entities are unused, and where."""
+    rings = [np.vstack((lower.characteristic_points(ctx.chord), upper.characteristic_points(ctx.chord)[1:-1]))
+             for _, lower, upper in found]
+    holes_inside(unused, rings, ctx.tol, ctx.chord, drawing.labels, ctx.what)
+    line = unused_summary(unused, drawing.ignored, drawing.labels, ctx.what)
+    if line is not None:
+        say(report, line)
 
 
 def _simplified(found: tuple, tol: float, dialect: str, report) -> tuple:

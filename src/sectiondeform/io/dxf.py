@@ -47,11 +47,12 @@ from pathlib import Path
 import numpy as np
 
 from ..curves import DEFAULT_CHORDAL_FRACTION, Arc, BSpline, Curve, Polyline
-from ..errors import CaseError, require
+from ..errors import CaseError, SectionDeformError, require
+from ..limits import MAX_CURVE_POINTS, bounded, flattening_points
 from .chaining import fmt_point
 from .files import atomic_write
 from .layers import Layer, case_layers, case_meta, check_case, check_layer_names, read_meta, result_layers, tolerance
-from .pieces import Drawing, Piece
+from .pieces import Drawing, Piece, checked_coordinates
 from .units import DXF_UNITS, MM_PER_UNIT
 
 __all__ = ["read_drawing", "read_case", "write_case", "write_result", "fit_spline"]
@@ -61,6 +62,22 @@ IGNORED = {"TEXT", "MTEXT", "DIMENSION", "ARC_DIMENSION", "LARGE_RADIAL_DIMENSIO
            "LEADER", "MULTILEADER", "MLEADER", "ATTDEF", "TOLERANCE", "IMAGE", "WIPEOUT", "VIEWPORT"}
 META_KEY = "sectiondeform"
 MIRROR_X = np.array([[-1.0, 0.0], [0.0, 1.0]])
+# What ezdxf's reader raises on a damaged file besides its own errors: a value that is not a number,
+# a file that ends inside a section (StopIteration), a tag or a handle that is missing.
+_CORRUPT = (ValueError, StopIteration, EOFError, IndexError, KeyError, TypeError, UnicodeError, ArithmeticError)
+
+
+def _refusal(message: str) -> CaseError:
+    """A :class:`CaseError` whose message already names the entity (for :func:`~sectiondeform.limits.bounded`)."""
+    return CaseError("", message)
+
+
+def _reason(exc: BaseException) -> str:
+    """One short line saying what the DXF reader found wrong."""
+    if isinstance(exc, StopIteration):
+        return "the file ends too early"
+    text = " ".join(str(exc).split())[:120]
+    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
 
 
 def _flat(p) -> np.ndarray:
@@ -139,6 +156,11 @@ def _entity_curves(e, tol: float) -> list[Curve] | None:
         else:
             curves = [Polyline(np.array([_flat(p) for p in ct.flattening(tol, segments=8)]))]
     elif kind == "ELLIPSE":
+        major = math.hypot(*_flat(e.dxf.major_axis))
+        sweep = (float(e.dxf.end_param) - float(e.dxf.start_param)) % (2 * math.pi) or 2 * math.pi
+        bounded(flattening_points(major, sweep, tol), MAX_CURVE_POINTS, "points", f"the ellipse flattened within the "
+                f"chordal error {tol:.3g} would need them; give a larger --chordal-error", _refusal,
+                f"layer {e.dxf.layer}: ELLIPSE (handle {e.dxf.handle})")
         curves = [Polyline(np.array([_flat(p) for p in e.flattening(tol, segments=8)]))]
     else:
         return None
@@ -185,6 +207,8 @@ def read_drawing(path, chordal_error: float | None = None) -> Drawing:
         raise CaseError(str(path), f"cannot read the DXF file ({exc})") from None
     except ezdxf.DXFStructureError as exc:
         raise CaseError(str(path), f"not a valid DXF file ({exc})") from None
+    except (ezdxf.DXFError, *_CORRUPT) as exc:
+        raise CaseError(str(path), f"not a valid DXF file ({_reason(exc)}); export it again from the CAD program") from None
     msp = doc.modelspace()
     tol = chordal_error or DEFAULT_CHORDAL_FRACTION * _extent(msp)
     # ezdxf fills a missing header with defaults ($INSUNITS 6, metres): look in the file itself.
@@ -205,7 +229,12 @@ def read_drawing(path, chordal_error: float | None = None) -> Drawing:
         if kind in IGNORED:
             ignored.append(source)
             continue
-        curves = _entity_curves(e, tol)
+        try:
+            curves = _entity_curves(e, tol)
+        except SectionDeformError:
+            raise
+        except (ezdxf.DXFError, *_CORRUPT) as exc:
+            raise CaseError(f"layer {layer}", f"{source} cannot be read ({_reason(exc)}); draw it again") from None
         tags = frozenset({layer.upper()})
         if curves is None:
             pieces.append(Piece(None, tags, source))  # unsupported: an error if its layer is used
@@ -214,6 +243,7 @@ def read_drawing(path, chordal_error: float | None = None) -> Drawing:
             at = _flat(e.dxf.start) if kind == "LINE" else None
             raise CaseError(f"layer {layer}", f"zero-length {source}" + (f" at {fmt_point(at)}" if at is not None else "") + "; delete it")
         for c in curves:
+            checked_coordinates(c, f"layer {layer}: {source}")
             if not c.length > 0:
                 raise CaseError(f"layer {layer}", f"zero-length {source} at {fmt_point(c.at_fractions(np.array([0.0]))[0])}; delete it")
             pieces.append(Piece(c, tags, source))

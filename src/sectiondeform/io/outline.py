@@ -55,7 +55,7 @@ from .units import mm_per_unit
 
 __all__ = [
     "DrawingOptions", "Context", "make_target_arc", "inside_bbox", "curves_from_layers", "curves_from_contour",
-    "orient_target", "find_target", "say", "ROLES", "SIDES", "SPLIT_FRACTION", "JSON_KEYS",
+    "orient_target", "find_target", "say", "unused_pieces", "ROLES", "SIDES", "SPLIT_FRACTION", "JSON_KEYS",
 ]
 
 ROLES = ("lower", "upper", "target", "contour")
@@ -430,6 +430,19 @@ def curves_from_layers(pieces, ctx: Context, meta: dict, path: Path, report) -> 
         lower, upper = lower.reversed(), upper.reversed()
     a, b = lower.ends
     return lower, pin_ends(upper, b, a, ctx.diag)
+
+
+def unused_pieces(pieces, ctx: Context) -> list[Piece]:
+    """The pieces of a one-body drawing no curve of the case comes from (the target's too when ``target_arc`` replaces it)."""
+    o = ctx.options
+    target = ctx.roles["target"].upper()
+    drawn_target = ctx.has(pieces, "target") and o.target_arc is None
+    if o.split is not None and not ctx.has(pieces, "contour"):
+        return [] if drawn_target else [p for p in pieces if target in p.tags]
+    used = {ctx.roles[r].upper() for r in (("contour",) if o.split is not None else ("lower", "upper"))}
+    if drawn_target:
+        used.add(target)
+    return [p for p in pieces if not p.tags & used]
 
 
 def orient_target(target: Curve, a, b, hint) -> Curve:

@@ -15,9 +15,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..curves import Chain, Curve, Polyline
+from ..checks import COORDINATE_LIMIT
+from ..curves import Arc, BSpline, Chain, Curve, Polyline
+from ..errors import CaseError
 
-__all__ = ["Piece", "Drawing", "merge_runs", "pin_ends"]
+__all__ = ["Piece", "Drawing", "checked_coordinates", "merge_runs", "pin_ends"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -78,6 +80,50 @@ class Drawing:
         object.__setattr__(self, "pieces", tuple(self.pieces))
         object.__setattr__(self, "ignored", tuple(self.ignored))
         object.__setattr__(self, "path", Path(self.path))
+
+
+def _defining_numbers(curve: Curve) -> np.ndarray:
+    """The numbers that fix a curve, as rows of two: vertices, control points, or an arc's centre and radius."""
+    if isinstance(curve, Polyline):
+        return curve.vertices
+    if isinstance(curve, BSpline):
+        return curve.control_points
+    if isinstance(curve, Arc):
+        return np.array([curve.center, [curve.radius, curve.end_deg - curve.start_deg]])
+    return np.vstack([_defining_numbers(p) for p in curve.parts()])
+
+
+def checked_coordinates(curve: Curve, where: str) -> Curve:
+    """``curve`` unchanged if every number fixing it is finite and within the coordinate bound.
+
+    Parameters
+    ----------
+    curve : Curve
+        A piece read from a drawing, in case units.
+    where : str
+        The entity or element it came from, for the message.
+
+    Raises
+    ------
+    CaseError
+        Naming ``where`` and the first bad point: a NaN, an infinity, or a
+        coordinate beyond ±1e9 (a number the file spells that way, or one
+        that a transform or a unit scale made overflow).
+
+    Examples
+    --------
+    >>> checked_coordinates(Polyline([[0, 0], [float("nan"), 1]]), "LINE #3")
+    Traceback (most recent call last):
+    ...
+    sectiondeform.errors.CaseError: LINE #3: coordinates must be finite numbers within +-1e+09 units, got [nan, 1.0]; correct the drawing
+    """
+    numbers = _defining_numbers(curve)
+    bad = ~(np.isfinite(numbers) & (np.abs(numbers) <= COORDINATE_LIMIT)).all(axis=1)
+    if bad.any():
+        row = numbers[int(np.argmax(bad))]
+        raise CaseError(where, f"coordinates must be finite numbers within +-{COORDINATE_LIMIT:g} units, "
+                               f"got {row.tolist()}; correct the drawing")
+    return curve
 
 
 def merge_runs(curves: list[Curve]) -> list[Curve]:

@@ -59,7 +59,8 @@ from .layers import AXIS, BODY, ONE_BODY_LAYERS, ROLE_SUFFIXES, SUPPORT
 from .outline import Context, curves_from_layers, say
 from .pieces import merge_runs
 
-__all__ = ["bodies_from_drawing", "revolution_from_drawing", "check_options", "stored_bodies", "NOT_FOR_BODIES"]
+__all__ = ["bodies_from_drawing", "revolution_from_drawing", "check_options", "stored_bodies", "unused_body_pieces",
+           "NOT_FOR_BODIES"]
 
 # Drawing options that mean nothing for a section-case/2 drawing, and why.
 NOT_FOR_BODIES = {
@@ -281,7 +282,7 @@ def bodies_from_drawing(pieces, ctx: Context, drawing, meta: dict, report=None) 
                         f"there (the drawing has: {', '.join(tags) or 'none'})")
     support = ctx.chain(ctx.select(pieces, "support"), ctx.where("support"), False, report)
     found = _body_tags(pieces, known)
-    _check_tags(pieces, found, known, tags, ctx, drawing, report)
+    _check_tags(found, known, tags, ctx, drawing)
     first_piece = {n: min(pieces.index(p) for ps in found[n].values() for p in ps) for n in found}
     order = [n for n in known if n in found] + sorted((n for n in found if n not in known), key=first_piece.get)
     names = {n: _spelled(n, found, known, drawing.labels) for n in order}
@@ -291,15 +292,9 @@ def bodies_from_drawing(pieces, ctx: Context, drawing, meta: dict, report=None) 
     return support, [(names[n], *curves_of[n]) for n in order]
 
 
-def _check_tags(pieces, found: dict, known: dict, tags, ctx: Context, drawing, report) -> None:
-    """Report layers not of the convention; refuse a drawing without bodies, a misspelt suffix, a stored body not drawn."""
+def _check_tags(found: dict, known: dict, tags, ctx: Context, drawing) -> None:
+    """Refuse a drawing without bodies, a misspelt suffix, a stored body not drawn."""
     what = ctx.what
-    curves = [p for p in pieces if p.curve is not None]
-    used = {SUPPORT, ctx.roles["target"].upper(), AXIS}
-    others = sorted({drawing.labels.get(t, t) for p in curves for t in p.tags}
-                    - {drawing.labels.get(t, t) for p in curves for t in p.tags if t in used or t.startswith(BODY)})
-    if others:
-        say(report, f"ignored: the curves on {what} {', '.join(others)} (not SUPPORT, TARGET, AXIS nor BODY-...)")
     if not found:
         raise CaseError(str(drawing.path), f"no body: put each on {what} BODY-<name>-LOWER and BODY-<name>-UPPER, or on "
                         f"BODY-<name> as a closed contour (the drawing has: {', '.join(tags)})")
@@ -316,6 +311,18 @@ def _check_tags(pieces, found: dict, known: dict, tags, ctx: Context, drawing, r
     for upper_name in [n for n in known if n not in found]:
         raise CaseError(str(drawing.path), f"body {known[upper_name]!r} of the case has no {what} "
                         f"BODY-{known[upper_name]}-LOWER/-UPPER nor BODY-{known[upper_name]}; draw it or remove it")
+
+
+def unused_body_pieces(pieces, ctx: Context) -> list:
+    """The pieces of a drawing of bodies that no curve of the problem comes from.
+
+    Those on no layer of the convention (``SUPPORT``, ``AXIS``, ``BODY-...``,
+    the target's), and the target's when ``target_arc`` replaces it.
+    """
+    used = {SUPPORT, AXIS}
+    if ctx.has(pieces, "target") and ctx.options.target_arc is None:
+        used.add(ctx.roles["target"].upper())
+    return [p for p in pieces if not any(t in used or (t.startswith(BODY) and len(t) > len(BODY)) for t in p.tags)]
 
 
 def _spelled(n: str, found: dict, known: dict, labels: dict) -> str:

@@ -46,10 +46,11 @@ import numpy as np
 
 from ..curves import DEFAULT_CHORDAL_FRACTION, Arc, BSpline, Curve, Polyline
 from ..errors import CaseError, require
+from ..limits import MAX_CURVE_POINTS, bounded, flattening_points
 from .chaining import fmt_point
 from .files import atomic_write
 from .layers import case_layers, case_meta, check_case, check_layer_names, read_meta, result_layers, tolerance
-from .pieces import Drawing, Piece
+from .pieces import Drawing, Piece, checked_coordinates
 from .units import CSS_UNITS, MM_PER_UNIT, mm_per_unit
 
 __all__ = ["read_drawing", "read_case", "write_case", "write_result"]
@@ -62,25 +63,96 @@ SKIP = {"defs", "clipPath", "mask", "symbol", "marker", "pattern", "title", "des
 CONTAINERS = {"svg", "g", "a", "switch"}
 
 
+def _refusal(message: str) -> CaseError:
+    """A :class:`CaseError` whose message already names the element (for :func:`~sectiondeform.limits.bounded`)."""
+    return CaseError("", message)
+
+
+def _flatten_fix(what: str, tol: float) -> str:
+    """The end of the message refusing to flatten ``what`` within ``tol``: why, and what to change."""
+    return (f"{what} flattened within the chordal error {tol:.3g} (user units) would need them; give a larger "
+            "--chordal-error (its default is 1e-4 of the viewBox's diagonal), or check the viewBox")
+
+
 def _local(tag: str) -> str:
     return tag.rsplit("}", 1)[-1]
 
 
+_NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+_LIST_TOKEN = re.compile(rf"[\s,]*({_NUMBER})")
+_PATH_TOKEN = re.compile(rf"[\s,]*(?:[MmZzLlHhVvCcSsQqTtAa]|{_NUMBER})")
+_TRANSFORM = re.compile(rf"\s*(?:(?:matrix|translate|scale|rotate|skewX|skewY)\s*\(\s*(?:{_NUMBER}(?:[\s,]*{_NUMBER})*)?\s*\)[\s,]*)*")
+_SVG_ERRORS = (ValueError, IndexError, TypeError, ArithmeticError)  # what svgelements raises on text it cannot use
+
+
 def _length_mm(text: str | None) -> float | None:
-    """A CSS length in mm, or None for a missing or relative one."""
+    """A CSS length in mm, or None for a missing, relative or unreadable one."""
     if not text:
         return None
-    m = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([a-zA-Z%]*)\s*", text)
+    m = re.fullmatch(rf"\s*({_NUMBER})\s*([a-zA-Z%]*)\s*", text)
     if not m or m.group(2) == "%":
         return None
     unit = m.group(2).lower() or "px"
     if unit not in CSS_UNITS:
         return None
-    return float(m.group(1)) * CSS_UNITS[unit]
+    value = float(m.group(1)) * CSS_UNITS[unit]
+    return value if math.isfinite(value) and value > 0 else None
 
 
-def _floats(text: str | None) -> list[float]:
-    return [float(v) for v in re.findall(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?", text or "")]
+def _scan(text: str, token: re.Pattern) -> tuple[list[str], int | None]:
+    """The tokens of ``text`` and the position of the first character that is none (None if all are)."""
+    out, pos = [], 0
+    while pos < len(text):
+        m = token.match(text, pos)
+        if m is None or m.end() == pos:
+            rest = text[pos:].lstrip(" \t\r\n,")
+            return out, None if not rest else len(text) - len(rest)
+        out.append(m.group(m.lastindex or 0).strip(" \t\r\n,"))
+        pos = m.end()
+    return out, None
+
+
+def _bad_at(text: str, at: int) -> str:
+    return f"cannot read {text[at:at + 12]!r} at character {at}"
+
+
+def _floats(text: str | None, where: str = "svg") -> list[float]:
+    """The finite numbers of a list attribute (``points``, ``viewBox``); anything else is an error naming ``where``."""
+    tokens, bad = _scan(text or "", _LIST_TOKEN)
+    if bad is not None:
+        raise CaseError(where, f"{_bad_at(text, bad)}: expected numbers separated by spaces or commas")
+    values = [float(v) for v in tokens]
+    for v in values:
+        if not math.isfinite(v):
+            raise CaseError(where, f"{v} is not a finite number; correct the drawing")
+    return values
+
+
+def _number(el, key: str, where: str) -> float:
+    """A finite number attribute (0 when absent), else a one-line error naming the element and the attribute."""
+    text = el.get(key)
+    if text is None:
+        return 0.0
+    m = re.fullmatch(rf"\s*({_NUMBER})\s*(?:px)?\s*", text)
+    value = float(m.group(1)) if m else math.nan
+    if not math.isfinite(value):
+        raise CaseError(f"{where} {key}", f"{text!r} is not a finite number; write it in user units, e.g. {key}=\"10\"")
+    return value
+
+
+def _transform(svgelements, text: str, where: str):
+    """The matrix of a ``transform`` attribute, checked: every function known, every number finite."""
+    if not _TRANSFORM.fullmatch(text):
+        raise CaseError(f"{where} transform", f"{text[:40]!r} is not an SVG transform of finite numbers "
+                                              "(matrix, translate, scale, rotate, skewX, skewY)")
+    try:
+        matrix = svgelements.Matrix(text)
+    except _SVG_ERRORS as exc:
+        raise CaseError(f"{where} transform", f"{text[:40]!r}: {exc or 'wrong number of values'}") from None
+    values = (matrix.a, matrix.b, matrix.c, matrix.d, matrix.e, matrix.f)
+    if not all(math.isfinite(v) for v in values):
+        raise CaseError(f"{where} transform", f"{text[:40]!r} gives a matrix that is not finite")
+    return matrix
 
 
 def _document_scale(root) -> tuple[float, float]:
@@ -100,7 +172,7 @@ def _bezier(points) -> BSpline:
     return BSpline(k, np.array(points, dtype=np.float64), np.array([0.0] * (k + 1) + [1.0] * (k + 1)))
 
 
-def _arc_curve(seg, tol: float) -> Curve:
+def _arc_curve(seg, tol: float, where: str) -> Curve:
     start = np.array([seg.start.x, seg.start.y])
     end = np.array([seg.end.x, seg.end.y])
     rx, ry = float(seg.rx), float(seg.ry)
@@ -109,17 +181,30 @@ def _arc_curve(seg, tol: float) -> Curve:
         a0 = math.degrees(math.atan2(start[1] - c[1], start[0] - c[0]))
         return Arc(c, 0.5 * (rx + ry), a0, a0 + math.degrees(seg.sweep))
     r = max(float(seg.rx), float(seg.ry))
-    step = 2.0 * math.acos(max(1.0 - tol / r, -1.0)) if tol < r else math.pi / 2
-    n = max(4, 2 * math.ceil(abs(seg.sweep) / step))
+    n = bounded(max(4, 2 * math.ceil(flattening_points(r, seg.sweep, tol) / 2)), MAX_CURVE_POINTS, "points",
+                _flatten_fix("an elliptical arc", tol), _refusal, where)
     pts = np.array([[p.x, p.y] for p in (seg.point(t) for t in np.linspace(0.0, 1.0, n + 1))])
     pts[0], pts[-1] = start, end
     return Polyline(pts)
 
 
-def _path_curves(d: str, tol: float) -> list[Curve]:
+def _path_segments(svgelements, d: str, where: str) -> list:
+    """The segments of a path's ``d``, checked: only path commands and finite numbers, all of them read."""
+    tokens, bad = _scan(d, _PATH_TOKEN)
+    if bad is not None:
+        raise CaseError(f"{where} d", f"{_bad_at(d, bad)}: expected path commands and numbers")
+    if not all(math.isfinite(float(t)) for t in tokens if t not in "MmZzLlHhVvCcSsQqTtAa"):
+        raise CaseError(f"{where} d", "a number is not finite (too large for a float); correct the drawing")
+    try:
+        return list(svgelements.Path(d))
+    except _SVG_ERRORS as exc:
+        raise CaseError(f"{where} d", f"not valid path data ({type(exc).__name__}{': ' if str(exc) else ''}{exc})") from None
+
+
+def _path_curves(d: str, tol: float, where: str = "path") -> list[Curve]:
     svgelements = require("svgelements", "cad", "reading SVG")
     out: list[Curve] = []
-    for seg in svgelements.Path(d):
+    for seg in _path_segments(svgelements, d, where):
         name = type(seg).__name__
         if name == "Move" or seg.start is None:
             continue
@@ -134,34 +219,42 @@ def _path_curves(d: str, tol: float) -> list[Curve]:
             out.append(_bezier([p0, (seg.control1.x, seg.control1.y), (seg.control2.x, seg.control2.y), p1]))
         elif name == "Arc":
             if p0 != p1:
-                out.append(_arc_curve(seg, tol))
+                out.append(_arc_curve(seg, tol, where))
         else:  # pragma: no cover - svgelements yields only the kinds above
             raise CaseError("svg path", f"unsupported path segment {name}")
     return out
 
 
-def _shape_curves(el, name: str, tol: float) -> list[Curve]:
+def _shape_curves(el, name: str, tol: float, where: str = "svg") -> list[Curve]:
     g = el.get
+
+    def num(key):
+        return _number(el, key, where)
+
     if name == "path":
-        return _path_curves(g("d", ""), tol)
+        return _path_curves(g("d", ""), tol, where)
     if name == "line":
-        p = np.array([[float(g("x1", 0)), float(g("y1", 0))], [float(g("x2", 0)), float(g("y2", 0))]])
+        p = np.array([[num("x1"), num("y1")], [num("x2"), num("y2")]])
         return [Polyline(p)]
     if name in ("polyline", "polygon"):
-        v = np.array(_floats(g("points")), dtype=np.float64).reshape(-1, 2)
+        values = _floats(g("points"), f"{where} points")
+        if len(values) % 2:
+            raise CaseError(f"{where} points", f"{len(values)} numbers: give x and y of each point")
+        v = np.array(values, dtype=np.float64).reshape(-1, 2)
         if name == "polygon" and len(v):
             v = np.vstack((v, v[:1]))
         return [Polyline(v)] if len(v) >= 2 else []
     if name == "rect":
-        x, y, w, h = (float(g(k, 0)) for k in ("x", "y", "width", "height"))
+        x, y, w, h = (num(k) for k in ("x", "y", "width", "height"))
         return [Polyline(np.array([[x, y], [x + w, y], [x + w, y + h], [x, y + h], [x, y]]))]
     if name == "circle":
-        return [Arc(np.array([float(g("cx", 0)), float(g("cy", 0))]), float(g("r", 0)), 0.0, 360.0)]
+        return [Arc(np.array([num("cx"), num("cy")]), num("r"), 0.0, 360.0)]
     if name == "ellipse":
-        cx, cy, rx, ry = (float(g(k, 0)) for k in ("cx", "cy", "rx", "ry"))
+        cx, cy, rx, ry = (num(k) for k in ("cx", "cy", "rx", "ry"))
         if rx == ry:
             return [Arc(np.array([cx, cy]), rx, 0.0, 360.0)]
-        n = max(16, int(math.ceil(2 * math.pi / (2 * math.acos(max(1 - tol / max(rx, ry), -1.0))))))
+        count = flattening_points(max(rx, ry), 2 * math.pi, tol)
+        n = int(max(16, bounded(count, MAX_CURVE_POINTS, "points", _flatten_fix("the ellipse", tol), _refusal, where)))
         t = np.linspace(0, 2 * math.pi, n + 1)
         pts = np.column_stack((cx + rx * np.cos(t), cy + ry * np.sin(t)))
         pts[-1] = pts[0]
@@ -198,11 +291,14 @@ def read_drawing(path, chordal_error: float | None = None):
     except ET.ParseError as exc:
         raise CaseError(str(path), f"not a valid SVG file ({exc})") from None
     meta = read_meta(root.get(META_ATTR), f"{path} (attribute {META_ATTR})")
+    vb = _floats(root.get("viewBox"), f"{path} viewBox")
+    if vb and (len(vb) != 4 or not (vb[2] > 0 and vb[3] > 0)):
+        raise CaseError(f"{path} viewBox", f"{root.get('viewBox')!r}: give four numbers, x y width height, "
+                                           "with a positive width and height")
     sx, sy = _document_scale(root)
     units = meta.get("units", "mm")
     k = 1.0 / mm_per_unit(units, f"{path} (attribute {META_ATTR}, units)")
     doc = np.array([[sx * k, 0.0], [0.0, -sy * k]])  # user units -> case units, y up
-    vb = _floats(root.get("viewBox"))
     size = math.hypot(vb[2], vb[3]) * sx * k if len(vb) == 4 else 100.0
     tol = chordal_error or DEFAULT_CHORDAL_FRACTION * size
     pieces: list[Piece] = []
@@ -215,12 +311,13 @@ def read_drawing(path, chordal_error: float | None = None):
         if name in SKIP:
             return
         own = set(tags)
+        where = f"<{name}>" + (f" id={el.get('id')!r}" if el.get("id") else "")
         names = ([el.get("id")] if el.get("id") else []) + (el.get("class") or "").split()
         for n in names:
             labels.setdefault(n.upper(), n)
         own.update(n.upper() for n in names)
         if el.get("transform"):
-            matrix = svgelements.Matrix(el.get("transform")) * matrix
+            matrix = _transform(svgelements, el.get("transform"), where) * matrix
         if name in CONTAINERS:
             for child in el:
                 visit(child, matrix, frozenset(own))
@@ -233,11 +330,15 @@ def read_drawing(path, chordal_error: float | None = None):
         m = np.array([[matrix.a, matrix.c], [matrix.b, matrix.d]])
         full = doc @ m
         offset = doc @ np.array([matrix.e, matrix.f])
-        curves = _shape_curves(el, name, tol / max(np.abs(full).max(), 1e-300))
+        scale = float(np.abs(full).max())
+        if not (math.isfinite(scale) and scale > 0 and np.isfinite(offset).all()):
+            raise CaseError(source, "its transform and the document's units give a scale that is not finite "
+                                    "and positive; correct the transform, width, height or viewBox")
+        curves = _shape_curves(el, name, tol / scale, source)
         if not curves:
             raise CaseError(source, "has zero length; delete it")
         for c in curves:
-            c = c.transformed(full, offset, tol)
+            c = checked_coordinates(c.transformed(full, offset, tol), source)
             if not c.length > 0:
                 raise CaseError(source, f"zero-length piece at {fmt_point(c.at_fractions(np.array([0.0]))[0])}; delete it")
             pieces.append(Piece(c, frozenset(own), source))

@@ -41,6 +41,10 @@ BOUNDS = {
     "yeoh": ([0.0, -np.inf, 0.0], [np.inf, np.inf, np.inf]),
 }
 STRETCH_LIMIT = 1e3
+"""Largest stretch, and largest inverse stretch (so λ ≥ 1e-3), of a test point: beyond, no rubber test, and the
+stress basis (powers of λ up to 6 and down to -6 for Yeoh's c30) leaves the floats."""
+STRESS_LIMIT = 1e6
+"""Largest nominal stress of a test point, MPa (rubber breaks below 100): its squares stay finite."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -148,9 +152,14 @@ def read_test_data(path, mode: str | None = None) -> list[TestCurve]:
 
         m = fixed if fixed is not None else mode_name(cell("mode"), f"{path}, line {n}, column mode")
         lam = value("stretch")
-        if not 0.0 < lam <= STRETCH_LIMIT:
-            raise CaseError(f"{path}, line {n}, column stretch", f"must be > 0 and <= {STRETCH_LIMIT:g}, got {lam:g}")
-        points[m].append((lam, value("nominal_stress")))
+        if not 1.0 / STRETCH_LIMIT <= lam <= STRETCH_LIMIT:
+            raise CaseError(f"{path}, line {n}, column stretch",
+                            f"must be within [{1.0 / STRETCH_LIMIT:g}, {STRETCH_LIMIT:g}], got {lam:g}")
+        stress = value("nominal_stress")
+        if not abs(stress) <= STRESS_LIMIT:
+            raise CaseError(f"{path}, line {n}, column nominal_stress",
+                            f"must be within +-{STRESS_LIMIT:g} MPa, got {stress:g}; give the stress in MPa")
+        points[m].append((lam, stress))
     curves = []
     for m in MODES:
         if not points[m]:
@@ -173,6 +182,21 @@ def merge_curves(curves) -> list[TestCurve]:
             out.append(TestCurve(m, np.concatenate([c.stretch for c in same]), np.concatenate([c.stress for c in same]),
                                  ", ".join(dict.fromkeys(c.source for c in same))))
     return out
+
+
+def _check_points(curve: TestCurve) -> None:
+    """Refuse a curve (read, or built in Python) whose stretches or stresses leave the range a fit can take."""
+    lam, stress = np.asarray(curve.stretch, dtype=np.float64), np.asarray(curve.stress, dtype=np.float64)
+    if lam.shape != stress.shape or lam.ndim != 1:
+        raise CaseError(f"data: {curve.mode}", f"{lam.size} stretches for {stress.size} stresses; give one of each per point")
+    bad = ~((lam >= 1.0 / STRETCH_LIMIT) & (lam <= STRETCH_LIMIT))
+    if bad.any():
+        raise CaseError(f"data: {curve.mode}", f"stretch {lam[bad][0]:g} (point {int(np.argmax(bad))}): a stretch must "
+                                                f"be within [{1.0 / STRETCH_LIMIT:g}, {STRETCH_LIMIT:g}]")
+    bad = ~(np.abs(stress) <= STRESS_LIMIT)
+    if bad.any():
+        raise CaseError(f"data: {curve.mode}", f"nominal stress {stress[bad][0]:g} (point {int(np.argmax(bad))}): a "
+                                                f"stress must be a finite number within +-{STRESS_LIMIT:g} MPa")
 
 
 def fit_material(model: str, curves, bulk_to_shear: float | None = None, bulk_modulus: float | None = None) -> FitResult:
@@ -212,6 +236,8 @@ def fit_material(model: str, curves, bulk_to_shear: float | None = None, bulk_mo
         raise CaseError("model", f"unknown material model {model!r}; use one of {', '.join(MATERIAL_MODELS)}")
     cls = MATERIAL_MODELS[model]
     curves = merge_curves(curves)
+    for c in curves:
+        _check_points(c)
     n_points = sum(c.stretch.size for c in curves)
     if n_points < len(cls.constants):
         raise CaseError("data", f"{n_points} point(s) for {len(cls.constants)} constants of {model}; give more points")
@@ -239,6 +265,9 @@ def fit_material(model: str, curves, bulk_to_shear: float | None = None, bulk_mo
         errors[c.mode] = math.sqrt(float(np.mean((fitted - c.stress) ** 2)) / float(np.mean(c.stress**2)))
     lam_all = np.concatenate([c.stretch for c in curves])
     max_stretch = float(np.max(np.maximum(lam_all, 1.0 / lam_all)))
+    if not (np.isfinite(x).all() and all(math.isfinite(e) for e in errors.values())):
+        raise CaseError("data", f"the {model} fit of these data gives no finite constants or errors; check the units "
+                                "(MPa) and the stretches of the data")
     warnings = tuple(unstable_modes(material, max_stretch)) if max_stretch > 1.0 else ()
     return FitResult(material, errors, warnings, max_stretch)
 

@@ -20,6 +20,7 @@ from pathlib import Path
 from ..curves import curve_from_json
 from ..errors import CaseError, SectionDeformError
 from ..io.case import load_case
+from ..limits import MAX_STUDY_ROWS, bounded
 from ..models import MODEL_NAMES
 from .targets import TRANSFORMS
 
@@ -146,6 +147,7 @@ def _values(spec, field: str) -> list:
         num = spec["num"]
         if isinstance(num, bool) or not isinstance(num, int) or num < 1:
             raise StudyError(f"{field}.num", f"expected an integer >= 1, got {num!r}")
+        _bounded_rows(num, f"{field}.num")
         if start is None or stop is None:
             raise StudyError(field, "a range needs numbers for start and stop")
         return [start + (stop - start) * i / (num - 1) if num > 1 else start for i in range(num)]
@@ -202,7 +204,15 @@ def _check_target_file(path: Path, field: str) -> None:
         raise StudyError(field, f"{path.name}: not a target curve ({str(exc).splitlines()[0]})") from None
 
 
-def _case_rows(entry, field: str, defaults: dict, base: Path, reference: str | None, cases: dict) -> list[Row]:
+def _bounded_rows(count: int, field: str) -> int:
+    """``count`` rows, or a :class:`StudyError` naming ``field``, the count and :data:`~sectiondeform.limits.MAX_STUDY_ROWS`."""
+    return bounded(count, MAX_STUDY_ROWS, "rows", "vary fewer axes or use fewer values (a range's num); split the "
+                   "study into several", lambda message: StudyError("", message), field)
+
+
+def _case_rows(entry, field: str, defaults: dict, base: Path, reference: str | None, cases: dict,
+               already: int = 0) -> list[Row]:
+    """The rows of one case entry: the product of its axes; ``already`` rows of the study come before them."""
     if isinstance(entry, str):
         entry = {"case": entry}
     if not isinstance(entry, dict):
@@ -234,6 +244,7 @@ def _case_rows(entry, field: str, defaults: dict, base: Path, reference: str | N
     _check_law_axis(case, axes, "vary.area_ratio" if "area_ratio" in defaults and "area_ratio" not in vary
                     else f"{field}.vary.area_ratio")
     names = list(axes)
+    _bounded_rows(math.prod(len(axes[k]) for k in names) + already, field)
     rows = []
     for combo in itertools.product(*(axes[k] for k in names)):
         values = dict(zip(names, combo))
@@ -317,7 +328,7 @@ def study_from_dict(data, base=".") -> Study:
         raise StudyError("reference", f"expected a result file name, got {reference!r}")
     rows, wheres, loaded = [], [], {}
     for i, entry in enumerate(cases):
-        more = _case_rows(entry, f"cases[{i}]", defaults, base, reference, loaded)
+        more = _case_rows(entry, f"cases[{i}]", defaults, base, reference, loaded, len(rows))
         rows += more
         wheres += [f"cases[{i}]"] * len(more)
     return _finish(name, rows, wheres)
@@ -366,9 +377,15 @@ def _study_from_csv(path: Path) -> Study:
             entry = {"case": values["case"], "vary": vary}
             if values.get("reference") is not None:
                 entry["reference"] = values["reference"]
-            rows += _case_rows(entry, f"line {line}", {}, base, None, loaded)
+            rows += _case_rows(entry, f"line {line}", {}, base, None, loaded, len(rows))
             wheres.append(f"line {line}")
     return _finish(path.stem, rows, wheres)
+
+
+def _not_utf8(exc: UnicodeDecodeError) -> str:
+    """The message for a study file that is not UTF-8 text."""
+    return (f"not UTF-8 text (byte 0x{exc.object[exc.start]:02x} at position {exc.start}); "
+            "save the file as UTF-8 (CSV UTF-8 in a spreadsheet)")
 
 
 def load_study(path) -> Study:
@@ -385,12 +402,20 @@ def load_study(path) -> Study:
             return _study_from_csv(path)
         except OSError as exc:
             raise StudyError(str(path), f"cannot read the study file ({exc.strerror})") from None
+        except UnicodeDecodeError as exc:
+            raise StudyError(str(path), _not_utf8(exc)) from None
+        except csv.Error as exc:
+            raise StudyError(str(path), f"not a readable CSV file ({exc}); save it again as CSV") from None
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise StudyError(str(path), f"cannot read the study file ({exc.strerror})") from None
+    except UnicodeDecodeError as exc:
+        raise StudyError(str(path), _not_utf8(exc)) from None
     try:
         data = json.loads(text)
     except json.JSONDecodeError as exc:
         raise StudyError(str(path), f"not valid JSON: {exc.msg} at line {exc.lineno}, column {exc.colno}") from None
+    except RecursionError:
+        raise StudyError(str(path), "the JSON nests too deeply; a study is a few levels deep") from None
     return study_from_dict(data, path.parent)
