@@ -8,12 +8,11 @@ import pytest
 import shapely
 
 import sectiondeform as sd
-from sectiondeform.problem import Problem
-from sectiondeform.io.case import case_from_dict
-from sectiondeform.deform import Deformer
-from sectiondeform.io.case import load_case
 from sectiondeform.curves import Polyline
+from sectiondeform.deform import Deformer
+from sectiondeform.io.case import case_from_dict, load_case
 from sectiondeform.laws import AreaRatio
+from sectiondeform.problem import Problem
 
 from conftest import CASES_DIR
 

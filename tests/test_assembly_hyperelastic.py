@@ -6,14 +6,12 @@ import numpy as np
 import pytest
 import shapely
 
-from sectiondeform.io.case import case_from_dict
-from sectiondeform.deform import Deformer
-from sectiondeform.models.hyperelastic import offset_to_area
-from sectiondeform.io.case import case_from_dict
 from sectiondeform.cli import main
 from sectiondeform.curves import Polyline
 from sectiondeform.deform import Deformer
 from sectiondeform.fem.mapping import rigid_fit
+from sectiondeform.io.case import case_from_dict
+from sectiondeform.models.hyperelastic import offset_to_area
 
 from conftest import CASES_DIR
 

@@ -18,10 +18,10 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from sectiondeform.io.case import case_from_dict
-from sectiondeform.deform import OVERLAP_TOLERANCE, Deformer, _no_overlap, _Prepared, _sliver
 from sectiondeform.curves import polygon_area
+from sectiondeform.deform import OVERLAP_TOLERANCE, Deformer, _no_overlap, _Prepared, _sliver
 from sectiondeform.errors import GeometryError
+from sectiondeform.io.case import case_from_dict
 
 from conftest import CASES_DIR, Outcomes
 

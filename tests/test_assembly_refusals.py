@@ -4,9 +4,9 @@ import json
 
 import pytest
 
-from sectiondeform.io.case import case_from_dict
 from sectiondeform.cli import main
 from sectiondeform.errors import CaseError, GeometryError
+from sectiondeform.io.case import case_from_dict
 
 from conftest import CASES_DIR
 

@@ -12,10 +12,10 @@ import json
 import numpy as np
 import pytest
 
-from sectiondeform.io.case import case_from_dict
-from sectiondeform.deform import Deformer
 from sectiondeform.curves import Polyline
+from sectiondeform.deform import Deformer
 from sectiondeform.errors import CaseError, MeshError
+from sectiondeform.io.case import case_from_dict
 
 from conftest import CASES_DIR
 

@@ -159,9 +159,9 @@ def test_a_new_curve_kind_is_one_class(tmp_path):
     pytest.importorskip("svgelements")
     from dataclasses import dataclass
 
-    from sectiondeform.problem import Problem
     from sectiondeform.io import read_case, write_case
     from sectiondeform.laws import AreaRatio
+    from sectiondeform.problem import Problem
 
     @dataclass(frozen=True, eq=False)
     class Parabola(Curve):

@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 
-from sectiondeform.fem.neohooke import MixedNeoHooke, Pattern
 from sectiondeform.fem.axisymmetric import AxisymmetricNeoHooke, AxisymmetricRubber
 from sectiondeform.fem.elements import geometry
 from sectiondeform.fem.mesh import coarse_mesh
+from sectiondeform.fem.neohooke import MixedNeoHooke, Pattern
 from sectiondeform.fem.rubber import MixedRubber
 from sectiondeform.fem.union_mesh import body_pressure_cells, union_mesh
 from sectiondeform.materials import MooneyRivlin, NeoHookean

@@ -20,14 +20,14 @@ import numpy as np
 import pytest
 import shapely
 
-from sectiondeform.io.case import case_from_dict
 from sectiondeform.deform import Deformer
-from sectiondeform.models.hyperelastic_revolution import offset_to_law
 from sectiondeform.errors import LawError
 from sectiondeform.fem.axisymmetric import AxisymmetricNeoHooke
 from sectiondeform.fem.elements import geometry
 from sectiondeform.fem.mesh import coarse_mesh
+from sectiondeform.io.case import case_from_dict
 from sectiondeform.laws import VolumeRatio
+from sectiondeform.models.hyperelastic_revolution import offset_to_law
 
 from conftest import CASES_DIR
 

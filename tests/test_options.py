@@ -6,9 +6,9 @@ import json
 import pytest
 
 import sectiondeform as sd
-from sectiondeform.options import Options, options_from_json
 from sectiondeform.models import MODEL_NAMES, get_model, model_options_types
 from sectiondeform.models.base import MeshQuality
+from sectiondeform.options import Options, options_from_json
 
 from conftest import SHARED_CASES, box_case
 

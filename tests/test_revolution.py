@@ -15,11 +15,10 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from sectiondeform.io.case import case_from_dict
-from sectiondeform.deform import deform
-from sectiondeform.io.case import case_from_dict
 from sectiondeform.cli import main
+from sectiondeform.deform import deform
 from sectiondeform.errors import CaseError, GeometryError, LawError
+from sectiondeform.io.case import case_from_dict
 from sectiondeform.laws import AreaRatio, VolumeRatio, law_from_json
 from sectiondeform.models.paper import scale_roots
 from sectiondeform.pappus import first_moment, moment_coefficients, volume

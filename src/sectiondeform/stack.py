@@ -188,7 +188,7 @@ class Stack:
         body.contour_order = np.argsort(all_params, kind="stable")
         return body
 
-    def _sources(self, b: int, body: _Body) -> None:
+    def _sources(self, b: int, body: StackedBody) -> None:
         """Classify body ``b``'s lower nodes: on the support (with their fraction) or on a foundation."""
         lay = self.layout
         a = self.problem

@@ -33,7 +33,6 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
-
 if TYPE_CHECKING:  # pragma: no cover
     from ..stack import Stack
 
