@@ -72,8 +72,8 @@ def test_a_contour_is_its_prepared_polygon_with_points_put_in_within_rounding(na
     a = shared_cases()[name]
     d = Deformer(a, "paper")
     result = d.deform()
-    assert sum(len(f["inserted"]) for f in d.fixed_parts) > 0  # some foundation gave points away
-    for r, f in zip(result.bodies, d.fixed_parts):
+    assert sum(len(f["inserted"]) for f in d.stack.fixed_parts) > 0  # some foundation gave points away
+    for r, f in zip(result.bodies, d.stack.fixed_parts):
         keep = np.ones(len(r.contour), dtype=bool)
         keep[f["inserted"]] = False
         ring = r.contour[keep]
