@@ -24,7 +24,8 @@ from conftest import box_case
 def squeezed(stretch, ratio):
     """A 40 x 4 box whose lower edge goes onto a straight target ``stretch`` times as long, under ``ratio``:
     the columns keep their count, so the height scale is k = ratio / stretch and an element's aspect
-    changes k / stretch = ratio / stretch² (by hand)."""
+    changes k / stretch = ratio / stretch² (by hand).
+    """
     return box_case(40.0, 4.0, target={"polyline": [[0.0, 0.0], [40.0 * stretch, 0.0]]}, ratio=ratio)
 
 
