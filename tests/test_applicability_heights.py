@@ -5,7 +5,7 @@ import re
 import pytest
 
 import sectiondeform as sd
-from sectiondeform.applicability import HEIGHT_CHANGE_LIMIT, HEIGHT_SCALE_LIMITS, extent_warnings
+from sectiondeform.applicability import HEIGHT_CHANGE_LIMIT, HEIGHT_SCALE_LIMITS, extent_refusal
 
 from conftest import box_case, data_case_path
 
@@ -40,6 +40,5 @@ def test_the_grooved_tread_is_flagged_and_the_paper_example_is_not():
 
 
 @pytest.mark.parametrize("k", [HEIGHT_SCALE_LIMITS[0] - 0.01, HEIGHT_SCALE_LIMITS[1] + 0.01])
-def test_beyond_the_height_scale_limits_only_the_stronger_warning(k):
-    out = extent_warnings(k, (1.0, 1.0), 1.0)
-    assert len(out) == 1 and "height scale k" in out[0]
+def test_beyond_the_height_scale_limits_a_refusal_not_a_warning(k):
+    assert "height scale k" in extent_refusal(k, 1.0) and extent_refusal(1.0, 1.0) is None

@@ -47,6 +47,7 @@ __all__ = [
     "HEIGHT_CHANGE_LIMIT",
     "STRETCH_LIMITS",
     "ASPECT_LIMIT",
+    "extent_refusal",
 ]
 
 #: Overhang beyond the lower curve's ends, over the section's height, above which the paper model is flagged.
@@ -66,6 +67,7 @@ STRETCH_LIMITS = (0.5, 2.0)
 ASPECT_LIMIT = 4.0
 
 HINT = 'the paper model may be far from the material; the hyperelastic model (options.model "hyperelastic") follows it'
+REFUSAL_FIX = 'refused: deform with the hyperelastic model (options.model "hyperelastic"), which follows the material'
 
 
 def overhang(lower: np.ndarray, upper: np.ndarray) -> float:
@@ -257,8 +259,40 @@ def applicability_warnings(height: float, overhang_length: float, bend: float, v
     return out
 
 
+def extent_refusal(height_scale: float, aspect: float) -> str | None:
+    """Why a placement means nothing whatever the material, or None: the height scale or an element's aspect beyond its range.
+
+    The layered map stays a map of the section only while its layers keep
+    their heights within :data:`HEIGHT_SCALE_LIMITS` and its elements their
+    shape within :data:`ASPECT_LIMIT` (``docs/method.md``); beyond, the model
+    itself cannot say what its answer means, so the caller refuses it
+    (:class:`~sectiondeform.errors.MeshError`) rather than warn.
+
+    Parameters
+    ----------
+    height_scale : float
+        The paper model's ``k``.
+    aspect : float
+        :func:`aspect_change`.
+    """
+    lo, hi = HEIGHT_SCALE_LIMITS
+    if not lo <= height_scale <= hi:
+        why = (f"height scale k = {height_scale:.3g}, outside [{lo:g}, {hi:g}]: the layers are "
+               f"{'stretched' if height_scale > hi else 'squeezed'}")
+    elif aspect > ASPECT_LIMIT:
+        why = f"an element's aspect ratio changes {aspect:.3g}-fold (limit {ASPECT_LIMIT:g}): the layers are distorted"
+    else:
+        return None
+    return f"result: {why} beyond what the paper model can mean; {REFUSAL_FIX}"
+
+
 def extent_warnings(height_scale: float, stretch: tuple[float, float], aspect: float) -> list[str]:
-    """Warnings for a placement beyond the documented limits of the layered map (``docs/method.md``).
+    """Warnings for a placement near the documented limits of the layered map (``docs/method.md``).
+
+    What is beyond them is refused (:func:`extent_refusal`); these are the
+    milder figures: the heights changed by more than
+    :data:`HEIGHT_CHANGE_LIMIT`, elements stretched along the layers beyond
+    :data:`STRETCH_LIMITS`.
 
     Parameters
     ----------
@@ -267,17 +301,10 @@ def extent_warnings(height_scale: float, stretch: tuple[float, float], aspect: f
     stretch : tuple of float
         :func:`stretch_range`.
     aspect : float
-        :func:`aspect_change`.
+        :func:`aspect_change` (unused: its limit is a refusal).
     """
     out = []
-    lo, hi = HEIGHT_SCALE_LIMITS
-    if not lo <= height_scale <= hi:
-        out.append(
-            f"result: height scale k = {height_scale:.3g}, outside [{lo:g}, {hi:g}]: the layers are "
-            f"{'stretched' if height_scale > hi else 'squeezed'} beyond what the model can mean; "
-            "check the target's length against the lower curve's"
-        )
-    elif abs(height_scale - 1.0) > HEIGHT_CHANGE_LIMIT:
+    if abs(height_scale - 1.0) > HEIGHT_CHANGE_LIMIT:
         out.append(
             f"result: the heights change by {100.0 * (height_scale - 1.0):+.3g} % (k = {height_scale:.3g}, limit "
             f"{100.0 * HEIGHT_CHANGE_LIMIT:g} %): the paper model puts the law's whole area change into the heights; {HINT}"
@@ -287,10 +314,5 @@ def extent_warnings(height_scale: float, stretch: tuple[float, float], aspect: f
         out.append(
             f"result: elements stretched by {stretch[0]:.3g} to {stretch[1]:.3g} along the layers, "
             f"outside [{lo:g}, {hi:g}]; check the target's length against the lower curve's"
-        )
-    if aspect > ASPECT_LIMIT:
-        out.append(
-            f"result: an element's aspect ratio changes {aspect:.3g}-fold (limit {ASPECT_LIMIT:g}); "
-            "the layers are distorted beyond what the model can mean"
         )
     return out

@@ -197,6 +197,24 @@ def zigzag_fraction(points: np.ndarray) -> float:
     return float(np.mean(turn[1:] != turn[:-1]))
 
 
+def closed_parts(curves) -> list[Curve]:
+    """The pieces of a closed contour of ``curves``, with a straight segment closing every gap between two.
+
+    Pieces read from files may miss their neighbours by rounding (a
+    millionth of a millimetre); the enclosed area and its moments are those
+    of the contour the polygon of the pieces closes, so each gap counts as
+    its chord. ``curves`` is a sequence of :class:`Curve` in order, the last
+    one ending near the first one's start.
+    """
+    parts = [p for c in curves for p in c.parts()]
+    out = []
+    for p, q in zip(parts, parts[1:] + parts[:1]):
+        out.append(p)
+        if not np.array_equal(p.end, q.start):
+            out.append(Polyline(np.stack((p.end, q.start))))
+    return out
+
+
 def _affine(matrix, offset) -> tuple[np.ndarray, np.ndarray]:
     """``matrix`` as ``(2, 2)`` and ``offset`` as ``(2,)`` float64 arrays."""
     return (np.asarray(matrix, dtype=np.float64).reshape(2, 2),
@@ -342,6 +360,36 @@ class Curve:
         """
         raise NotImplementedError
 
+    def moment_x(self) -> float:  # pragma: no cover - abstract
+        """Exact -1/2 * integral of y² dx along the curve, units³.
+
+        Summed over the curves of a closed contour it gives the first
+        moment of the enclosed area about the x axis, the integral of y over
+        the area (signed as :meth:`green`): Green's theorem with ``L = -y²/2``.
+        """
+        raise NotImplementedError
+
+    def green_about(self, origin) -> float:
+        """:meth:`green` about ``origin`` ``(2,)`` instead of (0, 0), units².
+
+        Summed over a closed contour it is the enclosed signed area, whatever
+        the origin; about a point of the section it keeps its digits where
+        the section is small and far from (0, 0).
+        """
+        origin = np.asarray(origin, dtype=np.float64)
+        return (self.transformed(np.eye(2), -origin) if origin.any() else self).green()
+
+    def moment_about(self, origin, rotation) -> float:
+        """:meth:`moment_x` in the frame ``p -> rotation @ (p - origin)``, units³.
+
+        ``rotation`` ``(2, 2)`` is a proper rotation (rows: the frame's x
+        and y directions): summed over a closed contour, the first moment of
+        the enclosed area about the frame's x axis, as Pappus's theorem
+        needs it (:func:`~sectiondeform.pappus.curve_moment`).
+        """
+        rotation = np.asarray(rotation, dtype=np.float64)
+        return self.transformed(rotation, -rotation @ np.asarray(origin, dtype=np.float64)).moment_x()
+
 
 @dataclass(frozen=True, eq=False)
 class Polyline(Curve):
@@ -393,6 +441,10 @@ class Polyline(Curve):
     def green(self):
         v = self.vertices
         return 0.5 * float(np.sum(v[:-1, 0] * v[1:, 1] - v[1:, 0] * v[:-1, 1]))
+
+    def moment_x(self):
+        x, y = self.vertices[:, 0], self.vertices[:, 1]
+        return -float(np.sum((x[1:] - x[:-1]) * (y[:-1] * y[:-1] + y[:-1] * y[1:] + y[1:] * y[1:]))) / 6.0
 
     def to_json(self):
         return {"polyline": self.vertices.tolist()}
@@ -515,6 +567,16 @@ class Arc(Curve):
         a0, a1 = math.radians(self.start_deg), math.radians(self.end_deg)
         return 0.5 * (r * cx * (math.sin(a1) - math.sin(a0)) - r * cy * (math.cos(a1) - math.cos(a0)) + r * r * (a1 - a0))
 
+    def moment_x(self):
+        # x = cx + r cos a, y = cy + r sin a: -1/2 y² dx = r/2 (cy² sin a + 2 cy r sin² a + r² sin³ a) da.
+        (_, cy), r = self.center, self.radius
+
+        def primitive(a):
+            c = math.cos(a)
+            return -cy * cy * c + cy * r * (a - math.sin(a) * c) + r * r * (c * c * c / 3.0 - c)
+
+        return 0.5 * r * (primitive(math.radians(self.end_deg)) - primitive(math.radians(self.start_deg)))
+
     @property
     def ends(self):
         a = np.radians([self.start_deg, self.end_deg])
@@ -529,6 +591,8 @@ class Arc(Curve):
         # reflection); under any other map it becomes an ellipse, given back
         # as a polyline within tol of it.
         m, b = _affine(matrix, offset)
+        if (m == np.eye(2)).all():  # a translation keeps the angles exactly
+            return Arc(self.center + b, self.radius, self.start_deg, self.end_deg)
         mtm = m.T @ m
         scale2 = 0.5 * (mtm[0, 0] + mtm[1, 1])
         if abs(mtm[0, 1]) <= 1e-12 * scale2 and abs(mtm[0, 0] - mtm[1, 1]) <= 1e-12 * scale2:
@@ -683,6 +747,17 @@ class BSpline(Curve):
         integrand = (p[:, 0] * d[:, 1] - p[:, 1] * d[:, 0]).reshape(-1, len(_GL_X))
         return 0.5 * float(np.sum(half * (integrand @ _GL_W)))
 
+    def moment_x(self):
+        # Gauss-Legendre on every knot span, exact for y² x' of degree 3 p - 1.
+        x_gl, w_gl = np.polynomial.legendre.leggauss(max(5, (3 * self.degree) // 2 + 1))
+        u, _ = self._table
+        a, b = u[:-1], u[1:]
+        half = 0.5 * (b - a)
+        q = ((0.5 * (a + b))[:, None] + half[:, None] * x_gl[None, :]).ravel()
+        p, d = self._spline(q), self._spline.derivative()(q)
+        integrand = (p[:, 1] * p[:, 1] * d[:, 0]).reshape(-1, len(x_gl))
+        return -0.5 * float(np.sum(half * (integrand @ w_gl)))
+
     @property
     def ends(self):
         return self.control_points[0], self.control_points[-1]
@@ -774,6 +849,9 @@ class Chain(Curve):
 
     def green(self):
         return float(sum(p.green() for p in self.pieces))
+
+    def moment_x(self):
+        return float(sum(p.moment_x() for p in self.pieces))
 
     def to_json(self):
         return {"chain": [p.to_json() for p in self.pieces]}

@@ -292,16 +292,10 @@ class Deformer:
                 )
         if start is not None and not isinstance(start, Result):
             raise CaseError("start", f"give an earlier Result of this deformer, not {type(start).__name__}")
-        try:
-            with np.errstate(all="ignore"):
-                placed = placer(where, laws, start.state if start is not None else None)
-                bodies = tuple(self._body_result(b, placed, laws[b]) for b in range(len(laws)))
-                self._check(bodies, placed)
-        except (MeshError, LawError, GeometryError) as exc:
-            better = self._explained(exc)
-            if better is exc:
-                raise
-            raise better from exc
+        with np.errstate(all="ignore"):
+            placed = placer(where, laws, start.state if start is not None else None)
+            bodies = tuple(self._body_result(b, placed, laws[b]) for b in range(len(laws)))
+            self._check(bodies, placed)
         problem = self.problem
         label = problem.label
         warnings += [f"{label(b)}: {w}" if label(b) else w for b in range(len(laws)) for w in placed.placements[b].warnings]
@@ -319,7 +313,6 @@ class Deformer:
         """Body ``b``'s result from a placement: its curves, measures, meshes and figures."""
         problem, stack = self.problem, self.stack
         body = stack.bodies[b]
-        sec = body.section
         fixed = stack.fixed_parts[b]
         lowers, images = placed.lowers, placed.images
         placement = placed.placements[b]
@@ -346,8 +339,8 @@ class Deformer:
             initial_lower=fixed["initial_lower"],
             initial_upper=body.original_upper,
             initial_contour=fixed["initial_contour"],
-            area_initial=sec.area,
-            area_target=law.target_area(sec.area) if law.measure == "area" else None,
+            area_initial=fixed["area_initial"],
+            area_target=law.target_area(fixed["area_initial"]) if law.measure == "area" else None,
             area_final=abs(polygon_area(polygon)),
             initial_mesh=prepared.initial_mesh,
             final_mesh=placement.final_mesh,
@@ -466,30 +459,6 @@ class Deformer:
                 "ends swapped and the section comes out on the other side of it (turned over); "
                 f"if the lower curve was drawn the other way than the target, {fix}")
         return dataclasses.replace(result, warnings=(*result.warnings, note))
-
-    def _explained(self, exc: Exception) -> Exception:
-        """The refusal ``exc`` with the likeliest cause the user can fix: a long straight upper segment.
-
-        Only the upper curves' characteristic points are mapped, so a long
-        segment of an upper polyline stays a straight chord in the deformed
-        contour, however much the target bends under it.
-        """
-        worst = None
-        for b, sec in enumerate(self.stack.sections):
-            up = sec.upper
-            seg = np.hypot(*np.diff(up, axis=0).T)
-            i = int(np.argmax(seg))
-            ratio = seg[i] / sec.mesh_scale
-            if ratio > 2.0 and (worst is None or ratio > worst[0]):
-                worst = (ratio, b, i, up, seg[i])
-        if worst is None:
-            return exc
-        _, b, i, up, length = worst
-        where = f"{self.problem.label(b)} " if self.problem.label(b) else ""
-        return type(exc)(
-            f"{exc}; note: {where}upper segment {i} ({np.round(up[i], 6).tolist()} to {np.round(up[i + 1], 6).tolist()}, "
-            f"length {length:.6g}) stays a straight chord in the deformed section: split it into shorter segments"
-        )
 
 
 class _Prepared:

@@ -25,6 +25,7 @@ import numpy as np
 
 from . import pappus
 from .checks import number
+from .curves import closed_parts
 from .errors import CaseError, LawError
 
 __all__ = ["Law", "AreaRatio", "VolumeRatio", "law_from_json", "area_coefficients", "LAWS", "RATIO_RANGE"]
@@ -80,6 +81,18 @@ class Law:
     def quantity(self, polygon: np.ndarray) -> float:
         """The law's quantity of a closed polygon ``(N, 2)``, signed (positive counter-clockwise); here its area, units²."""
         return float(area_coefficients(np.asarray(polygon, dtype=np.float64), np.zeros_like(polygon, dtype=np.float64))[0])
+
+    def curve_quantity(self, curves) -> float:
+        """The law's quantity of the area a closed contour of curves encloses, exactly, signed as :meth:`quantity`.
+
+        ``curves`` is a sequence of :class:`~sectiondeform.curves.Curve`,
+        each starting where the one before ends (a gap counts as its chord,
+        :func:`~sectiondeform.curves.closed_parts`); here the exact area
+        (Green's theorem about the first curve's start, so a section far from
+        the origin keeps its digits), units².
+        """
+        origin = curves[0].start
+        return float(sum(c.green_about(origin) for c in closed_parts(curves)))
 
     def coefficients(self, fixed: np.ndarray, moving: np.ndarray) -> np.ndarray:
         """:meth:`quantity` of the polygon ``fixed + k moving`` (both ``(N, 2)``) as polynomial coefficients in ``k``, constant first."""
@@ -199,6 +212,10 @@ class VolumeRatio(Law):
     def quantity(self, polygon):
         """Signed volume of revolution, ``2 pi`` x first moment about the axis, units³."""
         return 2.0 * np.pi * pappus.first_moment(polygon, self._axis())
+
+    def curve_quantity(self, curves):
+        """Exact signed volume of revolution of the area the curves enclose (:func:`~sectiondeform.pappus.curve_moment`), units³."""
+        return 2.0 * np.pi * pappus.curve_moment(curves, self._axis())
 
     def coefficients(self, fixed, moving):
         return 2.0 * np.pi * pappus.moment_coefficients(fixed, moving, self._axis())

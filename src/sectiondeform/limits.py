@@ -78,13 +78,18 @@ def bounded(count: float, limit: int, what: str, fix: str, error=GeometryError, 
     --------
     >>> bounded(12.5, 100, "lower nodes", "raise options.element_size")
     12.5
+    >>> bounded(3163.62, 100, "mesh vertices", "raise options.element_size")
+    Traceback (most recent call last):
+    ...
+    sectiondeform.errors.GeometryError: section: 3164 mesh vertices needed, more than the bound 100; raise options.element_size
     >>> bounded(float("inf"), 100, "lower nodes", "raise options.element_size")
     Traceback (most recent call last):
     ...
     sectiondeform.errors.GeometryError: section: inf lower nodes needed, more than the bound 100; raise options.element_size
     """
     if not count <= limit:  # also NaN
-        raise error(f"{where}: {count:.6g} {what} needed, more than the bound {limit}; {fix}")
+        shown = f"{math.ceil(count):d}" if math.isfinite(count) else f"{count:g}"  # a count is a whole number
+        raise error(f"{where}: {shown} {what} needed, more than the bound {limit}; {fix}")
     return count
 
 

@@ -25,7 +25,7 @@ import numpy as np
 from .curves import cross as _cross
 from .errors import LocateError
 
-__all__ = ["Location", "locate", "place", "bilinear_weights", "inverse_bilinear"]
+__all__ = ["Location", "locate", "locate_some", "place", "bilinear_weights", "inverse_bilinear"]
 
 LOCAL_TOL = 1e-6
 CHUNK = 1 << 16  # points located at once
@@ -228,6 +228,54 @@ def _locate_chunk(terms_of, finder, x, tol):
     return elements, local
 
 
+def _find(points: np.ndarray, quads: np.ndarray, x: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
+    """Element (-1: none) and local coordinates of each point of ``x``: :func:`locate` without the refusal."""
+    x = np.asarray(x, dtype=np.float64)
+    quad_pts_all = points[quads]
+    if len(x) * len(quads) <= FEW_PAIRS:  # few points: test every box, map terms of candidates only
+        finder = _Boxes(quad_pts_all)
+
+        def terms_of(el):
+            return _element_terms(quad_pts_all[el])
+    else:  # about one bucket per point, between 1 and MAX_BUCKETS_PER_ELEMENT per element
+        finder = _Buckets(quad_pts_all, min(max(len(x) / len(quads), 1.0), MAX_BUCKETS_PER_ELEMENT))
+        terms = _element_terms(quad_pts_all)
+
+        def terms_of(el):
+            return terms[:, el]
+    elements = np.full(len(x), -1, dtype=np.int64)
+    local = np.zeros((len(x), 2))
+    for lo in range(0, len(x), CHUNK):
+        part = slice(lo, lo + CHUNK)
+        elements[part], local[part] = _locate_chunk(terms_of, finder, x[part], tol)
+    todo = np.flatnonzero(elements < 0)
+    if todo.size:  # exhaustive pass for the few points just outside every bucket
+        for i in todo:
+            ok, loc = _try(quad_pts_all, np.broadcast_to(x[i], (len(quads), 2)), tol)
+            if ok.any():
+                # Prefer the element that contains the point most deeply.
+                depth = np.min(np.minimum(loc, 1 - loc), axis=1)
+                best = int(np.argmax(np.where(ok, depth, -np.inf)))
+                elements[i], local[i] = best, loc[best]
+    return elements, np.clip(local, 0.0, 1.0)
+
+
+def locate_some(points: np.ndarray, quads: np.ndarray, x: np.ndarray, tol: float = LOCAL_TOL) -> tuple[Location, np.ndarray]:
+    """Locate the points of ``x`` that lie in the mesh; arguments as :func:`locate`.
+
+    Returns
+    -------
+    Location
+        Of the points found, in order.
+    found : (p,) bool ndarray
+        Which points of ``x`` lie in an element.
+    """
+    elements, local = _find(points, quads, x, tol)
+    found = elements >= 0
+    elements, local = elements[found], local[found]
+    return Location(elements, local, quads[elements], bilinear_weights(local)), found
+
+
 def locate(points: np.ndarray, quads: np.ndarray, x: np.ndarray, tol: float = LOCAL_TOL) -> Location:
     """Locate each point of ``x`` in the mesh ``(points, quads)``.
 
@@ -259,39 +307,13 @@ def locate(points: np.ndarray, quads: np.ndarray, x: np.ndarray, tol: float = LO
     >>> loc.elements.tolist(), place(pts, loc).tolist()
     ([1, 0], [[1.5, 0.5], [0.5, 1.0]])
     """
-    x = np.asarray(x, dtype=np.float64)
-    quad_pts_all = points[quads]
-    if len(x) * len(quads) <= FEW_PAIRS:  # few points: test every box, map terms of candidates only
-        finder = _Boxes(quad_pts_all)
-
-        def terms_of(el):
-            return _element_terms(quad_pts_all[el])
-    else:  # about one bucket per point, between 1 and MAX_BUCKETS_PER_ELEMENT per element
-        finder = _Buckets(quad_pts_all, min(max(len(x) / len(quads), 1.0), MAX_BUCKETS_PER_ELEMENT))
-        terms = _element_terms(quad_pts_all)
-
-        def terms_of(el):
-            return terms[:, el]
-    elements = np.full(len(x), -1, dtype=np.int64)
-    local = np.zeros((len(x), 2))
-    for lo in range(0, len(x), CHUNK):
-        part = slice(lo, lo + CHUNK)
-        elements[part], local[part] = _locate_chunk(terms_of, finder, x[part], tol)
-    todo = np.flatnonzero(elements < 0)
-    if todo.size:  # exhaustive pass for the few points just outside every bucket
-        for i in todo:
-            ok, loc = _try(quad_pts_all, np.broadcast_to(x[i], (len(quads), 2)), tol)
-            if ok.any():
-                # Prefer the element that contains the point most deeply.
-                depth = np.min(np.minimum(loc, 1 - loc), axis=1)
-                best = int(np.argmax(np.where(ok, depth, -np.inf)))
-                elements[i], local[i] = best, loc[best]
-        missing = np.flatnonzero(elements < 0)
-        if missing.size:
-            i = int(missing[0])
-            raise LocateError(
-                f"point {i} at {np.round(x[i], 9).tolist()} lies in no element of the mesh "
-                f"({missing.size} point(s) unlocated)"
-            )
+    elements, local = _find(points, quads, x, tol)
+    missing = np.flatnonzero(elements < 0)
+    if missing.size:
+        i = int(missing[0])
+        raise LocateError(
+            f"point {i} at {np.round(np.asarray(x, dtype=np.float64)[i], 9).tolist()} lies in no element of the mesh "
+            f"({missing.size} point(s) unlocated)"
+        )
     local = np.clip(local, 0.0, 1.0)
     return Location(elements, local, quads[elements], bilinear_weights(local))

@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 
-__all__ = ["axis_frame", "signed_distance", "first_moment", "volume", "moment_coefficients"]
+__all__ = ["axis_frame", "signed_distance", "first_moment", "curve_moment", "volume", "moment_coefficients"]
 
 
 def _next(a):
@@ -83,6 +83,36 @@ def first_moment(polygon: np.ndarray, axis) -> float:
     q = _next(p)
     cross = p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1]
     return float(((p[:, 1] + q[:, 1]) * cross).sum() / 6.0)
+
+
+def curve_moment(curves, axis) -> float:
+    """Exact signed first moment about the axis of the area the curves enclose, units³.
+
+    Parameters
+    ----------
+    curves : sequence of Curve
+        A closed contour, each curve starting where the one before ends (a
+        gap counts as its chord, :func:`~sectiondeform.curves.closed_parts`).
+    axis : ((float, float), (float, float))
+
+    Each curve's share is exact in its kind (:meth:`~sectiondeform.curves.Curve.moment_about`:
+    closed forms for polylines and arcs, Gauss quadrature of Green's
+    theorem for B-splines), so a contour of curves has its exact moment,
+    not its polygon's.
+
+    Examples
+    --------
+    A half-disc of radius 1 on the x axis: Q = 2/3 (area pi/2, centroid 4/(3 pi)).
+
+    >>> from sectiondeform.curves import Arc, Polyline
+    >>> half = [Polyline([[-1.0, 0.0], [1.0, 0.0]]), Arc([0.0, 0.0], 1.0, 0.0, 180.0)]
+    >>> round(curve_moment(half, ((0.0, 0.0), (1.0, 0.0))), 15)
+    0.666666666666667
+    """
+    from .curves import closed_parts
+
+    origin, rot = axis_frame(axis)
+    return float(sum(c.moment_about(origin, rot) for c in closed_parts(curves)))
 
 
 def volume(polygon: np.ndarray, axis) -> float:

@@ -38,6 +38,7 @@ recorded in :attr:`Section.orientation`.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -45,11 +46,11 @@ import numpy as np
 import shapely
 
 from .compare import section_height
-from .curves import DEFAULT_CHORDAL_FRACTION, Arc, Chain, Curve, polygon_area
+from .curves import DEFAULT_CHORDAL_FRACTION, Curve, polygon_area
 from .errors import GeometryError
 from .limits import MAX_LOWER_NODES, MAX_UPPER_POINTS, bounded
 
-__all__ = ["Section", "SectionCurves", "build_section", "polygon_area", "mesh_scale", "DEFAULT_CHORDAL_FRACTION"]
+__all__ = ["Section", "SectionCurves", "build_section", "densified", "polygon_area", "mesh_scale", "DEFAULT_CHORDAL_FRACTION"]
 
 JOIN_FRACTION = 1e-6
 AREA_FRACTION = 1e-5
@@ -123,6 +124,10 @@ class Section:
         Chordal error asked for, units.
     curve_area : float
         Exact area enclosed by the curves themselves, units².
+    characteristic : (m0,) int ndarray, optional
+        Index in ``upper`` of each characteristic point, when ``upper`` has
+        points between them (:func:`densified`); None when every upper
+        point is one.
     """
 
     lower: np.ndarray
@@ -134,6 +139,14 @@ class Section:
     element_size: float
     chordal_error: float
     curve_area: float
+    characteristic: np.ndarray | None = None
+
+    @property
+    def characteristic_index(self) -> np.ndarray:
+        """Index in :attr:`upper` of each characteristic point, ``(m0,)`` int."""
+        if self.characteristic is None:
+            return np.arange(len(self.upper))
+        return self.characteristic
 
     @property
     def thickness(self) -> float:
@@ -197,24 +210,9 @@ def _split_steps(fractions: np.ndarray, max_step: float, fix: str = "raise optio
     return np.concatenate((k * (steps / parts)[step] + fractions[:-1][step], fractions[-1:]))
 
 
-def _translated(curve: Curve, offset: np.ndarray) -> Curve:
-    """``curve`` moved by ``offset`` ``(2,)``; an arc keeps its angles exactly."""
-    if isinstance(curve, Arc):
-        return Arc(curve.center + offset, curve.radius, curve.start_deg, curve.end_deg)
-    if isinstance(curve, Chain):
-        return Chain(tuple(_translated(p, offset) for p in curve.pieces))
-    return curve.transformed(np.eye(2), offset)
-
-
 def local_green(curve: Curve, origin: np.ndarray) -> float:
-    """:meth:`Curve.green` about ``origin`` ``(2,)`` instead of (0, 0), units².
-
-    Summed over a closed contour it is the enclosed signed area, whatever
-    the origin; about a point of the section it keeps its digits where the
-    section is small and far from (0, 0).
-    """
-    origin = np.asarray(origin, dtype=np.float64)
-    return (_translated(curve, -origin) if origin.any() else curve).green()
+    """:meth:`Curve.green_about <sectiondeform.curves.Curve.green_about>` ``origin`` ``(2,)``, units²."""
+    return curve.green_about(origin)
 
 
 def open_green(points: np.ndarray, origin: np.ndarray) -> float:
@@ -360,6 +358,54 @@ def build_section(case, element_size: float | None = None) -> Section:
         chordal_error=tol,
         curve_area=exact,
     )
+
+
+def densified(section: Section, shared: np.ndarray | None = None) -> Section:
+    """``section`` with points put between its upper characteristic points, at most its element size apart.
+
+    Only the points of the upper curve are mapped by a model, so a long
+    straight segment of it would stay a straight chord however the target
+    bends under it; with points at most an element apart along it, the
+    deformed contour follows the deformed section within the mesh's own
+    resolution. The points lie on the segments, so the contour and its
+    area are unchanged.
+
+    Parameters
+    ----------
+    section : Section
+        Its ``upper`` are characteristic points only.
+    shared : (m - 1,) bool ndarray, optional
+        Segments of ``upper`` to leave as they are (a piece shared with a
+        body resting on it, whose lower nodes are already its points).
+
+    Returns
+    -------
+    Section
+        With :attr:`Section.characteristic` the index of each original point.
+
+    Raises
+    ------
+    GeometryError
+        Before building more than :data:`~sectiondeform.limits.MAX_UPPER_POINTS` points.
+    """
+    up = np.asarray(section.upper, dtype=np.float64)
+    steps = np.hypot(*np.diff(up, axis=0).T)
+    with np.errstate(all="ignore"):
+        parts = np.maximum(1, np.ceil(steps / section.element_size - 1e-9))
+    if shared is not None:
+        parts[np.asarray(shared, dtype=bool)] = 1
+    bounded(float(parts.sum()) + 1, MAX_UPPER_POINTS, "upper points", "raise options.element_size or simplify the upper curve")
+    parts = parts.astype(np.int64)
+    if (parts == 1).all():
+        return section
+    seg = np.repeat(np.arange(len(steps)), parts)
+    t = (np.arange(len(seg)) - np.repeat(np.cumsum(parts) - parts, parts)) / parts[seg]
+    upper = np.concatenate((up[seg] + t[:, None] * (up[seg + 1] - up[seg]), up[-1:]))
+    characteristic = np.concatenate(([0], np.cumsum(parts)))
+    upper[characteristic] = up  # the characteristic points bit for bit
+    for arr in (upper, characteristic):
+        arr.setflags(write=False)
+    return dataclasses.replace(section, upper=upper, characteristic=characteristic)
 
 
 def _check_simple(ring: np.ndarray, n_lower: int) -> None:

@@ -23,8 +23,9 @@ import shapely
 
 from .curves import Curve, Polyline
 from .errors import CaseError, MeshError, SectionDeformError
-from .pappus import signed_distance, volume
-from .section import Section, build_section
+from .laws import AreaRatio, VolumeRatio
+from .pappus import signed_distance
+from .section import Section, build_section, densified
 
 __all__ = ["Stack", "StackedBody", "Target", "SUPPORT", "renamed"]
 
@@ -51,7 +52,7 @@ class StackedBody:
     def __init__(self, section, original_upper):
         self.section = section
         self.original_upper = original_upper  # (m0, 2) the case's characteristic points
-        self.kept = np.arange(len(original_upper))  # index in section.upper of each original point, -1 if taken out
+        self.kept = np.array(section.characteristic_index)  # index in section.upper of each original point, -1 if taken out
         self.taken = []  # (original index, resting body, node index, t) of the points taken out
         self.source = np.full(len(section.lower), SUPPORT)  # SUPPORT or a foundation body per lower node
         self.where = np.zeros(len(section.lower))  # support fraction, or index in the foundation's upper
@@ -90,12 +91,28 @@ class Stack:
         self.layout = problem.layout
         n = len(problem.bodies)
         self.bodies: list[StackedBody | None] = [None] * n
+        self._initial: dict = {}
         for b in reversed(self.layout.order):
             self.bodies[b] = self._build(b, element_size)
         self.fixed_parts = tuple(self._fixed_parts(b) for b in range(n))
         self.fractions = np.unique(np.concatenate([f["support_fractions"] for f in self.fixed_parts]))
         for f in self.fixed_parts:
             f["support_index"] = np.searchsorted(self.fractions, f["support_fractions"])
+
+    def initial_quantity(self, b: int, law) -> float:
+        """``law``'s quantity of body ``b``'s curves, exactly (:meth:`~sectiondeform.laws.Law.curve_quantity`), signed.
+
+        The quantity of the case's own curves, not of their polygon: a law
+        met to 1e-9 on the deformed contour is met against the curves given.
+        Kept per law (a slider asks many ratios of one law: a bounded store).
+        """
+        key = (b, law.measure, getattr(law, "axis", None))
+        try:
+            return self._initial[key]
+        except KeyError:
+            body = self.problem.bodies[b]
+            value = self._initial[key] = law.curve_quantity((body.lower, body.upper))
+            return value
 
     @property
     def sections(self) -> list[Section]:
@@ -107,18 +124,22 @@ class Stack:
         """Length of the support, units."""
         return self.problem.support.length
 
-    def _section(self, b: int, upper: Curve | None, element_size):
+    def _section(self, b: int, upper: Curve | None, element_size, dense: bool = True, shared=None):
+        """Body ``b``'s section; ``dense``: with points between its upper characteristic points (:func:`densified`)."""
         try:
-            return build_section(self.problem.body_case(b, upper), element_size)
+            section = build_section(self.problem.body_case(b, upper), element_size)
+            if dense and upper is not None and len(section.upper) != len(upper.vertices):  # pragma: no cover
+                raise MeshError(f"{self.problem.label(b)}: its upper polyline with the resting nodes lost points")
+            return densified(section, shared) if dense else section
         except SectionDeformError as exc:
             raise renamed(exc, self.problem.label(b)) from None
 
     def _build(self, b: int, element_size) -> StackedBody:
         """Body ``b``'s section, with the lower nodes of the bodies resting on it in its upper polyline."""
         lay = self.layout
-        base = self._section(b, None, element_size)
-        original = np.array(base.upper)
         resting = lay.resting_on(b)
+        base = self._section(b, None, element_size, dense=not resting)
+        original = np.array(base.upper[base.characteristic_index])
         if not resting:
             body = StackedBody(base, original)
         else:
@@ -168,13 +189,18 @@ class Stack:
             else:
                 node_index[(what[1], what[2])] = j
         upper = np.array(points)
-        section = self._section(b, Polyline(upper), element_size)
-        if len(section.upper) != len(upper):  # pragma: no cover - a polyline's points are its characteristic points
-            raise MeshError(f"{self.problem.label(b)}: its upper polyline with the resting nodes lost points")
-        body = StackedBody(section, original)
-        body.kept = np.array([kept_index.get(k, -1) for k in range(m)])
+        # A segment between two consecutive nodes of one resting body is shared: no points put in it.
+        shared = np.zeros(len(upper) - 1, dtype=bool)
         for (r, i), j in node_index.items():
-            self.bodies[r].where[i] = j
+            k = node_index.get((r, i + 1))
+            if k is not None and abs(k - j) == 1:
+                shared[min(j, k)] = True
+        section = self._section(b, Polyline(upper), element_size, shared=shared)
+        ch = section.characteristic_index
+        body = StackedBody(section, original)
+        body.kept = np.array([ch[kept_index[k]] if k in kept_index else -1 for k in range(m)])
+        for (r, i), j in node_index.items():
+            self.bodies[r].where[i] = ch[j]
         # The points taken out: their place on the resting body's lower polyline (segment, fraction).
         for k, (r, run) in sorted(taken_by.items()):
             nodes = self.bodies[r].section.lower[run]
@@ -184,7 +210,8 @@ class Stack:
             t = float(np.clip((along - cum[s]) / (cum[s + 1] - cum[s]), 0.0, 1.0))
             body.taken.append((k, r, int(run[s]), t))
         # Contour order: the prepared upper points and the taken-out ones, along the original upper.
-        all_params = np.concatenate((point_params, params[[k for k, *_ in body.taken]]))
+        dense_params = np.interp(np.arange(len(section.upper)), ch, point_params)
+        all_params = np.concatenate((dense_params, params[[k for k, *_ in body.taken]]))
         body.contour_order = np.argsort(all_params, kind="stable")
         return body
 
@@ -246,7 +273,8 @@ class Stack:
             "kept": kept, "kept_index": body.kept[kept], "taken_groups": groups,
             "initial_lower": np.array(sec.lower),
             "initial_contour": initial_contour,
-            "volume_initial": volume(sec.contour, a.revolution.axis) if a.revolution is not None else None,
+            "area_initial": abs(self.initial_quantity(b, AreaRatio(1.0))),
+            "volume_initial": abs(self.initial_quantity(b, VolumeRatio(1.0, a.revolution.axis))) if a.revolution is not None else None,
             "axis_side": side,
             "taken_k": taken[:, 0].astype(np.int64),
             "inserted": inserted, "anchor": anchor,

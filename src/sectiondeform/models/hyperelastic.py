@@ -261,6 +261,7 @@ class HyperelasticPrepared(Prepared):
     def __init__(self, stack: Stack, options: HyperelasticOptions):
         a = stack.problem
         self.problem = a
+        self.stack = stack
         self.layout = stack.layout
         bodies = stack.bodies
         self.sections = [b.section for b in bodies]
@@ -352,8 +353,7 @@ class HyperelasticPrepared(Prepared):
 
     def _law_offset(self, b: int, ring: np.ndarray, movable: np.ndarray, law) -> tuple[np.ndarray, float]:
         """Body ``b``'s contour ``ring`` with its movable points offset to meet ``law`` exactly (:func:`offset_to_area`)."""
-        sec = self.sections[b]
-        return offset_to_area(ring, movable, sec.orientation * law.target_area(sec.area))
+        return offset_to_area(ring, movable, law.target(self.stack.initial_quantity(b, law)))
 
     def _body_mesh(self, b: int, geom, unknowns: int, through: float) -> _BodyMesh:
         mesh = self.mesh

@@ -164,4 +164,4 @@ class RevolutionPrepared(HyperelasticPrepared):
         return physics
 
     def _law_offset(self, b: int, ring: np.ndarray, movable: np.ndarray, law) -> tuple[np.ndarray, float]:
-        return offset_to_law(ring, movable, law, law.target(law.quantity(self.sections[b].contour)))
+        return offset_to_law(ring, movable, law, law.target(self.stack.initial_quantity(b, law)))

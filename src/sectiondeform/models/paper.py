@@ -38,6 +38,7 @@ from ..applicability import (
     aspect_change,
     bend_change,
     edges,
+    extent_refusal,
     extent_warnings,
     overhang,
     stretch_range,
@@ -54,7 +55,7 @@ from ..layers import (
     node_frames,
     plan_extension,
 )
-from ..locate import locate
+from ..locate import Location, locate, locate_some
 from ..section import Section
 from ..stack import Stack, Target, renamed
 from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions, Placed, Placement, Prepared
@@ -192,6 +193,41 @@ def _column_matrix(weights: np.ndarray, columns: np.ndarray, n: int) -> np.ndarr
     return out
 
 
+def _upper_location(mesh, section: Section) -> Location:
+    """Where every upper point sits in the layered mesh, as bilinear weights of mesh nodes.
+
+    The mesh is grown to cover the characteristic points; a point put between
+    two of them (:func:`~sectiondeform.section.densified`) that the mesh
+    does not reach (a top spanning a hollow of the lower curve, above the
+    layers that the corners need) is placed on the chord between the nearest
+    points located on either side: its weights are theirs, in proportion.
+    The rows have 8 weights (4 zero for a located point).
+    """
+    upper = np.asarray(section.upper)
+    ch = section.characteristic_index
+    found_loc, found = locate_some(mesh.points, mesh.quads, upper)
+    if not found[ch].all():  # a characteristic point the mesh misses: the refusal names it
+        locate(mesh.points, mesh.quads, upper[ch])
+    p = len(upper)
+    nodes = np.zeros((p, 8), dtype=np.int64)
+    weights = np.zeros((p, 8))
+    elements = np.full(p, -1, dtype=np.int64)
+    local = np.zeros((p, 2))
+    nodes[found, :4] = nodes[found, 4:] = found_loc.nodes
+    weights[found, :4] = found_loc.weights
+    elements[found], local[found] = found_loc.elements, found_loc.local
+    missing = np.flatnonzero(~found)
+    if missing.size:
+        idx = np.flatnonzero(found)
+        before = idx[np.searchsorted(idx, missing) - 1]
+        after = idx[np.searchsorted(idx, missing)]
+        cum = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(upper, axis=0).T))))
+        t = ((cum[missing] - cum[before]) / (cum[after] - cum[before]))[:, None]
+        nodes[missing, :4], nodes[missing, 4:] = nodes[before, :4], nodes[after, :4]
+        weights[missing, :4], weights[missing, 4:] = (1.0 - t) * weights[before, :4], t * weights[after, :4]
+    return Location(elements, local, nodes, weights)
+
+
 def _frames_from_normals(normals: np.ndarray, orientation: int) -> tuple[np.ndarray, np.ndarray]:
     n = normals / np.hypot(normals[:, 0], normals[:, 1])[:, None]
     t = orientation * np.column_stack((n[:, 1], -n[:, 0]))
@@ -206,12 +242,13 @@ class PaperSection:
         self._lower_polyline_length = float(np.hypot(*np.diff(section.lower, axis=0).T).sum())
         size = section.size
         h = section.element_size
-        self.extension = plan_extension(section.lower, section.orientation, section.upper, h)
+        characteristic = section.upper[section.characteristic_index]
+        self.extension = plan_extension(section.lower, section.orientation, characteristic, h)
         base = extend_base(section.lower, *self.extension)
-        mesh = grow_mesh(base, h, section.orientation, section.upper, tol=1e-9 * size)
+        mesh = grow_mesh(base, h, section.orientation, characteristic, tol=1e-9 * size)
         self.mesh = mesh
         self.quads = mesh.quads
-        self.location = locate(mesh.points, mesh.quads, section.upper)
+        self.location = _upper_location(mesh, section)
         nodes = mesh.nodes
         t0, n0 = node_frames(nodes[0], section.orientation)
         rel = nodes - nodes[0][None]
@@ -242,19 +279,6 @@ class PaperSection:
         self.height = section.height
         self.overhang = overhang(section.lower, section.upper)
         self.edges = edges(self.mesh.nodes)  # the initial elements' edge lengths, for the extent figures
-        self._initial: dict = {}  # each law's quantity of the initial contour (a drag asks it at every move)
-
-    def initial_quantity(self, law: Law) -> float:
-        """``law.quantity`` of the initial contour, computed once per law (laws are frozen values)."""
-        try:
-            return self._initial[law]
-        except KeyError:
-            if len(self._initial) >= 16:  # a slider's many ratios: keep the memory bounded
-                self._initial.clear()
-            value = self._initial[law] = law.quantity(self.section.contour)
-            return value
-        except TypeError:  # an unhashable law: nothing kept
-            return law.quantity(self.section.contour)
 
     def extended_target(self, target_nodes: np.ndarray) -> np.ndarray:
         """The target nodes with the virtual base nodes beyond A' and B', ``(n + p + q, 2)``.
@@ -283,13 +307,14 @@ class PaperSection:
         """Upper points' offsets from the target for a unit height scale, ``(m, 2)``."""
         return self._map(1, t) + self._map(2, n)
 
-    def place(self, target_nodes: np.ndarray, law: Law, start=None) -> Placement:
+    def place(self, target_nodes: np.ndarray, law: Law, initial: float) -> Placement:
         """Build the final mesh on ``target_nodes`` ((n, 2), units) and solve the law's height scale.
 
-        ``start`` is ignored: the placement is closed-form.
+        ``initial`` is the law's quantity of the body's curves, signed
+        (:meth:`~sectiondeform.stack.Stack.initial_quantity`): the placed
+        contour meets ``law.target(initial)``.
         """
         sec = self.section
-        initial = self.initial_quantity(law)
         wanted = law.target(initial)
         real = target_nodes
         target_nodes = self.extended_target(real)
@@ -346,6 +371,9 @@ class PaperSection:
             stretch_max=stretch[1],
             aspect_change=aspect_change(self.edges, final_edges),
         )
+        refusal = extent_refusal(info.height_scale, info.aspect_change)
+        if refusal:
+            raise MeshError(refusal)
         return Placement(
             upper=upper,
             final_mesh=final,
@@ -430,7 +458,7 @@ class PaperPrepared(Prepared):
                 nodes[on] = images[j][where]
             try:
                 with np.errstate(all="ignore"):
-                    placement = self.bodies[b].place(nodes, laws[b])
+                    placement = self.bodies[b].place(nodes, laws[b], stack.initial_quantity(b, laws[b]))
             except (MeshError, LawError, GeometryError) as exc:
                 raise renamed(exc, stack.problem.label(b)) from exc
             lowers[b], images[b], placements[b] = nodes, placement.upper, placement
