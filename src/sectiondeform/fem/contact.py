@@ -415,6 +415,8 @@ class PartContact:
         The largest penetration left, units.
     pressure : (m, 3) float64 ndarray
         ``[x, y, p]`` at the contact's Gauss points, in order along the part's outline.
+    outline : (k, 2) float64 ndarray
+        The part's outline where it is (for figures; not written to JSON).
     """
 
     name: str
@@ -424,6 +426,7 @@ class PartContact:
     pressure_mean: float
     penetration_max: float
     pressure: np.ndarray
+    outline: np.ndarray = None
 
     def to_json(self) -> dict:
         """The result's ``rigid[]`` object."""
@@ -453,7 +456,7 @@ def contact_figures(physics: ContactPhysics, x: np.ndarray, names, ring: float =
     """
     b = physics.boundary
     out = []
-    for name, (idx, p, n, g, s, _) in zip(names, physics.evaluate(x)):
+    for name, obs, (idx, p, n, g, s, _) in zip(names, physics.obstacles, physics.evaluate(x)):
         w = b.weight[idx]
         force = -ring * (p * w) @ n if len(idx) else np.zeros(2)
         xe = x[b.nodes[idx]]
@@ -470,6 +473,7 @@ def contact_figures(physics: ContactPhysics, x: np.ndarray, names, ring: float =
             pressure_mean=float((true * dl).sum() / length) if length > 0 else 0.0,
             penetration_max=float(np.maximum(g, 0.0).max(initial=0.0)),
             pressure=np.column_stack((xq, true))[order],
+            outline=obs.ring + obs.at(physics.t),
         ))
     return out
 
