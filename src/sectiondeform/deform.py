@@ -41,6 +41,7 @@ from .curves import Curve, Polyline, as_points, polygon_area
 from .errors import CaseError, GeometryError, LawError, MeshError
 from .laws import Law
 from .models import get_model
+from .models.hyperelastic_contact import contact_results
 from .pappus import signed_distance, volume
 from .problem import V1, Problem
 from .result import RESULT_V1, RESULT_V2, BodyResult, Result, ResultQuality
@@ -299,11 +300,14 @@ class Deformer:
         problem = self.problem
         label = problem.label
         warnings += [f"{label(b)}: {w}" if label(b) else w for b in range(len(laws)) for w in placed.placements[b].warnings]
+        rigid, support_force, history, contact_warnings = contact_results(placed.state)
+        warnings += contact_warnings
         result = Result(
             name=problem.name, units=problem.units, model=self.model_name, bodies=bodies,
             timings={"prepare_s": self.prepare_seconds, "place_s": time.perf_counter() - t0}, warnings=tuple(warnings),
             axis=problem.revolution.axis if problem.revolution is not None else None,
             dialect=RESULT_V1 if problem.dialect == V1 else RESULT_V2, state=placed.state,
+            rigid=rigid, support_force=support_force, history=history,
         )
         if target is None and target_nodes is None:
             result = self._check_not_turned_over(result)

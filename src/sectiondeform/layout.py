@@ -8,6 +8,8 @@
   diagonal); otherwise the error gives the gap and its place;
 - bodies' interiors do not overlap (the error gives the overlap area);
 - no body rests on itself through others (the error names the cycle);
+- no rigid part starts (at its contour less its travel) inside a body
+  (touching is allowed; the error gives the overlap area and its place);
 - a piece shared by two bodies is in exactly one body's lower curve (a
   piece in both upper curves, or in both lower curves, is refused);
 
@@ -195,9 +197,33 @@ def layout(problem) -> Layout:
                     "bodies may share pieces of their outlines, not their insides"
                 )
 
+    _check_rigid_start(problem, polygons, tol)
     order = _resting_order(foundations, label)
     return Layout(order=order, foundations=tuple(foundations), on_support=tuple(on_support), tolerance=float(tol),
                   fine={"support": support, "uppers": tuple(uppers)})
+
+
+def _check_rigid_start(problem, polygons, tol: float) -> None:
+    """Refuse a rigid part whose start position (contour less travel) overlaps a body's interior.
+
+    Touching is allowed: an overlap of area up to the contact tolerance
+    times the shorter perimeter is taken as touching, as between bodies.
+    """
+    for k, part in enumerate(getattr(problem, "rigid", ())):
+        ring = _fine(part.contour, 0.25 * tol) - np.asarray(part.travel)
+        poly = shapely.Polygon(ring)
+        if not poly.is_valid:
+            poly = shapely.make_valid(poly)
+        for i, body in enumerate(polygons):
+            overlap = shapely.intersection(poly, body)
+            if overlap.area > tol * min(poly.length, body.length):
+                c = shapely.get_coordinates(overlap.representative_point())[0]
+                who = problem.label(i) or "the body"
+                raise GeometryError(
+                    f"rigid[{k}] {part.name!r}: its start position (contour less travel) overlaps {who} "
+                    f"(area {overlap.area:.6g} near {_where(c)}); a part starts outside the bodies: "
+                    "lengthen its travel or move its contour"
+                )
 
 
 def check_axis(problem) -> None:

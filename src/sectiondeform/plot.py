@@ -170,6 +170,7 @@ def draw_result(result, fig=None):
         axes[2].plot(*body.lower.T, color=c["target"], lw=2)
         axes[3].fill(*body.contour.T, color=c["deformed"], alpha=0.6, label=_deformed_label(result, body))
         axes[3].plot(*_closed(body.contour).T, color=c["deformed"], lw=1.2)
+    draw_rigid(axes[2:], result)
     note = ""
     if result.axis is not None:
         points = np.concatenate([np.concatenate((b.initial_contour, b.contour)) for b in bodies])
@@ -185,6 +186,39 @@ def draw_result(result, fig=None):
         ax.autoscale_view()
         ax.grid(True, lw=0.3, alpha=0.5)
     fig.suptitle(_suptitle(result) + note)
+    return fig
+
+
+def draw_rigid(axes, result) -> None:
+    """Each rigid part where it ends (grey, hatched) and the contact pressure along the contact (coloured points)."""
+    if not result.rigid:
+        return
+    top = max(part.pressure_max for part in result.rigid) or 1.0
+    for part in result.rigid:
+        ring = _closed(part.outline)
+        for ax in axes:
+            ax.fill(*ring.T, facecolor="0.6", edgecolor="0.3", hatch="//", alpha=0.5, lw=0.8)
+        p = part.pressure
+        if len(p):
+            axes[-1].scatter(p[:, 0], p[:, 1], c=p[:, 2], cmap="inferno", vmin=0.0, vmax=top, s=10, zorder=5,
+                             label=f"{part.name}: pressure max {part.pressure_max:.3g}, contact {part.length:.3g} {result.units}")
+
+
+def draw_load_deflection(result, fig=None):
+    """The load–deflection curve of a result with rigid parts: each part's force along its travel against the load fraction."""
+    if fig is None:
+        fig = new_figure(figsize=(6, 4), layout="constrained")
+    ax = fig.subplots()
+    travel = np.array([s.travel for s in result.history])
+    for name in [part.name for part in result.rigid] + ["support"]:
+        f = np.array([s.forces[name] for s in result.history])
+        ax.plot(travel, np.hypot(f[:, 0], f[:, 1]), "o-", ms=3, label=name)
+    per = "whole ring" if result.axis is not None else f"per {result.units}"
+    ax.set_xlabel("fraction of the travel")
+    ax.set_ylabel(f"force ({per})")
+    ax.grid(True, lw=0.3, alpha=0.5)
+    ax.legend(fontsize=8)
+    ax.set_title(f"{result.name}: load–deflection")
     return fig
 
 

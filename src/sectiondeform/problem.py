@@ -19,8 +19,11 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 from dataclasses import dataclass
 from functools import cached_property
+
+import numpy as np
 
 from .curves import Curve
 from .errors import CaseError
@@ -29,7 +32,7 @@ from .layout import Layout, check_axis, layout, problem_size
 from .options import Options, options_from_json
 from .section import SectionCurves
 
-__all__ = ["Problem", "Body", "Revolution", "DIALECTS", "V1", "V2"]
+__all__ = ["Problem", "Body", "Revolution", "Rigid", "DIALECTS", "V1", "V2"]
 
 V1 = "section-case/1"
 V2 = "section-case/2"
@@ -51,6 +54,61 @@ class Revolution:
     def to_json(self) -> dict:
         """The ``revolution`` object."""
         return {"axis": [list(p) for p in self.axis]}
+
+
+@dataclass(frozen=True, eq=False)
+class Rigid:
+    """A rigid part the bodies may touch but never enter (a shaft, a housing, a gland, a plate).
+
+    Attributes
+    ----------
+    name : str
+        Unique among the problem's rigid parts.
+    contour : Curve
+        The part's closed outline where it **ends up**, units (for a body of
+        revolution, its half-plane section).
+    travel : (float, float)
+        The straight displacement by which it arrives, units: it starts at
+        ``contour - travel``, where it must not overlap a body (touching is
+        allowed). Support and rigid parts move together as one loading.
+    friction : float
+        Coulomb coefficient between the part and every body, >= 0.
+    """
+
+    name: str
+    contour: Curve
+    travel: tuple = (0.0, 0.0)
+    friction: float = 0.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "travel", tuple(float(v) for v in self.travel))
+        object.__setattr__(self, "friction", float(self.friction))
+
+    def to_json(self) -> dict:
+        """The part's object of the case format."""
+        return {"name": self.name, "contour": self.contour.to_json(), "travel": list(self.travel), "friction": self.friction}
+
+
+def _check_rigid(i: int, part) -> None:
+    """Refuse, in one line naming ``rigid[i]``, a part that is not a Rigid, unnamed, open, or with a bad travel or friction."""
+    field = f"rigid[{i}]"
+    if not isinstance(part, Rigid):
+        raise CaseError(field, f"expected a Rigid, got {type(part).__name__}")
+    if not isinstance(part.name, str) or not part.name:
+        raise CaseError(f"{field}.name", f"expected a non-empty string, got {part.name!r}")
+    if not isinstance(part.contour, Curve):
+        raise CaseError(f"{field}.contour", f"expected a curve, got {type(part.contour).__name__}")
+    a, b = part.contour.ends
+    size = float(np.hypot(*np.ptp(part.contour.at_fractions(np.linspace(0.0, 1.0, 65)), axis=0)))
+    if not size > 0:
+        raise CaseError(f"{field}.contour", "has no extent; give the part's closed outline")
+    gap = float(np.hypot(*(np.asarray(a) - np.asarray(b))))
+    if gap > 1e-9 * size:
+        raise CaseError(f"{field}.contour", f"is not closed: its ends are {gap:.6g} apart; end the outline where it starts")
+    if len(part.travel) != 2 or not all(math.isfinite(v) for v in part.travel):
+        raise CaseError(f"{field}.travel", f"expected two finite numbers [dx, dy], got {list(part.travel)!r}")
+    if not (math.isfinite(part.friction) and part.friction >= 0.0):
+        raise CaseError(f"{field}.friction", f"expected a Coulomb coefficient >= 0, got {part.friction!r}")
 
 
 @dataclass(frozen=True, eq=False)
@@ -110,8 +168,11 @@ class Problem:
         The case format it is written in: ``"section-case/1"`` for one body
         whose lower curve is the support (the paper's own form), else
         ``"section-case/2"``.
+    rigid : tuple of Rigid
+        Rigid parts in contact with the bodies' free boundaries (none by default).
     layout : Layout
-        How the bodies rest on each other, checked when the problem is built.
+        How the bodies rest on each other, checked when the problem is built
+        (and that no rigid part starts inside a body).
     """
 
     support: Curve
@@ -122,6 +183,7 @@ class Problem:
     options: Options = Options()
     revolution: Revolution | None = None
     dialect: str = V2
+    rigid: tuple = ()
     layout: Layout = dataclasses.field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
@@ -142,6 +204,15 @@ class Problem:
                 raise CaseError(f"bodies[{i}].name", f"{body.name!r} is also the name of bodies[{seen[body.name]}]; give every body its own name")
             seen[body.name] = i
         object.__setattr__(self, "bodies", tuple(self._bound(i, b) for i, b in enumerate(self.bodies)))
+        object.__setattr__(self, "rigid", tuple(self.rigid))
+        if self.rigid and self.dialect == V1:
+            raise CaseError("rigid", "section-case/1 has no rigid parts; write the case as section-case/2")
+        names: dict[str, int] = {}
+        for i, part in enumerate(self.rigid):
+            _check_rigid(i, part)
+            if part.name in names:
+                raise CaseError(f"rigid[{i}].name", f"{part.name!r} is also the name of rigid[{names[part.name]}]; give every part its own name")
+            names[part.name] = i
         object.__setattr__(self, "layout", layout(self))
         if self.revolution is not None:
             check_axis(self)
@@ -246,7 +317,8 @@ class Problem:
         if key is None:
             whole = [self.dialect, self.name, self.units, self.support.to_json(), self.target.to_json(),
                      [b.to_json() for b in self.bodies], self.options.to_json(),
-                     self.revolution.to_json() if self.revolution is not None else None]
+                     self.revolution.to_json() if self.revolution is not None else None,
+                     [r.to_json() for r in self.rigid]]
             key = json.dumps(whole, sort_keys=True)
             object.__setattr__(self, "_json_key", key)
         return key

@@ -181,6 +181,12 @@ class Result:
     state : object, optional
         The model's solved state of the whole problem, for
         ``Deformer.deform(..., start=result)``; not written to JSON.
+    rigid : tuple of PartContact
+        Each rigid part's force and contact (:class:`~sectiondeform.fem.contact.PartContact`), for a problem with rigid parts.
+    support_force : (float, float) or None
+        The force the bodies exert on the support, for a problem with rigid parts.
+    history : tuple of HistoryStep
+        The forces at each load step, start to end (a load–deflection curve).
     """
 
     name: str
@@ -192,6 +198,9 @@ class Result:
     axis: tuple | None = None
     dialect: str = RESULT_V2
     state: object = field(default=None, repr=False)
+    rigid: tuple = ()
+    support_force: tuple | None = None
+    history: tuple = ()
 
     def body(self, name: str) -> BodyResult:
         """The result of the body called ``name``."""
@@ -268,4 +277,8 @@ class Result:
         out.update({"bodies": bodies, "model": self.model, "timings": self.timings, "warnings": list(self.warnings)})
         if self.axis is not None:
             out["revolution"] = {"axis": [list(map(float, p)) for p in self.axis]}
+        if self.rigid:
+            out["support"] = {"force": [float(v) for v in self.support_force]}
+            out["rigid"] = [part.to_json() for part in self.rigid]
+            out["history"] = [step.to_json() for step in self.history]
         return out

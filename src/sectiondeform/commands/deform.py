@@ -88,6 +88,22 @@ def result_options(args, problem) -> dict:
     return options
 
 
+def contact_lines(result) -> list[str]:
+    """One line per rigid part (its force, contact length, peak and mean pressure, penetration) and the support's force."""
+    if not result.rigid:
+        return []
+    u = result.units
+    per = "ring" if result.axis is not None else f"per {u}"
+    lines = []
+    for part in result.rigid:
+        fx, fy = part.force
+        lines.append(f"rigid {part.name:<8} force [{fx:.6g}, {fy:.6g}] ({per}), contact {part.length:.4g} {u}, pressure "
+                     f"max {part.pressure_max:.4g} mean {part.pressure_mean:.4g}, penetration {part.penetration_max:.3g} {u}")
+    fx, fy = result.support_force
+    lines.append(f"support        force [{fx:.6g}, {fy:.6g}] ({per}), {len(result.history)} load steps")
+    return lines
+
+
 def run(args) -> int:
     check_outputs(args)
     check_plot_field_args(args)
@@ -102,6 +118,8 @@ def run(args) -> int:
     for line in report:
         print(f"  {line}")
     print(summary(result, warnings=False))
+    for line in contact_lines(result):
+        print(f"  {line}")
     print(f"  wrote {', '.join(str(p) for p in [args.output, *meshes, *([args.plot] if args.plot else [])])}")
     print_warnings(result.warnings)
     return 0

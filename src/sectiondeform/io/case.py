@@ -21,16 +21,17 @@ from ..errors import CaseError
 from ..laws import law_from_json
 from ..materials import MATERIAL_MODELS as RUBBERS
 from ..options import is_user_key, options_from_json, unknown_key
-from ..problem import V1, V2, Body, Problem, Revolution
+from ..problem import V1, V2, Body, Problem, Revolution, Rigid
 from .units import mm_per_unit
 
 __all__ = [
     "case_from_dict", "case_to_dict", "load_case", "read_json", "revolution_from_json", "material_from_json",
-    "V1_KEYS", "V2_KEYS", "BODY_KEYS", "MATERIAL_KEYS", "MATERIAL_MODELS",
+    "V1_KEYS", "V2_KEYS", "BODY_KEYS", "RIGID_KEYS", "MATERIAL_KEYS", "MATERIAL_MODELS",
 ]
 
 V1_KEYS = ("format", "name", "units", "lower", "upper", "target", "law", "options", "note")
-V2_KEYS = ("format", "name", "units", "support", "target", "revolution", "bodies", "options", "note")
+V2_KEYS = ("format", "name", "units", "support", "target", "revolution", "bodies", "rigid", "options", "note")
+RIGID_KEYS = ("name", "contour", "travel", "friction", "note")
 BODY_KEYS = ("name", "lower", "upper", "law", "material", "note")
 MATERIAL_KEYS = ("model", "shear_modulus", "bulk_to_shear", "bulk_modulus", "c10", "c01", "c20", "c30")
 MATERIAL_MODELS = tuple(RUBBERS)
@@ -100,6 +101,9 @@ def case_from_dict(data) -> Problem:
         raise CaseError("bodies", f"expected a non-empty list of bodies, got {raw!r}")
     axis = revolution.axis if revolution is not None else None
     bodies = [_body_from_json(b, f"bodies[{i}]", axis) for i, b in enumerate(raw)]
+    rigid = data.get("rigid", [])
+    if not isinstance(rigid, list):
+        raise CaseError("rigid", f"expected a list of rigid parts, got {rigid!r}")
     return Problem(
         support=curve_from_json(data["support"], "support"),
         target=curve_from_json(data["target"], "target"),
@@ -109,7 +113,29 @@ def case_from_dict(data) -> Problem:
         options=options,
         revolution=revolution,
         dialect=V2,
+        rigid=tuple(_rigid_from_json(r, f"rigid[{i}]") for i, r in enumerate(rigid)),
     )
+
+
+def _rigid_from_json(obj, field: str) -> Rigid:
+    """Check one ``rigid`` object: a name, a closed ``contour``, a ``travel`` [dx, dy], a ``friction`` >= 0."""
+    if not isinstance(obj, dict):
+        raise CaseError(field, f"expected a rigid part object, got {type(obj).__name__}")
+    for key in obj:
+        if not isinstance(key, str) or not (key in RIGID_KEYS or is_user_key(key)):
+            raise unknown_key(field, key, RIGID_KEYS)
+    for key in ("name", "contour"):
+        if key not in obj:
+            raise CaseError(f"{field}.{key}", "missing; a rigid part needs name and contour (travel and friction optional)")
+    name = obj["name"]
+    if not isinstance(name, str) or not name:
+        raise CaseError(f"{field}.name", f"expected a non-empty string, got {name!r}")
+    travel = obj.get("travel", [0.0, 0.0])
+    if not isinstance(travel, list) or len(travel) != 2:
+        raise CaseError(f"{field}.travel", f"expected two finite numbers [dx, dy], got {travel!r}")
+    travel = tuple(number(v, f"{field}.travel[{k}]") for k, v in enumerate(travel))
+    friction = number(obj.get("friction", 0.0), f"{field}.friction", low=0.0)
+    return Rigid(name=name, contour=curve_from_json(obj["contour"], f"{field}.contour"), travel=travel, friction=friction)
 
 
 def _body_from_json(obj, field: str, axis=None) -> Body:
@@ -180,6 +206,8 @@ def case_to_dict(problem: Problem) -> dict:
         if problem.revolution is not None:
             out["revolution"] = problem.revolution.to_json()
         out["bodies"] = [b.to_json() for b in problem.bodies]
+        if problem.rigid:
+            out["rigid"] = [r.to_json() for r in problem.rigid]
     options = problem.options.to_json()
     if options:
         out["options"] = options

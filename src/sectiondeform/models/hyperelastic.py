@@ -238,6 +238,7 @@ class HyperelasticState:
     materials: tuple = ()
     pressure_dofs: tuple = ()
     growth: bool = False
+    contact: object = None  # a ContactState with rigid parts (models/hyperelastic_contact.py)
 
 
 class HyperelasticPrepared(Prepared):
@@ -317,6 +318,11 @@ class HyperelasticPrepared(Prepared):
         self.bodies = tuple(self._body_mesh(b, geom, len(pattern.free), options.elements_through_thickness)
                                  for b in range(len(a.bodies)))
         self.pressure_dofs = tuple(2 * n + mesh.pressure_cells[bm.elements] for bm in self.bodies)
+        self.contact = None
+        if a.rigid:  # rigid parts: the contact terms and the loading (hyperelastic_contact.py)
+            from .hyperelastic_contact import Contact
+
+            self.contact = Contact(self)
 
     @staticmethod
     def _ordering(mesh) -> str:
@@ -451,7 +457,12 @@ class HyperelasticPrepared(Prepared):
         physics, solver = self._problem(stretches)
         base = self._base(xd, start, stretches)
         a0, f0 = solver.assemblies, solver.factorisations
-        state = solver.solve(base, xd.ravel(), math.e)
+        contact = None
+        if self.contact is not None:  # rigid parts: loaded with the support, the contact carried by the state
+            warm = start.contact if start is not None and base is start.state else None
+            state, contact = self.contact.solve(physics, solver, base, xd.ravel(), math.e, warm)
+        else:
+            state = solver.solve(base, xd.ravel(), math.e)
         f = state.fields if state.fields is not None else physics.fields(state.z, state.lz)
 
         def info(b, correction):
@@ -462,7 +473,8 @@ class HyperelasticPrepared(Prepared):
                 area_correction=float(correction), out_of_plane_stretch=float(stretches[b]) if self.plane else 1.0,
             )
 
-        return Placed(*self._finish(curve, laws, state.z, f, info), HyperelasticState(state, stretches, self.materials, self.pressure_dofs, not self.plane))
+        return Placed(*self._finish(curve, laws, state.z, f, info),
+                      HyperelasticState(state, stretches, self.materials, self.pressure_dofs, not self.plane, contact))
 
     def preview(self, curve, laws: tuple, start: HyperelasticState | None = None) -> Placed:
         """Drag preview: one linear step from ``start`` (or the undeformed bodies), no new factorisation.

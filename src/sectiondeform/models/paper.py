@@ -44,7 +44,7 @@ from ..applicability import (
     stretch_range,
 )
 from ..curves import cross as _cross
-from ..errors import GeometryError, LawError, MeshError, SectionDeformError
+from ..errors import CaseError, GeometryError, LawError, MeshError, SectionDeformError
 from ..laws import Law
 from ..layers import (
     SMOOTHING_WEIGHTS,
@@ -472,6 +472,8 @@ class PaperModel(Model):
     options_type = PaperOptions
 
     def prepare(self, stack: Stack, options: PaperOptions | None = None) -> PaperPrepared:
+        if stack.problem.rigid:
+            raise CaseError("rigid", 'the paper model has no mechanics for rigid parts in contact; use options.model "hyperelastic"')
         return PaperPrepared(stack)
 
 

@@ -1,0 +1,483 @@
+r"""Frictionless contact of the bodies' free boundary with rigid parts: penalty with augmented-Lagrangian updates.
+
+The method (as FElupe's rigid-obstacle contact and the penalty contact of
+CalculiX, with Uzawa's augmented-Lagrangian updates; the semismooth active
+set of Hüeber, Stadler and Wohlmuth 2008 was the other choice, but it adds
+multiplier unknowns and changes the sparse pattern with the active set):
+
+* the contact is integrated at Gauss points of the mesh's free boundary
+  edges (quadratic, isoparametric: :data:`GAUSS` points per edge, in the
+  reference configuration), not at its nodes;
+* at each point ``x``, for each rigid part (a closed polygon at its current
+  position), the signed penetration ``g`` (the distance to the part's
+  outline, positive inside) and the part's outward normal ``n`` at the
+  closest point; the pressure per reference length
+  ``p = max(0, λ + ε g)``; the energy ``∫ (max(0, λ + ε g)² − λ²) / (2 ε) ds0``
+  gives the residual ``R_a = −∫ p n N_a ds0`` and the tangent
+  ``K_ab = ∫ [p > 0] ε n nᵀ N_a N_b ds0`` (the curvature term of a vertex
+  of the outline left out: a quasi-Newton tangent there);
+* ``ε = PENALTY μ / h``, ``μ`` the shear modulus of the edge's body and
+  ``h`` its element size; after a solve ``λ ← p`` (an Uzawa update) and
+  the solve is repeated until the largest penetration is at most
+  :data:`PENETRATION_FRACTION` of the element size;
+* an edge's three nodes belong to one cell, so the contact tangent adds to
+  that cell's element matrix: the sparse pattern is the one without contact.
+
+For a body of revolution every integral is per radian, weighted by the
+initial distance from the axis (as :mod:`~sectiondeform.fem.axisymmetric`);
+the forces reported are the whole ring's, 2π times.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Boundary", "Obstacle", "ContactPhysics", "PartContact", "free_boundary", "contact_figures",
+           "GAUSS", "PENALTY", "PENETRATION_FRACTION"]
+
+GAUSS = 4
+"""Gauss points per boundary edge."""
+PENALTY = 1000.0
+"""The penalty ε in units of the body's shear modulus over its element size."""
+PENETRATION_FRACTION = 1e-3
+"""Augmented-Lagrangian updates go on until the largest penetration is at most this fraction of the element size."""
+MAX_UPDATES = 8
+"""At most this many augmented-Lagrangian updates per solve."""
+SMOOTHING = 1e-3
+"""The ramp ``max(0, u)`` is rounded over ``|u| < SMOOTHING μ`` (a quadratic there), so Newton does not cycle on a point at the contact's edge."""
+SMOOTH_DEG = 15.0
+"""At a vertex of a part's outline turning by less than this, the normal turns continuously (a polygon drawn for a curve)."""
+
+
+def ramp(u: np.ndarray, c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The rounded ramp and its slope: ``0`` below ``-c``, ``(u + c)² / (4 c)`` within ``c``, ``u`` above.
+
+    Examples
+    --------
+    >>> p, dp = ramp(np.array([-2.0, 0.0, 2.0]), np.ones(3))
+    >>> p.tolist(), dp.tolist()
+    ([0.0, 0.25, 2.0], [0.0, 0.5, 1.0])
+    """
+    mid = np.abs(u) < c
+    p = np.where(u >= c, u, 0.0)
+    slope = np.where(u >= c, 1.0, 0.0)
+    p = np.where(mid, (u + c) ** 2 / (4.0 * c), p)
+    slope = np.where(mid, (u + c) / (2.0 * c), slope)
+    return p, slope
+
+_GX, _GW = np.polynomial.legendre.leggauss(GAUSS)
+_S = 0.5 * (_GX + 1.0)  # Gauss points on [0, 1]
+_W = 0.5 * _GW
+_N = np.stack(((1 - _S) * (1 - 2 * _S), _S * (2 * _S - 1), 4 * _S * (1 - _S)), axis=1)  # (g, 3): corner a, corner b, mid
+_DN = np.stack((4 * _S - 3, 4 * _S - 1, 4 - 8 * _S), axis=1)
+_EDGES = np.array([[0, 1, 3], [1, 2, 4], [2, 0, 5]])  # a cell's edges: corner, corner, mid (counter-clockwise)
+
+
+@dataclass(frozen=True, eq=False)
+class Boundary:
+    """The Gauss points of the bodies' free boundary edges.
+
+    Attributes
+    ----------
+    nodes : (P, 3) int64 ndarray
+        The edge's nodes of each point (corner, corner, mid-edge).
+    shape : (P, 3) float64 ndarray
+        Their shape functions at the point.
+    dshape : (P, 3) float64 ndarray
+        Their derivatives along the edge's parameter.
+    weight : (P,) float64 ndarray
+        Gauss weight times the initial length element (times the initial
+        distance from the axis for a body of revolution), units (units² per radian).
+    cell : (P,) int64 ndarray
+        The cell holding the edge.
+    local : (P, 3) int64 ndarray
+        The edge's nodes' places in that cell (0 to 5).
+    penalty : (P,) float64 ndarray
+        ε at the point: ``PENALTY μ / h`` of the edge's body.
+    size : (P,) float64 ndarray
+        The edge's body's element size h, units.
+    """
+
+    nodes: np.ndarray
+    shape: np.ndarray
+    dshape: np.ndarray
+    weight: np.ndarray
+    cell: np.ndarray
+    local: np.ndarray
+    penalty: np.ndarray
+    size: np.ndarray
+
+
+def free_boundary(nodes: np.ndarray, cells: np.ndarray, body: np.ndarray, fixed_nodes: np.ndarray, mu: np.ndarray,
+                  size: np.ndarray, radius=None) -> Boundary:
+    """The Gauss points of the mesh's free boundary: edges of one cell only, not bonded to the support.
+
+    Parameters
+    ----------
+    nodes : (N, 2) float64 ndarray
+        Initial node positions, units.
+    cells : (E, 6) int64 ndarray
+        Counter-clockwise ``triangle6`` cells.
+    body : (E,) int64 ndarray
+        The body of each cell.
+    fixed_nodes : (d,) int64 ndarray
+        Nodes bonded to the support; an edge whose three nodes all are is not free.
+    mu, size : (B,) float64 ndarray
+        Each body's shear modulus and element size.
+    radius : callable, optional
+        Distance from the axis of points ``(..., 2)`` for a body of revolution.
+
+    Returns
+    -------
+    Boundary
+
+    Examples
+    --------
+    >>> pts = np.array([[0, 0], [1, 0], [0, 1], [.5, 0], [.5, .5], [0, .5]], float)
+    >>> b = free_boundary(pts, np.arange(6)[None], np.zeros(1, int), np.array([0, 1, 3]), np.ones(1), np.ones(1))
+    >>> len(b.weight), round(float(b.weight.sum()), 12) == round(1 + 2 ** 0.5, 12)
+    (8, True)
+    """
+    corners = cells[:, _EDGES[:, :2]].reshape(-1, 2)
+    key = np.sort(corners, axis=1)
+    _, inverse, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    is_fixed = np.zeros(len(nodes), bool)
+    is_fixed[fixed_nodes] = True
+    edge_nodes = cells[:, _EDGES].reshape(-1, 3)
+    free = (counts[inverse.ravel()] == 1) & ~is_fixed[edge_nodes].all(axis=1)
+    k = np.flatnonzero(free)
+    en = edge_nodes[k]
+    cell = np.repeat(k // 3, GAUSS)
+    local = np.repeat(_EDGES[k % 3], GAUSS, axis=0)
+    xe = nodes[en]  # (k, 3, 2)
+    pts = np.einsum("ga,kai->kgi", _N, xe)
+    tang = np.einsum("ga,kai->kgi", _DN, xe)
+    w = _W[None] * np.hypot(tang[..., 0], tang[..., 1])
+    if radius is not None:
+        w = w * radius(pts)
+    b = body[cell]
+    return Boundary(np.repeat(en, GAUSS, axis=0), np.tile(_N, (len(k), 1)), np.tile(_DN, (len(k), 1)), w.ravel(),
+                    cell, local, PENALTY * mu[b] / size[b], size[b])
+
+
+class Obstacle:
+    """A rigid part's closed outline as segments, with distances and normals of points.
+
+    Parameters
+    ----------
+    ring : (k, 2) float64 ndarray
+        The closed outline at the part's end position (first point repeated or not), units.
+    travel : (2,) float64 array_like
+        The part starts at ``ring - travel``.
+    """
+
+    def __init__(self, ring: np.ndarray, travel):
+        ring = np.asarray(ring, dtype=np.float64)
+        if np.allclose(ring[0], ring[-1]):
+            ring = ring[:-1]
+        area = 0.5 * float(np.sum(ring[:, 0] * np.roll(ring[:, 1], -1) - np.roll(ring[:, 0], -1) * ring[:, 1]))
+        if area < 0:
+            ring = ring[::-1]
+        self.ring = ring
+        self.travel = np.asarray(travel, dtype=np.float64)
+        self.a = ring
+        self.d = np.roll(ring, -1, axis=0) - ring
+        self.len2 = np.einsum("ki,ki->k", self.d, self.d)
+        length = np.sqrt(self.len2)
+        self.out = np.column_stack((self.d[:, 1], -self.d[:, 0])) / length[:, None]  # outward (counter-clockwise ring)
+        self.s0 = np.concatenate(([0.0], np.cumsum(length)[:-1]))
+        prev = np.roll(self.out, 1, axis=0)  # the segment ending at each vertex
+        mean = prev + self.out
+        turn = np.degrees(np.arccos(np.clip(np.einsum("ki,ki->k", prev, self.out), -1.0, 1.0)))
+        self.smooth = turn < SMOOTH_DEG  # per vertex
+        self.vnormal = mean / np.maximum(np.hypot(mean[:, 0], mean[:, 1]), 1e-300)[:, None]
+        self.lo, self.hi = ring.min(axis=0), ring.max(axis=0)
+
+    def at(self, t: float) -> np.ndarray:
+        """The outline's offset at load fraction ``t`` (0 start, 1 end), ``(2,)``."""
+        return -(1.0 - t) * self.travel
+
+    def query(self, x: np.ndarray, shift: np.ndarray, margin: float):
+        """Signed penetration, outward normal and place along the outline of points near the part.
+
+        Parameters
+        ----------
+        x : (P, 2) float64 ndarray
+            Points, units.
+        shift : (2,) float64 ndarray
+            The outline's offset from its end position.
+        margin : float
+            Points farther than this outside the outline's bounding box are skipped.
+
+        Returns
+        -------
+        idx : (m,) int64 ndarray
+            The points looked at.
+        g : (m,) float64 ndarray
+            Penetration, positive inside the part, units.
+        n : (m, 2) float64 ndarray
+            The part's outward unit normal at the closest point.
+        s : (m,) float64 ndarray
+            Arc length of the closest point along the outline, units.
+        """
+        y = x - shift
+        near = np.all((y >= self.lo - margin) & (y <= self.hi + margin), axis=1)
+        idx = np.flatnonzero(near)
+        m = len(idx)
+        g = np.empty(m)
+        n = np.empty((m, 2))
+        s = np.empty(m)
+        chunk = max(1, 2_000_000 // max(1, len(self.a)))
+        for c0 in range(0, m, chunk):
+            yy = y[idx[c0:c0 + chunk]]
+            rel = yy[:, None, :] - self.a[None]  # (m, k, 2)
+            t = np.clip(np.einsum("mki,ki->mk", rel, self.d) / self.len2, 0.0, 1.0)
+            diff = rel - t[..., None] * self.d[None]
+            d2 = np.einsum("mki,mki->mk", diff, diff)
+            j = np.argmin(d2, axis=1)
+            r = np.arange(len(yy))
+            dist = np.sqrt(d2[r, j])
+            # even-odd crossings of a ray to +x
+            ay, by = self.a[:, 1], self.a[:, 1] + self.d[:, 1]
+            cross = (ay[None] > yy[:, 1:2]) != (by[None] > yy[:, 1:2])
+            with np.errstate(divide="ignore", invalid="ignore"):
+                xc = self.a[None, :, 0] + (yy[:, 1:2] - ay[None]) / self.d[None, :, 1] * self.d[None, :, 0]
+            inside = (np.count_nonzero(cross & (xc > yy[:, 0:1]), axis=1) % 2) == 1
+            tj = t[r, j]
+            j1 = (j + 1) % len(self.a)
+            n0 = np.where(self.smooth[j, None], self.vnormal[j], self.out[j])
+            n1 = np.where(self.smooth[j1, None], self.vnormal[j1], self.out[j])
+            normal = (1.0 - tj)[:, None] * n0 + tj[:, None] * n1
+            normal /= np.hypot(normal[:, 0], normal[:, 1])[:, None]
+            sharp = np.where(tj <= 0.0, ~self.smooth[j], ~self.smooth[j1])
+            corner = ((tj <= 0.0) | (tj >= 1.0)) & sharp & (dist > 1e-12 * (1.0 + np.abs(yy).max()))
+            if corner.any():
+                v = -diff[r, j][corner] / dist[corner, None]  # from the point to the closest vertex
+                normal[corner] = np.where(inside[corner, None], v, -v)
+            g[c0:c0 + chunk] = np.where(inside, dist, -dist)
+            n[c0:c0 + chunk] = normal
+            s[c0:c0 + chunk] = self.s0[j] + tj * np.sqrt(self.len2[j])
+        return idx, g, n, s
+
+
+class ContactPhysics:
+    """A body physics with the contact terms of rigid parts added; everything else delegated.
+
+    The solver sees the same interface (``fields``, ``residual``,
+    ``element_matrices``...): the fields carry the positions, the residual
+    and the element matrices gain the contact terms. The load fraction
+    :attr:`t` (where the parts are) and the multipliers :attr:`lam` are this
+    object's state: each solve works on its own copy.
+
+    Parameters
+    ----------
+    physics : object
+        The mixed problem (plane or axisymmetric).
+    boundary : Boundary
+    obstacles : list of Obstacle
+    lam : (K, P) float64 ndarray, optional
+        Multipliers per part and boundary point (pressure per reference length); zeros by default.
+    """
+
+    def __init__(self, physics, boundary: Boundary, obstacles, lam=None):
+        object.__setattr__(self, "_inner", physics)
+        object.__setattr__(self, "boundary", boundary)
+        object.__setattr__(self, "obstacles", list(obstacles))
+        object.__setattr__(self, "t", 1.0)
+        shape = (len(obstacles), len(boundary.weight))
+        object.__setattr__(self, "lam", np.zeros(shape) if lam is None else np.array(lam, dtype=np.float64))
+        object.__setattr__(self, "_cache", [])
+
+    _own = ("_inner", "boundary", "obstacles", "t", "lam", "_cache")
+
+    def __getattr__(self, name):
+        return getattr(self._inner, name)
+
+    def __setattr__(self, name, value):
+        if name in self._own:
+            object.__setattr__(self, name, value)
+        else:
+            setattr(self._inner, name, value)
+
+    def __copy__(self):
+        new = ContactPhysics(copy.copy(self._inner), self.boundary, self.obstacles, self.lam)
+        object.__setattr__(new, "t", self.t)
+        return new
+
+    @property
+    def inner(self):
+        """The physics without contact."""
+        return self._inner
+
+    def positions(self, z: np.ndarray) -> np.ndarray:
+        """Node positions ``(N, 2)`` of state ``z``."""
+        n = self._inner.n_nodes
+        return z[: 2 * n].reshape(n, 2)
+
+    def fields(self, z: np.ndarray, lz: float):
+        f = self._inner.fields(z, lz)
+        if f is not None:
+            object.__setattr__(self, "_cache", [*self._cache[-3:], (f, self.positions(z).copy())])
+        return f
+
+    def _x(self, f) -> np.ndarray:
+        """The positions the fields ``f`` were computed at (one of the last four states)."""
+        for g, x in reversed(self._cache):
+            if g is f:
+                return x
+        raise RuntimeError("ContactPhysics: fields of a state not computed here")
+
+    def evaluate(self, x: np.ndarray):
+        """Per part the points in contact: ``(idx, p, n, g, s, slope)`` (pressure per reference length, ``p > 0``)."""
+        b = self.boundary
+        xq = np.einsum("pa,pai->pi", b.shape, x[b.nodes])
+        margin = float((self.lam.max(initial=0.0) / b.penalty.min()) + SMOOTHING / PENALTY * b.size.max()) + 1e-9 * (1.0 + float(np.abs(xq).max()))
+        out = []
+        for k, obs in enumerate(self.obstacles):
+            idx, g, n, s = obs.query(xq, obs.at(self.t), margin)
+            eps = b.penalty[idx]
+            p, slope = ramp(self.lam[k, idx] + eps * g, SMOOTHING / PENALTY * eps * b.size[idx])
+            on = p > 0
+            out.append((idx[on], p[on], n[on], g[on], s[on], slope[on]))
+        return out
+
+    def contact_residual(self, x: np.ndarray) -> np.ndarray:
+        """The contact terms of the position residual, ``(2 N,)``."""
+        b = self.boundary
+        r = np.zeros((self._inner.n_nodes, 2))
+        for idx, p, n, _, _, _ in self.evaluate(x):
+            force = -(p * b.weight[idx])[:, None, None] * b.shape[idx][:, :, None] * n[:, None, :]  # (m, 3, 2)
+            np.add.at(r, b.nodes[idx], force)
+        return r.ravel()
+
+    def residual(self, f) -> np.ndarray:
+        r = self._inner.residual(f)
+        n2 = 2 * self._inner.n_nodes
+        r[:n2] += self.contact_residual(self._x(f))
+        return r
+
+    def element_matrices(self, f) -> np.ndarray:
+        ke = self._inner.element_matrices(f)
+        b = self.boundary
+        for idx, _, n, _, _, slope in self.evaluate(self._x(f)):
+            if not len(idx):
+                continue
+            c = (slope * b.penalty[idx] * b.weight[idx])[:, None, None, None, None]
+            nn = n[:, :, None] * n[:, None, :]  # (m, 2, 2)
+            block = c * b.shape[idx][:, :, None, None, None] * b.shape[idx][:, None, :, None, None] * nn[:, None, None]
+            # block[m, a, c, i, j] -> ke[cell, 2 local_a + i, 2 local_c + j]
+            rows = 2 * b.local[idx][:, :, None, None, None] + np.arange(2)[None, None, None, :, None]
+            cols = 2 * b.local[idx][:, None, :, None, None] + np.arange(2)[None, None, None, None, :]
+            cells = np.broadcast_to(b.cell[idx][:, None, None, None, None], block.shape)
+            np.add.at(ke, (cells, np.broadcast_to(rows, block.shape), np.broadcast_to(cols, block.shape)), block)
+        return ke
+
+    def update(self, x: np.ndarray) -> float:
+        """Uzawa's update ``λ ← max(0, λ + ε g)`` at ``x``; the largest penetration relative to the element size before it."""
+        lam = np.zeros_like(self.lam)
+        worst = 0.0
+        for k, (idx, p, _, g, _, _) in enumerate(self.evaluate(x)):
+            lam[k, idx] = p
+            if len(idx):
+                worst = max(worst, float((np.maximum(g, 0.0) / self.boundary.size[idx]).max()))
+        object.__setattr__(self, "lam", lam)
+        return worst
+
+    def penetration(self, x: np.ndarray) -> float:
+        """The largest penetration at ``x`` relative to the element size."""
+        worst = 0.0
+        for idx, _, _, g, _, _ in self.evaluate(x):
+            if len(idx):
+                worst = max(worst, float((np.maximum(g, 0.0) / self.boundary.size[idx]).max()))
+        return worst
+
+
+@dataclass(frozen=True, eq=False)
+class PartContact:
+    """What one rigid part feels: the force on it and its contact figures.
+
+    Attributes
+    ----------
+    name : str
+    force : (float, float)
+        The force the bodies exert on the part: per unit length for a plane
+        section, the whole ring's for a body of revolution (units of the
+        moduli times units², or per units).
+    length : float
+        The contact's length along the part's outline in the section's plane, units.
+    pressure_max, pressure_mean : float
+        The largest and the mean contact pressure (true, per deformed area), units of the moduli.
+    penetration_max : float
+        The largest penetration left, units.
+    pressure : (m, 3) float64 ndarray
+        ``[x, y, p]`` at the contact's Gauss points, in order along the part's outline.
+    outline : (k, 2) float64 ndarray
+        The part's outline where it is (for figures; not written to JSON).
+    """
+
+    name: str
+    force: tuple
+    length: float
+    pressure_max: float
+    pressure_mean: float
+    penetration_max: float
+    pressure: np.ndarray
+    outline: np.ndarray = None
+
+    def to_json(self) -> dict:
+        """The result's ``rigid[]`` object."""
+        return {"name": self.name, "force": [float(v) for v in self.force],
+                "contact": {"length": self.length, "pressure_max": self.pressure_max, "pressure_mean": self.pressure_mean,
+                            "penetration_max": self.penetration_max, "pressure": self.pressure.tolist()}}
+
+
+def contact_figures(physics: ContactPhysics, x: np.ndarray, names, ring: float = 1.0, radius=None) -> list[PartContact]:
+    """Each part's force and contact figures at positions ``x``.
+
+    Parameters
+    ----------
+    physics : ContactPhysics
+    x : (N, 2) float64 ndarray
+        Node positions, units.
+    names : sequence of str
+        The parts' names.
+    ring : float
+        The factor from the integrals to the forces: 1 for a plane section, 2π for a body of revolution.
+    radius : callable, optional
+        Distance from the axis, for the true pressure of a body of revolution.
+
+    Returns
+    -------
+    list of PartContact
+    """
+    b = physics.boundary
+    out = []
+    for name, obs, (idx, p, n, g, s, _) in zip(names, physics.obstacles, physics.evaluate(x)):
+        w = b.weight[idx]
+        force = -ring * (p * w) @ n if len(idx) else np.zeros(2)
+        xe = x[b.nodes[idx]]
+        xq = np.einsum("pa,pai->pi", b.shape[idx], xe)
+        tang = np.einsum("pa,pai->pi", b.dshape[idx], xe)
+        dl = _W[idx % GAUSS] * np.hypot(tang[:, 0], tang[:, 1])  # the current length of each point's share
+        cur = dl * (radius(xq) if radius is not None else 1.0)
+        true = p * w / np.where(cur > 0, cur, np.inf)
+        order = np.argsort(s, kind="stable")
+        length = float(dl.sum())
+        out.append(PartContact(
+            name=name, force=(float(force[0]), float(force[1])), length=length,
+            pressure_max=float(true.max(initial=0.0)),
+            pressure_mean=float((true * dl).sum() / length) if length > 0 else 0.0,
+            penetration_max=float(np.maximum(g, 0.0).max(initial=0.0)),
+            pressure=np.column_stack((xq, true))[order],
+            outline=obs.ring + obs.at(physics.t),
+        ))
+    return out
+
+
+def ring_factor(plane: bool) -> float:
+    """1 for a plane section, 2π for a body of revolution (integrals per radian)."""
+    return 1.0 if plane else 2.0 * math.pi

@@ -1,0 +1,266 @@
+"""Rigid parts in the hyperelastic model: the loading from the parts' start to their end, and the forces.
+
+:class:`Contact` is built once per prepared problem
+(:class:`~sectiondeform.models.hyperelastic.HyperelasticPrepared`) when the
+problem has rigid parts: the free boundary's Gauss points and each part's
+outline (:mod:`~sectiondeform.fem.contact`). :meth:`Contact.solve` replaces
+the plain Newton solve of a placement:
+
+* **from the undeformed bodies** (no warm start): the support (from the
+  bodies' rigid fit to the target) and every part (from ``contour − travel``
+  to ``contour``) move together in load steps, each step a Newton solve
+  with the parts held where the step puts them; a step that fails is
+  halved, down to 1/64 of the first step, and then the loading is refused
+  naming the step and the part that penetrates most;
+* **from an earlier result** (a warm start): the parts are at their end,
+  the multipliers are the result's, one solve;
+* then the augmented-Lagrangian updates, until the largest penetration is at
+  most :data:`~sectiondeform.fem.contact.PENETRATION_FRACTION` of the
+  element size (a warning when :data:`MAX_UPDATES` updates do not get it
+  below :data:`PENETRATION_WARNING` of it).
+
+The forces at every step (each part's and the support's) are the history,
+a load–deflection curve.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import CaseError, ConvergenceError
+from ..fem.contact import (
+    MAX_UPDATES,
+    PENETRATION_FRACTION,
+    ContactPhysics,
+    Obstacle,
+    PartContact,
+    contact_figures,
+    free_boundary,
+    ring_factor,
+)
+
+__all__ = ["Contact", "ContactState", "HistoryStep", "PENETRATION_WARNING", "MAX_HALVINGS"]
+
+PENETRATION_WARNING = 1e-2
+"""A penetration left above this fraction of the element size is a warning."""
+MAX_HALVINGS = 6
+"""A load step is halved at most this many times before the loading is refused."""
+MIN_STEPS, MAX_STEPS = 4, 32
+STEP_FRACTION = 0.25
+"""A load step moves a part by at most this fraction of the smallest element size (within MIN_STEPS..MAX_STEPS steps)."""
+
+
+@dataclass(frozen=True)
+class HistoryStep:
+    """The forces at one load step.
+
+    Attributes
+    ----------
+    travel : float
+        The fraction of the loading done, 0 (start) to 1 (end).
+    forces : dict
+        Each part's name, and ``"support"``, to the force ``(fx, fy)`` on it.
+    """
+
+    travel: float
+    forces: dict
+
+    def to_json(self) -> dict:
+        """The result's ``history[]`` object."""
+        return {"travel": self.travel, "forces": {k: [float(v[0]), float(v[1])] for k, v in self.forces.items()}}
+
+
+@dataclass(frozen=True, eq=False)
+class ContactState:
+    """The contact part of a solved state.
+
+    Attributes
+    ----------
+    lam : (K, P) float64 ndarray
+        The multipliers for the next solve (a warm start carries them).
+    parts : tuple of PartContact
+    support_force : (float, float)
+        The force the bodies exert on the support (per unit length, or the whole ring's).
+    history : tuple of HistoryStep
+    warnings : tuple of str
+    """
+
+    lam: np.ndarray
+    parts: tuple
+    support_force: tuple
+    history: tuple
+    warnings: tuple = ()
+
+
+class Contact:
+    """The rigid parts of a prepared problem and how to load them.
+
+    Parameters
+    ----------
+    prepared : HyperelasticPrepared
+        Its mesh, sizes, materials, support nodes and physics.
+
+    Raises
+    ------
+    CaseError
+        For a part with friction (Coulomb friction is not implemented yet).
+    """
+
+    def __init__(self, prepared):
+        problem = prepared.problem
+        for i, part in enumerate(problem.rigid):
+            if part.friction > 0:
+                raise CaseError(f"rigid[{i}].friction", f"{part.friction:g}: the hyperelastic model has frictionless "
+                                "contact only so far; give 0")
+        mesh = prepared.mesh
+        physics = prepared.physics
+        self.plane = prepared.plane
+        self.radius = None if self.plane else (lambda p: (p[..., 0] - physics.origin[0]) * physics.normal[0]
+                                               + (p[..., 1] - physics.origin[1]) * physics.normal[1])
+        mu = np.array([m.shear_modulus for m in prepared.materials], dtype=np.float64)
+        self.boundary = free_boundary(mesh.nodes, mesh.cells, mesh.body, prepared.fixed_ids, mu, prepared.sizes, self.radius)
+        tol = 1e-6 * problem.size
+        self.obstacles = [Obstacle(part.contour.discretise(tol)[0], part.travel) for part in problem.rigid]
+        self.names = tuple(part.name for part in problem.rigid)
+        self.labels = tuple(f"rigid[{i}] {part.name!r}" for i, part in enumerate(problem.rigid))
+        self.ring = ring_factor(self.plane)
+        travel = max(float(np.hypot(*part.travel)) for part in problem.rigid)
+        self.steps = int(np.clip(math.ceil(travel / (STEP_FRACTION * float(prepared.sizes.min()))), MIN_STEPS, MAX_STEPS))
+
+    def physics(self, physics, lam=None) -> ContactPhysics:
+        """``physics`` with the contact terms, multipliers ``lam`` (zeros by default), the parts at their end."""
+        return ContactPhysics(physics, self.boundary, self.obstacles, lam)
+
+    def _forces(self, cphys: ContactPhysics, solver, state) -> tuple[list, tuple]:
+        """Each part's contact and the support's force at ``state``."""
+        f = cphys.fields(state.z, state.lz)
+        r = cphys.residual(f)[solver.pattern.fixed]
+        support = (-self.ring * float(r[0::2].sum()), -self.ring * float(r[1::2].sum()))
+        parts = contact_figures(cphys, cphys.positions(state.z), self.names, self.ring, self.radius)
+        return parts, support
+
+    def _step(self, t: float, parts, support) -> HistoryStep:
+        forces = {p.name: p.force for p in parts}
+        forces["support"] = support
+        return HistoryStep(float(t), forces)
+
+    def solve(self, physics, solver, base, xd: np.ndarray, lz: float, warm) -> tuple:
+        """Solve with contact from ``base`` to the data ``(xd, lz)``.
+
+        Parameters
+        ----------
+        physics : object
+            The prepared physics (without contact) for these laws.
+        solver : NewtonSolver
+            Its solver (copied here, not changed).
+        base : State
+            The state to start from.
+        xd : (d,) float64 ndarray
+            The support's nodes at the end, units.
+        lz : float
+            The path parameter at the end.
+        warm : ContactState or None
+            The contact of the state ``base`` is (a warm start): the parts
+            are then at their end from the start.
+
+        Returns
+        -------
+        state : State
+        contact : ContactState
+
+        Raises
+        ------
+        ConvergenceError
+            Naming the load step and the part when the loading cannot go on.
+        """
+        cphys = self.physics(physics, warm.lam if warm is not None else None)
+        given, solver = solver, copy.copy(solver)
+        solver.physics = cphys
+        fixed = solver.pattern.fixed
+        xd0 = base.z[fixed]
+        ln0, ln1 = math.log(base.lz), math.log(lz)
+        totals = [0, 0, 0]
+        state = base
+        history = []
+
+        def run(t, to):
+            new = solver.solve(to, xd0 + t * (xd - xd0), math.exp(ln0 + t * (ln1 - ln0)))
+            totals[0] += new.iterations[0]
+            totals[1] += new.iterations[1]
+            totals[2] += new.iterations[2]
+            return new
+
+        if warm is None:
+            cphys.t = 0.0
+            history.append(self._step(0.0, *self._forces(cphys, solver, state)))
+            t, dt0 = 0.0, 1.0 / self.steps
+            dt = dt0
+            while t < 1.0:
+                t1 = min(1.0, t + dt)
+                cphys.t = t1
+                try:
+                    state = run(t1, state)
+                except ConvergenceError as exc:
+                    dt *= 0.5
+                    if dt < dt0 / 2**MAX_HALVINGS:
+                        raise self._refusal(cphys, state, t, t1, len(history), exc) from None
+                    continue
+                t = t1
+                history.append(self._step(t, *self._forces(cphys, solver, state)))
+                dt = min(dt0, 2.0 * dt)
+        else:
+            cphys.t = 1.0
+            state = run(1.0, state)
+        for _ in range(MAX_UPDATES):
+            x = cphys.positions(state.z)
+            if cphys.penetration(x) <= PENETRATION_FRACTION:
+                break
+            cphys.update(x)
+            state = run(1.0, state)
+        x = cphys.positions(state.z)
+        parts, support = self._forces(cphys, solver, state)
+        if warm is None:
+            history[-1] = self._step(1.0, parts, support)
+        else:
+            history.append(self._step(1.0, parts, support))
+        left = cphys.penetration(x)
+        warnings = []
+        if left > PENETRATION_WARNING:
+            warnings.append(f"contact: a penetration of {left:.3g} element sizes is left after {MAX_UPDATES} "
+                            "augmented-Lagrangian updates; the forces are less accurate there")
+        for label, part in zip(self.labels, parts):
+            if part.length == 0.0:
+                warnings.append(f"{label}: touches no body from start to end; check its contour and travel")
+        cphys.update(x)  # the multipliers of this state, for the next warm start
+        given.assemblies, given.factorisations = solver.assemblies, solver.factorisations  # the work counted as without contact
+        out = type(state)(state.z, state.lz, state.tangent, tuple(totals), None)
+        return out, ContactState(cphys.lam, tuple(parts), support, tuple(history), tuple(warnings))
+
+    def _refusal(self, cphys, state, t, t1, step, exc) -> ConvergenceError:
+        """The loading cannot go on: name the step and the part that would penetrate most."""
+        x = cphys.positions(state.z)
+        b = self.boundary
+        xq = np.einsum("pa,pai->pi", b.shape, x[b.nodes])
+        depth = []
+        for obs in self.obstacles:
+            _, g, _, _ = obs.query(xq, obs.at(t1), 0.0)
+            depth.append(float(g.max(initial=-np.inf)))
+        k = int(np.argmax(depth))
+        return ConvergenceError(f"{self.labels[k]}: the loading cannot go on at load step {step} "
+                                f"(from {t:.3g} to {t1:.3g} of the travel, the step halved {MAX_HALVINGS} times): "
+                                f"{exc}; shorten the travel or refine the mesh (options.elements_through_thickness)")
+
+
+def contact_results(state) -> tuple:
+    """``(parts, support_force, history, warnings)`` of a placed state, or empty ones without contact."""
+    contact = getattr(state, "contact", None)
+    if not isinstance(contact, ContactState):
+        return (), None, (), ()
+    return contact.parts, contact.support_force, contact.history, contact.warnings
+
+
+__all__ += ["contact_results", "PartContact"]

@@ -1,0 +1,166 @@
+"""Rigid parts in contact with the hyperelastic model: the public examples, the laws of the forces, the refusals."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import sectiondeform as sd
+from sectiondeform.cli import main
+from sectiondeform.errors import CaseError, GeometryError
+from sectiondeform.fem.contact import PENETRATION_FRACTION, Obstacle, ramp
+from sectiondeform.io.case import case_from_dict
+
+from conftest import CASES_DIR
+
+BUMPER = CASES_DIR / "v2" / "bumper-under-plate.json"
+SLEEVE = CASES_DIR / "v2" / "sleeve-on-shaft.json"
+
+
+@pytest.fixture(scope="module")
+def bumper():
+    deformer = sd.Deformer(sd.load_case(BUMPER))
+    return deformer, deformer.deform()
+
+
+@pytest.fixture(scope="module")
+def sleeve():
+    deformer = sd.Deformer(sd.load_case(SLEEVE))
+    return deformer, deformer.deform()
+
+
+def test_bumper_forces_balance_and_push_the_plate_up(bumper):
+    _, r = bumper
+    (plate,) = r.rigid
+    # Nothing else loads the bodies: the plate's and the support's forces cancel (to Newton's tolerance).
+    np.testing.assert_allclose(np.add(plate.force, r.support_force), 0.0, atol=1e-6 * abs(plate.force[1]))
+    assert plate.force[1] > 0 and abs(plate.force[0]) < 1e-9 * plate.force[1]  # symmetric: no sideways force
+    # A flat plate (normal -y): the force is the pressure's integral over the contact, the mean pressure times its length.
+    assert abs(plate.pressure_mean * plate.length / plate.force[1] - 1.0) < 1e-9
+    assert plate.pressure_max >= plate.pressure_mean > 0 and plate.length > 0
+    h = r.bodies[0].quality.initial.element_size
+    assert plate.penetration_max <= PENETRATION_FRACTION * h * 1.0001
+
+
+def test_bumper_history_is_a_rising_load_deflection_curve(bumper):
+    _, r = bumper
+    travel = [s.travel for s in r.history]
+    force = [s.forces["plate"][1] for s in r.history]
+    assert travel[0] == 0.0 and travel[-1] == 1.0 and np.all(np.diff(travel) > 0)
+    assert force[0] == 0.0 and np.all(np.diff(force) > 0)
+    assert force[-1] == r.rigid[0].force[1]
+    for s in r.history:
+        np.testing.assert_allclose(np.add(s.forces["plate"], s.forces["support"]), 0.0, atol=1e-6 * max(1.0, force[-1]))
+
+
+def test_bumper_warm_start_carries_the_contact(bumper):
+    deformer, r = bumper
+    again = deformer.deform(start=r)
+    assert again.bodies[0].info.warm_start
+    assert again.bodies[0].info.newton_full <= 1
+    assert abs(again.rigid[0].force[1] / r.rigid[0].force[1] - 1.0) < 1e-3
+
+
+def test_sleeve_ring_forces(sleeve):
+    _, r = sleeve
+    (shaft,) = r.rigid
+    # A body of revolution: the axial forces balance; the radial one is the ring's total radial load, inward on the shaft.
+    assert abs(shaft.force[0] + r.support_force[0]) < 1e-6 * abs(shaft.force[1])
+    assert shaft.force[1] < 0 < r.support_force[1]
+    # The whole ring: 2π r times the pressure's integral along the contact, r within the contact's radii.
+    r_lo, r_hi = shaft.pressure[:, 1].min(), shaft.pressure[:, 1].max()
+    line = shaft.pressure_mean * shaft.length
+    assert 2 * math.pi * r_lo * line * 0.999 <= -shaft.force[1] <= 2 * math.pi * r_hi * line * 1.001
+
+
+def test_result_json_follows_the_contract(bumper, tmp_path):
+    _, r = bumper
+    d = r.to_json(meshes=False)
+    assert set(d["support"]) == {"force"} and len(d["support"]["force"]) == 2
+    (part,) = d["rigid"]
+    assert part["name"] == "plate" and len(part["force"]) == 2
+    assert set(part["contact"]) == {"length", "pressure_max", "pressure_mean", "penetration_max", "pressure"}
+    assert all(len(row) == 3 for row in part["contact"]["pressure"])
+    assert d["history"][0]["travel"] == 0.0 and set(d["history"][0]["forces"]) == {"plate", "support"}
+    json.dumps(d)
+
+
+def test_case_round_trip_keeps_rigid_parts():
+    p = sd.load_case(SLEEVE)
+    from sectiondeform.io.case import case_to_dict
+
+    assert case_from_dict(case_to_dict(p)) == p
+    assert case_to_dict(p)["rigid"][0]["travel"] == [0.0, 0.6]
+
+
+def _bumper_dict():
+    return json.loads(BUMPER.read_text())
+
+
+@pytest.mark.parametrize("change, field", [
+    (lambda d: d["rigid"][0]["contour"]["polyline"].pop(), "rigid[0].contour"),
+    (lambda d: d["rigid"][0].update(travel=[0.0]), "rigid[0].travel"),
+    (lambda d: d["rigid"][0].update(travel=["a", 1.0]), "rigid[0].travel[0]"),
+    (lambda d: d["rigid"][0].update(friction=-0.1), "rigid[0].friction"),
+    (lambda d: d["rigid"][0].update(spin=1), "rigid[0]"),
+])
+def test_bad_rigid_input_is_one_line_and_exit_2(change, field, tmp_path, capsys):
+    d = _bumper_dict()
+    change(d)
+    with pytest.raises(CaseError, match=r"^" + field.replace("[", r"\[").replace("]", r"\]")):
+        case_from_dict(d)
+    case = tmp_path / "c.json"
+    case.write_text(json.dumps(d))
+    out = tmp_path / "r.json"
+    assert main(["deform", str(case), "-o", str(out)]) == 2
+    assert not out.exists()
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and field in err
+
+
+def test_a_part_starting_inside_a_body_is_refused_with_the_overlap():
+    d = _bumper_dict()
+    d["rigid"][0]["travel"] = [0.0, -0.4]  # starts 0.8 into the bumper
+    with pytest.raises(GeometryError, match=r"rigid\[0\] 'plate': its start position .* overlaps .* \(area [0-9.]+ near \[0"):
+        case_from_dict(d)
+    d["rigid"][0]["travel"] = [0.0, -1.2]  # touching at the start: accepted
+    case_from_dict(d)
+
+
+def test_the_paper_model_and_friction_are_refused_in_one_line():
+    d = _bumper_dict()
+    d["options"]["model"] = "paper"
+    with pytest.raises(CaseError, match=r'^rigid: .*options.model "hyperelastic"$'):
+        sd.Deformer(case_from_dict(d))
+    d = _bumper_dict()
+    d["rigid"][0]["friction"] = 0.3
+    with pytest.raises(CaseError, match=r"^rigid\[0\].friction: 0.3: .*frictionless"):
+        sd.Deformer(case_from_dict(d))
+
+
+def test_a_part_that_touches_nothing_is_a_warning():
+    d = _bumper_dict()
+    d["rigid"][0]["contour"]["polyline"] = [[-12, 9.0], [12, 9.0], [12, 10], [-12, 10], [-12, 9.0]]
+    d["rigid"][0]["travel"] = [0.0, 0.0]
+    r = sd.Deformer(case_from_dict(d)).deform()
+    assert r.rigid[0].force == (0.0, 0.0) and r.rigid[0].length == 0.0
+    assert any("rigid[0] 'plate': touches no body" in w for w in r.warnings)
+
+
+def test_obstacle_distance_and_normal_of_a_square():
+    square = np.array([[0.0, 0.0], [2, 0], [2, 2], [0, 2], [0, 0]])
+    obs = Obstacle(square[::-1], (0.0, 0.0))  # either orientation
+    pts = np.array([[1.0, 0.5], [1.0, -0.5], [3.0, 3.0], [1.9, 1.0]])
+    idx, g, n, _ = obs.query(pts, np.zeros(2), 10.0)
+    np.testing.assert_allclose(g, [0.5, -0.5, -math.sqrt(2), 0.1])
+    np.testing.assert_allclose(n, [[0, -1], [0, -1], [math.sqrt(0.5), math.sqrt(0.5)], [1, 0]], atol=1e-12)
+
+
+def test_ramp_is_continuous_with_its_slope():
+    u = np.linspace(-2, 2, 4001)
+    p, dp = ramp(u, np.full_like(u, 0.5))
+    assert np.all(np.abs(np.diff(p)) <= 1e-3 + 1e-12) and np.all(np.diff(dp) >= -1e-12)
+    np.testing.assert_allclose(np.gradient(p, u)[1:-1], dp[1:-1], atol=2e-3)
