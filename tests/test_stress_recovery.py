@@ -23,14 +23,15 @@ import json
 import meshio
 import numpy as np
 import pytest
-from test_stress_fields import HEIGHT, LAM, homogeneous, one_body_case, pressure_and_von_mises, stacked_case
+from test_stress_fields import HEIGHT, homogeneous, one_body_case, pressure_and_von_mises, stacked_case
 
-from conftest import CASES_DIR
 from sectiondeform.cli import main
 from sectiondeform.deform import Deformer
 from sectiondeform.io import read_case
 from sectiondeform.io.case import case_from_dict
 from sectiondeform.strain_fields import SINGULAR_RADIUS_ELEMENTS, result_mechanics
+
+from conftest import CASES_DIR
 
 # --- exactness ------------------------------------------------------------------------------------
 
