@@ -49,7 +49,7 @@ model has no material: the same measures of its constructed mesh are
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -61,7 +61,8 @@ from .pappus import signed_distance
 from .result import RESULT_V1
 
 __all__ = ["element_gradients", "element_centres", "strain_fields", "result_fields", "result_mechanics", "Mechanics",
-           "fields_json", "STRAIN_NOTE", "STRESS_NOTES"]
+           "fields_json", "STRAIN_NOTE", "STRESS_NOTES", "node_gradients", "nodal_stresses", "SingularPoint",
+           "singular_points", "RECOVERY_NOTE", "REENTRANT_TURN_DEG", "SINGULAR_RADIUS_ELEMENTS"]
 
 STRAIN_NOTE = "deformation gradient at each element's centre; hoop stretch r/R for bodies of revolution"
 STRESS_NOTES = {
@@ -94,12 +95,20 @@ class Mechanics:
         The moduli are relative (the body of a ``section-case/1`` problem,
         which has no material: the model's rubber of shear modulus 1):
         stresses in units of the shear modulus.
+    nodal : dict of str to (N,) float64 ndarray
+        The stresses recovered at the nodes of the body's final mesh
+        (:func:`nodal_stresses`): ``von_mises_stress``, and ``pressure``
+        for a solution.
+    singular_points : tuple of SingularPoint
+        Where the body's exact stress is singular (:func:`singular_points`).
     """
 
     material: object
     mean_stress: np.ndarray | None = None
     growth: float = 1.0
     relative: bool = False
+    nodal: dict = field(default_factory=dict)
+    singular_points: tuple = ()
 
 _QUAD_CENTRE = 0.25 * np.array([[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]])  # dN/d(xi, eta) at (0, 0)
 _TRI_CENTRE = np.array([[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]])  # linear: constant
@@ -202,9 +211,225 @@ def strain_fields(initial: MeshData, final: MeshData, out_of_plane: float = 1.0,
     return out
 
 
-def _mean_stress(z: np.ndarray, dofs: np.ndarray) -> np.ndarray:
-    """The P1 pressure unknown at each element's centre: the mean of its corners', ``(M,)``."""
-    return z[dofs].mean(axis=1)
+# --- stresses recovered at the nodes ---------------------------------------------------------------
+
+_P2_NODES = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.0], [0.5, 0.5], [0.0, 0.5]])
+_P2_NODE_GRADIENTS = p2_gradients(_P2_NODES)  # (node a, shape function k, 2)
+
+
+def node_gradients(initial: MeshData, final: MeshData) -> np.ndarray:
+    """In-plane deformation gradient of each P2 element at each of its six nodes, ``(M, 6, 2, 2)``.
+
+    The gradient of the element's quadratic map (isoparametric: curved
+    edges too) evaluated at its corners and mid-edge nodes, in the order of
+    its cells; exact for an affine map (then every entry is its matrix).
+
+    Parameters
+    ----------
+    initial, final : MeshData
+        The same ``triangle6`` cells on the initial and final nodes, units.
+    """
+    cells = np.asarray(initial.cells)
+    dX = np.einsum("eki,akj->eaij", initial.points[cells], _P2_NODE_GRADIENTS)
+    dx = np.einsum("eki,akj->eaij", final.points[cells], _P2_NODE_GRADIENTS)
+    return dx @ np.linalg.inv(dX)
+
+
+def _node_mean(cells: np.ndarray, values: np.ndarray, weights: np.ndarray, n: int) -> np.ndarray:
+    """The weighted mean over the elements sharing each node of per-element-node ``values`` ``(M, k, ...)``."""
+    flat = cells.ravel()
+    w = np.broadcast_to(weights[:, None], cells.shape).ravel()
+    rows = values.reshape(len(flat), -1)
+    total = np.zeros((n, rows.shape[1]))
+    np.add.at(total, flat, rows * w[:, None])
+    count = np.bincount(flat, weights=w, minlength=n)
+    return (total / count[:, None]).reshape((n,) + values.shape[2:])
+
+
+def nodal_stresses(initial: MeshData, final: MeshData, material, corner_mean_stress=None, out_of_plane: float = 1.0,
+                   axis=None, growth: float = 1.0) -> dict[str, np.ndarray]:
+    """Von Mises stress and pressure recovered at every node of one body's P2 mesh.
+
+    Per body, never across bodies: the mesh is one body's (its own nodes
+    on a bonded interface), so the pressure keeps its jump there.
+
+    * ``pressure`` ``(N,)``: the solution's own P1 pressure field read at
+      the nodes (its corner values at the vertices, the mean of an edge's
+      two ends at its mid-edge node), **positive in compression**: no
+      smoothing, the field equilibrium holds with.
+    * ``von_mises_stress`` ``(N,)``: √(3/2 s:s), s the deviator of the
+      rubber's Cauchy stress at F evaluated at the node *in each element
+      around it* (F of the quadratic displacement, linear in the element,
+      so exact at its nodes), averaged over those elements weighted by
+      their areas, then its norm. A uniform stress is recovered exactly at
+      every node.
+
+    Parameters
+    ----------
+    initial, final : MeshData
+        One body's ``triangle6`` meshes (same cells), units.
+    material : NeoHookean or MooneyRivlin or Yeoh
+        The body's rubber (``cauchy(F)``), moduli in MPa or relative.
+    corner_mean_stress : (M, 3) float64 ndarray, optional
+        The solution's pressure unknown at each element's corners: the mean
+        Cauchy stress tr σ / 3, positive in tension, units of the moduli.
+        Without it (a drag preview), no ``pressure``.
+    out_of_plane : float
+        Out-of-plane stretch of a plane section (ignored with ``axis``).
+    axis : ((float, float), (float, float)), optional
+        Revolution axis: the out-of-plane stretch is each node's hoop
+        stretch r / R.
+    growth : float
+        Volumetric growth: the stress is the rubber's at ``growth^(-1/3) F``.
+
+    Returns
+    -------
+    dict of str to (N,) float64 ndarray
+        One value per node of ``initial.points``; empty unless both meshes
+        are the same ``triangle6`` mesh.
+
+    Examples
+    --------
+    >>> from sectiondeform.materials import NeoHookean
+    >>> tri = MeshData(np.array([[0, 0], [1, 0], [0, 1], [.5, 0], [.5, .5], [0, .5]]), np.array([[0, 1, 2, 3, 4, 5]]), "triangle6")
+    >>> out = nodal_stresses(tri, MeshData(tri.points * [1.2, 1 / 1.2], tri.cells, "triangle6"), NeoHookean(1.0))
+    >>> bool(np.ptp(out["von_mises_stress"]) < 1e-12), round(float(out["von_mises_stress"][0]), 5)  # μ √(3/2) |dev b|, b = diag(1.44, 1/1.44, 1)
+    (True, 0.64916)
+    """
+    if not _same_mesh(initial, final) or initial.kind != "triangle6":
+        return {}
+    cells = np.asarray(initial.cells)
+    n = len(initial.points)
+    F2 = node_gradients(initial, final)  # (M, 6, 2, 2)
+    if axis is not None:
+        r0 = signed_distance(initial.points, axis)
+        r1 = signed_distance(final.points, axis)
+        on_axis = np.abs(r0) <= 1e-12 * max(float(np.abs(r0).max()), 1.0)
+        hoop = np.divide(r1, r0, out=np.ones_like(r0), where=~on_axis)[cells]  # (M, 6)
+        if on_axis.any():  # on the axis the hoop stretch is the radial one: the element's centre's
+            centre = (signed_distance(element_centres(final), axis) / signed_distance(element_centres(initial), axis))
+            hoop = np.where(on_axis[cells], centre[:, None], hoop)
+        stretch_z = hoop
+    else:
+        stretch_z = float(out_of_plane)
+    F = gradient_3d(F2, stretch_z)
+    elastic = F if growth == 1.0 else F * float(growth) ** (-1.0 / 3.0)
+    sigma = material.cauchy(elastic)
+    deviator = sigma - np.trace(sigma, axis1=-2, axis2=-1)[..., None, None] / 3.0 * np.eye(3)
+    X = initial.points[cells[:, :3]]
+    area = 0.5 * np.abs((X[:, 1, 0] - X[:, 0, 0]) * (X[:, 2, 1] - X[:, 0, 1])
+                        - (X[:, 2, 0] - X[:, 0, 0]) * (X[:, 1, 1] - X[:, 0, 1]))
+    s = _node_mean(cells, deviator, area, n)
+    out = {"von_mises_stress": np.sqrt(1.5 * np.einsum("nij,nij->n", s, s))}
+    if corner_mean_stress is not None:
+        corner = np.asarray(corner_mean_stress, dtype=np.float64)
+        if corner.shape != (len(cells), 3):
+            raise ValueError(f"corner_mean_stress: expected (M, 3) = ({len(cells)}, 3), got shape {corner.shape}")
+        six = np.column_stack((corner, 0.5 * (corner + corner[:, [1, 2, 0]])))  # P1 at the mid-edge nodes
+        out["pressure"] = -_node_mean(cells, six, np.ones(len(cells)), n)
+    return out
+
+
+RECOVERY_NOTE = ("at the nodes of meshes.final, per body: pressure the solution's P1 field at the nodes; von_mises_stress "
+                 "from the deviator at F evaluated at the node in each element around it, area-weighted mean; not "
+                 "resolved within `radius` of a singular point")
+#: A contour vertex turning by more than this (degrees) into the body is a re-entrant corner.
+REENTRANT_TURN_DEG = 15.0
+#: The neighbourhood of a singular point the coarse mesh does not resolve, in the body's element sizes.
+SINGULAR_RADIUS_ELEMENTS = 2.0
+
+
+@dataclass(frozen=True)
+class SingularPoint:
+    """A point of a body where the exact stress is singular (infinite), so no mesh converges there.
+
+    Attributes
+    ----------
+    point : (float, float)
+        Its deformed position, units.
+    initial : (float, float)
+        Its initial position, units.
+    kind : str
+        ``"bonded corner"`` (an end of the body's lower curve, where its
+        bonded base meets its free upper curve), ``"bond end"`` (an end of
+        another body's lower curve bonded on this body's upper curve) or
+        ``"re-entrant corner"`` (the contour turns into the body).
+    why : str
+        One line naming the corner.
+    radius : float
+        The neighbourhood where the coarse mesh's nodal stresses are not
+        resolved: :data:`SINGULAR_RADIUS_ELEMENTS` element sizes, units.
+    """
+
+    point: tuple
+    initial: tuple
+    kind: str
+    why: str
+    radius: float
+
+    def to_json(self) -> dict:
+        """``{"point", "initial", "kind", "why", "radius"}``."""
+        return {"point": list(self.point), "initial": list(self.initial), "kind": self.kind, "why": self.why,
+                "radius": self.radius}
+
+
+def singular_points(result, b: int, radius: float) -> tuple:
+    """The singular points of body ``b`` of a result: bonded corners, bond ends of bodies on it, re-entrant corners.
+
+    Parameters
+    ----------
+    result : Result
+    b : int
+        The body.
+    radius : float
+        Each point's :attr:`SingularPoint.radius`, units.
+
+    Returns
+    -------
+    tuple of SingularPoint
+        In the order of the body's initial contour, each point once (a
+        bonded corner that is also re-entrant is named a bonded corner).
+
+    Notes
+    -----
+    Where a bonded boundary meets a free one the elastic stress of a
+    nearly incompressible body is singular (σ ~ r^(λ − 1), 0 < λ < 1: the
+    ends A and B of a body's lower curve; the ends of a bond on its upper
+    curve); so it is at a re-entrant corner of a free boundary. A contour
+    vertex is re-entrant when it turns into the body by more than
+    :data:`REENTRANT_TURN_DEG` degrees (a smooth curve's discretisation
+    turns by less). Contact edges will be added with contact.
+    """
+    body = result.bodies[b]
+    X, x = np.asarray(body.initial_contour), np.asarray(body.contour)
+    size = float(np.ptp(X, axis=0).max()) or 1.0
+
+    def vertex(p):
+        d = np.hypot(*(X - p).T)
+        i = int(np.argmin(d))
+        return i if d[i] <= 1e-9 * size else None
+
+    named: dict[int, tuple] = {}
+    for end in (0, -1):
+        i = vertex(np.asarray(body.initial_lower)[end])
+        if i is not None:
+            named.setdefault(i, ("bonded corner", f"{'A' if end == 0 else 'B'}, an end of the lower curve: its bonded "
+                                 "base meets its free upper curve"))
+    for k, other in enumerate(result.bodies):
+        if k == b:
+            continue
+        for end in (0, -1):
+            i = vertex(np.asarray(other.initial_lower)[end])
+            if i is not None:
+                named.setdefault(i, ("bond end", f"an end of body {other.name!r}'s lower curve, bonded on this body"))
+    ring = np.asarray(X)
+    e0, e1 = ring - np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0) - ring
+    area = 0.5 * float(np.sum(ring[:, 0] * np.roll(ring[:, 1], -1) - np.roll(ring[:, 0], -1) * ring[:, 1]))
+    turn = np.degrees(np.arctan2(e0[:, 0] * e1[:, 1] - e0[:, 1] * e1[:, 0], np.einsum("ij,ij->i", e0, e1)))
+    for i in np.flatnonzero(-np.sign(area) * turn > REENTRANT_TURN_DEG):
+        named.setdefault(int(i), ("re-entrant corner", f"the contour turns {abs(turn[i]):.0f}° into the body"))
+    return tuple(SingularPoint(tuple(map(float, x[i])), tuple(map(float, X[i])), kind, why, float(radius))
+                 for i, (kind, why) in sorted(named.items()))
 
 
 def result_mechanics(result) -> list:
@@ -232,10 +457,22 @@ def result_mechanics(result) -> list:
     for b, body in enumerate(result.bodies):
         material = state.materials[b]
         preview = getattr(body.info, "preview", False)
-        mean = None if preview else _mean_stress(state.state.z, state.pressure_dofs[b])
+        corners = None if preview else state.state.z[state.pressure_dofs[b]]
         growth = float(state.stretches[b]) if state.growth else 1.0
-        out.append(Mechanics(material, mean, growth, relative=result.dialect == RESULT_V1))
+        nodal = nodal_stresses(body.initial_mesh, body.final_mesh, material, corners,
+                               getattr(body.info, "out_of_plane_stretch", 1.0), result.axis, growth)
+        size = getattr(getattr(body.quality, "initial", None), "element_size", None)
+        radius = SINGULAR_RADIUS_ELEMENTS * (size if size else _element_size(body.initial_mesh))
+        out.append(Mechanics(material, None if corners is None else corners.mean(axis=1), growth,
+                             relative=result.dialect == RESULT_V1, nodal=nodal,
+                             singular_points=singular_points(result, b, radius)))
     return out
+
+
+def _element_size(mesh: MeshData) -> float:
+    """The median edge length of a mesh's corner triangles, units."""
+    p = mesh.points[np.asarray(mesh.cells)[:, :3]]
+    return float(np.median(np.hypot(*(p - np.roll(p, 1, axis=1)).transpose(2, 0, 1))))
 
 
 def result_fields(initial: MeshData, final: MeshData, model: str, out_of_plane: float = 1.0,
@@ -284,4 +521,8 @@ def fields_json(kind: str, values: dict, mechanics: Mechanics | None) -> dict:
     out = fields_to_json(values, kind)
     if out and mechanics is not None:
         out["note"] = STRESS_NOTES[mechanics.relative]
+        if mechanics.nodal:
+            out["nodal"] = {"location": "point", "note": RECOVERY_NOTE,
+                            **{k: v.tolist() for k, v in mechanics.nodal.items()}}
+        out["singular_points"] = [p.to_json() for p in mechanics.singular_points]
     return out

@@ -18,8 +18,9 @@ the cell data ``element`` (the element's number in its body's mesh).
 geometric fields as cell data (:mod:`sectiondeform.strain_fields`): for the
 hyperelastic model also ``von_mises_stress`` and ``pressure`` (−tr σ / 3,
 positive in compression), in units of the shear modulus for the paper's
-one body, in the unit of each body's material otherwise. Abaqus INP
-carries the mesh only.
+one body, in the unit of each body's material otherwise, per element as
+cell data and recovered at the nodes as point data of the same names
+(:func:`body_point_data`). Abaqus INP carries the mesh only.
 
 The bodies of a ``section-result/2`` result are tagged: cell data
 ``body`` = the body's tag (its index in the case's ``bodies`` plus 1),
@@ -41,7 +42,7 @@ from ..errors import CaseError, require
 from ..result import RESULT_V1
 from .files import atomic_write
 
-__all__ = ["write_mesh", "write_result", "to_meshio", "split_components", "FORMATS"]
+__all__ = ["write_mesh", "write_result", "to_meshio", "split_components", "body_point_data", "FORMATS"]
 
 FORMATS = {".vtu": "vtu", ".vtk": "vtk", ".msh": "gmsh", ".xdmf": "xdmf", ".inp": "abaqus"}
 
@@ -208,7 +209,8 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
         ``"final"`` or ``"initial"``.
     fields : bool
         Add each body's per-element fields as cell data, in its block
-        (:func:`body_cell_data`; none in Abaqus files). Gmsh files take 1,
+        (:func:`body_cell_data`), and the hyperelastic model's nodal
+        stresses as point data (:func:`body_point_data`); none in Abaqus files. Gmsh files take 1,
         3 or 9 components per field, XDMF files 1, 3, 6 or 9: the others are
         split into ``name_0``, ``name_1``, ...
 
@@ -224,7 +226,9 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
         raise CaseError(str(path), f"unknown mesh format {ext!r}; use one of {', '.join(FORMATS)}")
     fmt = FORMATS[ext]
     cells = body_cell_data(result, fmt) if fields and fmt != "abaqus" else None
-    mesh = _for_format(to_meshio(result, which, data=fmt != "abaqus", cell_data=cells), result, which, fmt, meshio)
+    points = body_point_data(result) if fields and fmt != "abaqus" else None
+    mesh = _for_format(to_meshio(result, which, data=fmt != "abaqus", point_data=points, cell_data=cells),
+                       result, which, fmt, meshio)
 
     def write(tmp):
         meshio.write(str(tmp), mesh, file_format=fmt, **writer_options(fmt))
@@ -253,6 +257,22 @@ def body_cell_data(result, fmt: str = "vtu") -> dict:
         per_body.append(split_components(values, fmt))
     names = [k for k in per_body[0] if all(k in v for v in per_body)] if per_body else []
     return {k: [v[k] for v in per_body] for k in names}
+
+
+def body_point_data(result) -> dict:
+    """The hyperelastic model's stresses recovered at the nodes, as point data: name to ``(N,)``, the bodies' nodes in order.
+
+    ``von_mises_stress`` and ``pressure`` of
+    :func:`~sectiondeform.strain_fields.nodal_stresses`, each body's own
+    (a node of a shared piece is written once per body, with its body's
+    value: the pressure jumps there); a field some body lacks is left out.
+    Empty for the paper model.
+    """
+    from ..strain_fields import result_mechanics
+
+    nodal = [m.nodal if m is not None else {} for m in result_mechanics(result)]
+    names = [k for k in nodal[0] if all(k in n for n in nodal)] if nodal else []
+    return {k: np.concatenate([n[k] for n in nodal]) for k in names}
 
 
 def write_result(path, result, fields: bool = False) -> None:

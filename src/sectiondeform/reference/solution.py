@@ -130,6 +130,11 @@ class Reference:
     cauchy : (M, 3, 3) float64 ndarray
         Cauchy stress in each triangle (mean over its quadrature points),
         axes x, y and the out-of-plane (hoop) direction.
+    corner_pressure : (M, 3) float64 ndarray
+        The pressure unknown at each triangle's corners, its own body's
+        (the same sign and units as ``pressure``; at an interface each side
+        has its own value): what the stresses recovered at the nodes read
+        (:func:`~sectiondeform.strain_fields.nodal_stresses`).
     jacobian_min : float
         Smallest det F2D at any quadrature point (> 0: no inversion).
     strain_energy : float
@@ -161,6 +166,7 @@ class Reference:
     cuts: int
     seconds: float
     timings: dict = field(default_factory=dict)
+    corner_pressure: np.ndarray | None = None
 
     @property
     def revolution(self) -> bool:
@@ -229,7 +235,8 @@ def solution(problem, mixed, mesh, sections, x, report, ratios, load, timings, s
     cauchy = np.einsum("eqij,eq->eij", mat["cauchy"], dx) / dx.sum(axis=1)[:, None, None]
     bodies = tuple(_body(b, body, sec, mixed, mesh, mat, p1, dofs_p, ratios[b], load[b])
                    for b, (body, sec) in enumerate(zip(problem.bodies, sections)))
-    for arr in (p0, p1, cells, pressure, cauchy):
+    corner_pressure = dofs_p[mixed.pdofs.T]
+    for arr in (p0, p1, cells, pressure, cauchy, corner_pressure):
         arr.setflags(write=False)
     return Reference(
         bodies=bodies,
@@ -249,4 +256,5 @@ def solution(problem, mixed, mesh, sections, x, report, ratios, load, timings, s
         cuts=report.cuts,
         seconds=float(seconds),
         timings=timings,
+        corner_pressure=corner_pressure,
     )

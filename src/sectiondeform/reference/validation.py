@@ -4,7 +4,9 @@
 and a reference on the same problem, one body or several, plane or of
 revolution, and measures for each body the distance between the two
 deformed upper curves (:mod:`sectiondeform.compare`), the law's measure
-(area, or volume for a body of revolution) and the times. The reference is
+(area, or volume for a body of revolution), the times, and for the
+hyperelastic model the stresses recovered at the nodes against the
+reference's away from the singular points (:class:`StressDistance`). The reference is
 the project's own finite elements (:func:`~sectiondeform.reference.solve_reference`,
 one mesh of all bodies) by default, or any :class:`ReferenceRun`, such as
 CalculiX's (:func:`~sectiondeform.external.solve.calculix_run`).
@@ -36,7 +38,7 @@ from ..problem import V1
 from ..section import polygon_area
 from . import DEFAULT_MESH_SIZE, Reference, check_parameters, solve_reference
 
-__all__ = ["BodyValidation", "ReferenceRun", "Validation", "fem_run", "validate", "draw_validation",
+__all__ = ["BodyValidation", "ReferenceRun", "StressDistance", "Validation", "fem_run", "validate", "draw_validation",
            "save_validation_figure", "VALIDATION_FORMAT"]
 
 VALIDATION_FORMAT = "section-validation/1"
@@ -126,6 +128,133 @@ class BodyValidation:
 
 
 @dataclass(frozen=True, eq=False)
+class StressDistance:
+    """One body's stresses recovered at the nodes, fast against reference, away from its singular points.
+
+    Both sides are recovered alike (:func:`~sectiondeform.strain_fields.nodal_stresses`,
+    per body) and compared only at the nodes farther than ``radius`` from
+    every singular point of the body (initial positions): there the exact
+    stress is infinite and neither mesh converges.
+
+    Attributes
+    ----------
+    radius : float
+        The neighbourhood left out around each singular point, units (the
+        fast model's :data:`~sectiondeform.strain_fields.SINGULAR_RADIUS_ELEMENTS`
+        element sizes).
+    singular_points : int
+        How many there are.
+    von_mises_fast, von_mises_reference : float
+        The largest von Mises stress, units of the moduli.
+    pressure_max_fast, pressure_max_reference, pressure_min_fast, pressure_min_reference : float
+        The largest and smallest pressure (positive in compression).
+    samples : int
+        Reference nodes of the body, away from the singular points, inside the fast mesh.
+    von_mises_l2, pressure_l2 : float
+        ‖fast − reference‖ / ‖reference‖ over those nodes (the fast nodal
+        field interpolated there by its P2 shape functions).
+    von_mises_max, pressure_max : float
+        The largest |fast − reference| there, over the reference's largest |value|.
+    """
+
+    radius: float
+    singular_points: int
+    von_mises_fast: float
+    von_mises_reference: float
+    pressure_max_fast: float
+    pressure_max_reference: float
+    pressure_min_fast: float
+    pressure_min_reference: float
+    samples: int
+    von_mises_l2: float
+    pressure_l2: float
+    von_mises_max: float
+    pressure_max: float
+
+    @property
+    def von_mises_peak_error(self) -> float:
+        """Fast peak von Mises over the reference's, minus 1."""
+        return self.von_mises_fast / self.von_mises_reference - 1.0
+
+    @property
+    def pressure_peak_error(self) -> float:
+        """The larger gap of the pressure's two extremes, over the reference's largest |pressure|."""
+        scale = max(abs(self.pressure_max_reference), abs(self.pressure_min_reference))
+        return max(abs(self.pressure_max_fast - self.pressure_max_reference),
+                   abs(self.pressure_min_fast - self.pressure_min_reference)) / scale
+
+    def to_json(self) -> dict:
+        """The figures, and both peak errors."""
+        out = {k: getattr(self, k) for k in self.__dataclass_fields__}
+        out.update(von_mises_peak_error=self.von_mises_peak_error, pressure_peak_error=self.pressure_peak_error)
+        return out
+
+
+def _locate(mesh, points: np.ndarray, chunk: int = 256) -> tuple[np.ndarray, np.ndarray]:
+    """The corner triangle of a P2 mesh holding each point and the point's local (xi, eta); element −1 outside."""
+    tri = mesh.points[np.asarray(mesh.cells)[:, :3]]  # (M, 3, 2)
+    a, e1, e2 = tri[:, 0], tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+    element, local = np.full(len(points), -1), np.zeros((len(points), 2))
+    for start in range(0, len(points), chunk):
+        d = points[start:start + chunk, None, :] - a[None]  # (k, M, 2)
+        xi = (d[..., 0] * e2[:, 1] - d[..., 1] * e2[:, 0]) / det
+        eta = (e1[:, 0] * d[..., 1] - e1[:, 1] * d[..., 0]) / det
+        worst = np.minimum(np.minimum(xi, eta), 1.0 - xi - eta)  # >= 0 inside
+        best = np.argmax(worst, axis=1)
+        rows = np.arange(len(best))
+        element[start:start + chunk] = np.where(worst[rows, best] >= -1e-9, best, -1)
+        local[start:start + chunk] = np.column_stack((xi[rows, best], eta[rows, best]))
+    return element, local
+
+
+def _stress_distance(problem, fast, reference: Reference, b: int) -> StressDistance | None:
+    """Body ``b``'s :class:`StressDistance`; None without stresses on both sides."""
+    from ..fem.elements import p2_values
+    from ..models.base import MeshData
+    from ..strain_fields import nodal_stresses, result_mechanics
+
+    mechanics = result_mechanics(fast)[b]
+    if mechanics is None or "pressure" not in mechanics.nodal or reference.corner_pressure is None:
+        return None
+    on = np.flatnonzero(reference.body == b)
+    used, local_cells = np.unique(reference.mesh.cells[on], return_inverse=True)
+    cells = local_cells.reshape(-1, 6)
+    initial = MeshData(reference.initial_mesh.points[used], cells, "triangle6")
+    rb, axis = reference.bodies[b], None if problem.revolution is None else problem.revolution.axis
+    ref = nodal_stresses(initial, MeshData(reference.mesh.points[used], cells, "triangle6"), rb.material,
+                         reference.corner_pressure[on], 1.0 if axis else rb.load, axis, rb.load if axis else 1.0)
+    body, points = fast.bodies[b], mechanics.singular_points
+    radius = points[0].radius if points else 0.0
+
+    def away(X):
+        if not points:
+            return np.ones(len(X), bool)
+        corners = np.array([p.initial for p in points])
+        return np.hypot(*(X[:, None, :] - corners[None]).transpose(2, 0, 1)).min(axis=1) >= radius
+
+    keep_f, keep_r = away(body.initial_mesh.points), away(initial.points)
+    vf, pf = mechanics.nodal["von_mises_stress"], mechanics.nodal["pressure"]
+    vr, pr = ref["von_mises_stress"][keep_r], ref["pressure"][keep_r]
+    element, local = _locate(body.initial_mesh, initial.points[keep_r])
+    found = element >= 0
+    shape, nodes = p2_values(local[found]), np.asarray(body.initial_mesh.cells)[element[found]]
+    vm_at, p_at = (np.einsum("ka,ka->k", shape, values[nodes]) for values in (vf, pf))
+    vs, ps = vr[found], pr[found]
+    return StressDistance(
+        radius=float(radius), singular_points=len(points),
+        von_mises_fast=float(vf[keep_f].max()), von_mises_reference=float(vr.max()),
+        pressure_max_fast=float(pf[keep_f].max()), pressure_max_reference=float(pr.max()),
+        pressure_min_fast=float(pf[keep_f].min()), pressure_min_reference=float(pr.min()),
+        samples=int(found.sum()),
+        von_mises_l2=float(np.linalg.norm(vm_at - vs) / np.linalg.norm(vs)),
+        pressure_l2=float(np.linalg.norm(p_at - ps) / np.linalg.norm(ps)),
+        von_mises_max=float(np.abs(vm_at - vs).max() / np.abs(vs).max()),
+        pressure_max=float(np.abs(p_at - ps).max() / np.abs(ps).max()),
+    )
+
+
+@dataclass(frozen=True, eq=False)
 class Validation:
     """A fast result against a reference, body by body.
 
@@ -142,6 +271,10 @@ class Validation:
         are read against, ``docs/validation.md``).
     fast_seconds : float
         Median wall time of the fast model.
+    stresses : tuple of StressDistance or None
+        Per body, the recovered stresses against the reference's away from
+        its singular points (the hyperelastic model against the project's
+        own reference); None for a body without stresses on both sides.
     """
 
     problem: object
@@ -150,6 +283,7 @@ class Validation:
     bodies: tuple
     height: float
     fast_seconds: float
+    stresses: tuple = ()
 
     @property
     def model(self) -> str:
@@ -197,7 +331,13 @@ class Validation:
             "fast": {"final": bv.fast_final, "relative_error": bv.fast_error, "upper": fb.upper.tolist()},
             "reference": {"final": bv.reference_final, "relative_error": bv.reference_error,
                           "load": getattr(rb, "load", None), "upper": np.asarray(rb.upper).tolist()},
+            **self._stress_json(i),
         }
+
+    def _stress_json(self, i: int) -> dict:
+        """``{"stresses": ...}`` of body ``i``, or nothing."""
+        sd = self.stresses[i] if i < len(self.stresses) else None
+        return {} if sd is None else {"stresses": sd.to_json()}
 
     def _v1_json(self) -> dict:
         """The version-1 report of the one body of a ``section-case/1`` problem."""
@@ -221,6 +361,7 @@ class Validation:
             "shape": bv.shape.to_json(),
             "pointwise_distance": np.hypot(*(f.upper - np.asarray(r.upper)).T).tolist(),
             "speed_ratio": self.speed_ratio,
+            **self._stress_json(0),
         }
 
     def lines(self) -> list[str]:
@@ -229,7 +370,7 @@ class Validation:
         cube = "³" if self.revolution else "²"
         out = [f"{self.problem.name}: {self.model} model against the reference ({self.reference.model})"
                f"{' (bodies of revolution)' if self.revolution else ''}, height {height:.4g} {u}"]
-        for bv in self.bodies:
+        for i, bv in enumerate(self.bodies):
             s = bv.shape
             out += [
                 f"  body {bv.name!r} (mean thickness {bv.thickness:.4g} {u})",
@@ -242,6 +383,18 @@ class Validation:
                 f"    max pointwise    {s.max_pointwise:12.4f} {u}    {s.max_pointwise / height:.2%} of the height, "
                 f"{s.max_pointwise / bv.thickness:.2%} of the mean thickness (upper point {s.max_pointwise_index})",
             ]
+            sd = self.stresses[i] if i < len(self.stresses) else None
+            if sd is not None:
+                out += [
+                    f"    von Mises peak   {sd.von_mises_fast:12.4g} fast, {sd.von_mises_reference:.4g} reference "
+                    f"({sd.von_mises_peak_error:+.1%}), farther than {sd.radius:.3g} {u} from its "
+                    f"{sd.singular_points} singular point(s)",
+                    f"    pressure         {sd.pressure_min_fast:.4g} to {sd.pressure_max_fast:.4g} fast, "
+                    f"{sd.pressure_min_reference:.4g} to {sd.pressure_max_reference:.4g} reference "
+                    f"(extremes {sd.pressure_peak_error:.1%} of the largest apart)",
+                    f"    at {sd.samples} common nodes: von Mises L2 {sd.von_mises_l2:.1%}, max "
+                    f"{sd.von_mises_max:.1%}; pressure L2 {sd.pressure_l2:.1%}, max {sd.pressure_max:.1%}",
+                ]
         return out + [
             f"  time fast        {1e3 * self.fast_seconds:12.2f} ms",
             f"  time reference   {1e3 * self.reference_seconds:12.0f} ms   ({self.reference.note})  "
@@ -334,8 +487,12 @@ def validate(
         reference = fem_run(reference)
     rows = tuple(_row(problem, i, fb, rb) for i, (fb, rb) in enumerate(zip(fast.bodies, reference.bodies)))
     uppers = np.concatenate([b.initial_upper for b in fast.bodies])
+    stresses = ()
+    if isinstance(reference.solution, Reference):
+        stresses = tuple(_stress_distance(problem, fast, reference.solution, b) for b in range(len(rows)))
     return Validation(problem=problem, fast=fast, reference=reference, bodies=rows,
-                      height=section_height(problem.layout.fine["support"], uppers), fast_seconds=fast_s)
+                      height=section_height(problem.layout.fine["support"], uppers), fast_seconds=fast_s,
+                      stresses=stresses)
 
 
 def draw_validation(validation: Validation, fig=None):
