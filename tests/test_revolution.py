@@ -133,14 +133,15 @@ def test_the_tread_on_drum_deforms_with_each_volume_exact():
     result = deform(problem)
     ratios = {"undertread": 1.0, "tread": 0.98}
     drum = ((0.0, -250.0), (1.0, -250.0))
-    for body, given in zip(result.bodies, problem.bodies):
-        # the volume of the curves themselves: polylines by their vertices, arcs by n and 2n points (error ~ 1/n^2),
-        # extrapolated
-        def sampled(n):
-            return pappus_by_geos(np.concatenate([
-                p.vertices if isinstance(p, Polyline) else p.at_fractions(np.linspace(0.0, 1.0, n))
-                for c in (given.lower, given.upper) for p in c.parts()]), drum)  # a gap between pieces: its chord
-        v0, v1 = (4.0 * sampled(1 << 12) - sampled(1 << 11)) / 3.0, pappus_by_geos(body.contour, drum)
+    def sampled(case_body, n):
+        # the volume of the curves themselves: polylines by their vertices, arcs by n points (error ~ 1/n^2)
+        return pappus_by_geos(np.concatenate([
+            p.vertices if isinstance(p, Polyline) else p.at_fractions(np.linspace(0.0, 1.0, n))
+            for c in (case_body.lower, case_body.upper) for p in c.parts()]), drum)  # a gap between pieces: its chord
+
+    for body, case_body in zip(result.bodies, problem.bodies):
+        v0 = (4.0 * sampled(case_body, 1 << 12) - sampled(case_body, 1 << 11)) / 3.0  # extrapolated
+        v1 = pappus_by_geos(body.contour, drum)
         assert body.volume_initial == pytest.approx(v0, rel=1e-11)
         assert abs(v1 - ratios[body.name] * body.volume_initial) <= 1e-9 * v0
         assert abs(body.relative_error) <= 1e-9 and body.measure == "volume"
