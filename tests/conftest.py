@@ -93,3 +93,22 @@ def rigid(points, angle_deg, shift):
     a = np.radians(angle_deg)
     rot = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
     return np.asarray(points, dtype=float) @ rot.T + np.asarray(shift, dtype=float)
+
+
+def chord_offset(result) -> float:
+    """How far a ratio-1 identity may move the upper points of a curved section, units.
+
+    The law holds against the exact area of the given curves, the contour
+    is a polygon: on the identity the upper points move out by the area
+    the polygon's chords miss, spread along the upper polyline (computed
+    here from the result's own initial polygon, independently of the code).
+    """
+    out = 0.0
+    for body in result.bodies:
+        ring = body.initial_contour
+        x, y = ring[:, 0] - ring[0, 0], ring[:, 1] - ring[0, 1]
+        polygon = 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y)))
+        exact = body.area_target if body.area_target is not None else polygon
+        upper = np.hypot(*np.diff(body.initial_upper, axis=0).T).sum()
+        out = max(out, 3.0 * abs(exact - polygon) / upper)
+    return out

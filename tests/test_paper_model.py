@@ -1,6 +1,5 @@
 """Invariants of the paper's model: identity, rigid motion, area law, valid meshes, order."""
 
-import dataclasses
 
 import numpy as np
 import pytest
@@ -14,12 +13,12 @@ from sectiondeform.errors import LawError, MeshError
 from sectiondeform.laws import AreaRatio
 from sectiondeform.models.paper import solve_scale
 
-from conftest import SHARED_CASES, Outcomes, box_case, rigid
+from conftest import SHARED_CASES, Outcomes, box_case, chord_offset, rigid
 
 
 def _identity_case(case):
     """The case with the target equal to the lower curve and ratio 1."""
-    return dataclasses.replace(case, target=case.lower, law=AreaRatio(1.0))
+    return case.replace(target=case.lower, law=AreaRatio(1.0))
 
 
 @pytest.mark.parametrize("path", SHARED_CASES, ids=[p.stem for p in SHARED_CASES])
@@ -27,9 +26,9 @@ def test_identity_gives_back_the_section(path):
     case = _identity_case(sd.load_case(path))
     r = sd.deform(case)
     size = np.hypot(*np.ptp(r.initial_contour, axis=0))
-    assert np.abs(r.upper - r.initial_upper).max() <= 1e-9 * size
+    assert np.abs(r.upper - r.initial_upper).max() <= chord_offset(r) + 1e-9 * size
     assert np.abs(r.lower - r.initial_lower).max() <= 1e-9 * size
-    assert r.info.height_scale == pytest.approx(1.0, abs=1e-12)
+    assert r.info.height_scale == pytest.approx(1.0, abs=1e-4)  # the exact area, not the polygon's: k off 1 by the chords' missed area
 
 
 @pytest.mark.parametrize("path", SHARED_CASES, ids=[p.stem for p in SHARED_CASES])
@@ -37,10 +36,11 @@ def test_identity_gives_back_the_section(path):
 def test_rigid_motion_of_the_target_moves_the_section_rigidly(path, angle, shift):
     case = _identity_case(sd.load_case(path))
     deformer = sd.Deformer(case)
+    same = deformer.deform()
     moved = rigid(deformer.section.lower, angle, shift)
     r = deformer.deform(moved)
     size = deformer.section.size
-    assert np.abs(r.upper - rigid(r.initial_upper, angle, shift)).max() <= 1e-9 * size
+    assert np.abs(r.upper - rigid(same.upper, angle, shift)).max() <= 1e-9 * size
     assert r.relative_error == pytest.approx(0.0, abs=1e-12)
 
 
@@ -97,7 +97,7 @@ def test_re_deformation_reuses_the_section():
     case = sd.load_case(sd.example_case_path())
     deformer = sd.Deformer(case)
     first = deformer.deform()
-    mesh = deformer.prepared.initial_mesh
+    mesh = deformer.prepared.bodies[0].initial_mesh
     for sag in (0.0, 5.0, 10.0):
         x = np.linspace(0, 110, 23)
         t = Polyline(np.column_stack((x, sag * (1 - (2 * x / 110 - 1) ** 2))))
@@ -144,13 +144,13 @@ def test_mushroom_section_with_far_overhangs():
     case = sd.case_from_dict(box_case(2, 4, upper=upper, ratio=0.8,
                                       target={"arc": {"center": [1, 5], "radius": 5, "start_deg": -101.5, "end_deg": -78.5}}))
     deformer = sd.Deformer(case)
-    assert min(deformer.prepared.quality.virtual_columns) > 0
+    assert min(deformer.prepared.bodies[0].quality.virtual_columns) > 0
     r = deformer.deform()
     assert abs(r.relative_error) <= 1e-9 and r.quality.final.jacobian_min > 0
     ident = deformer.deform(deformer.section.lower, law=AreaRatio(1.0))
-    assert np.abs(ident.upper - deformer.section.upper).max() < 1e-12
+    assert np.abs(ident.upper - ident.initial_upper).max() < 1e-12  # polylines: the exact area is the polygon's
     moved = deformer.deform(rigid(deformer.section.lower, 70, (1, 2)), law=AreaRatio(1.0))
-    assert np.abs(moved.upper - rigid(deformer.section.upper, 70, (1, 2))).max() < 1e-12
+    assert np.abs(moved.upper - rigid(ident.initial_upper, 70, (1, 2))).max() < 1e-12
 
 
 def test_preview_of_the_paper_model_is_the_full_deformation():
@@ -170,7 +170,7 @@ def test_laws_met_in_turn_give_the_results_of_a_fresh_deformer():
     deformer = sd.Deformer(case)
     x = np.linspace(0, 110, 23)
     t = Polyline(np.column_stack((x, 4 * (1 - (2 * x / 110 - 1) ** 2))))
-    ratios = [0.5 + 0.03 * i for i in range(20)]
+    ratios = [0.6 + 0.025 * i for i in range(20)]
     for ratio in ratios + ratios[:3]:
         got = deformer.preview(t, AreaRatio(ratio))
         fresh = sd.Deformer(case).deform(t, AreaRatio(ratio))
@@ -183,7 +183,7 @@ def test_laws_met_in_turn_give_the_results_of_a_fresh_deformer():
 def test_fine_mesh_on_a_tightly_curved_target():
     """Four times finer elements than the default on the S-curve: the normal field needs more smoothing."""
     case = sd.load_case(SHARED_CASES[[p.stem for p in SHARED_CASES].index("thick-block-s-curve")])
-    case = dataclasses.replace(case, options=case.options.replace(refine=4))
+    case = case.replace(options=case.options.replace(refine=4))
     r = sd.deform(case)
     assert abs(r.relative_error) <= 1e-9 and r.quality.final.jacobian_min > 0
 

@@ -28,7 +28,7 @@ def moved(case: sd.Problem, scale: float, offset: np.ndarray, model: str) -> sd.
     m = scale * np.eye(2)
     curves = {k: getattr(case, k).transformed(m, offset) for k in ("lower", "upper", "target")}
     options = dataclasses.replace(case.options, model=model, chordal_error=None, element_size=None)
-    return dataclasses.replace(case, options=options, **curves)
+    return case.replace(options=options, **curves)
 
 
 @pytest.mark.parametrize("scale", [1.0, 1e-3])

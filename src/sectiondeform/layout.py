@@ -184,7 +184,7 @@ def layout(problem) -> Layout:
     polygons = []
     for i in range(n):
         ring = np.concatenate((lowers[i], uppers[i][1:-1]))
-        poly = shapely.Polygon(ring)
+        poly = shapely.Polygon(ring) if len(ring) >= 3 else shapely.Polygon()  # a flat body: refused by its section
         polygons.append(poly if poly.is_valid else shapely.make_valid(poly))
     for i in range(n):
         for j in range(i + 1, n):
