@@ -253,7 +253,10 @@ def test_nudge_zoom_pan_and_reset(page):
     page.mouse.up()
     zoomed = page.evaluate("() => ({...sdState.view})")
     assert zoomed["s"] > view["s"] and zoomed["ty"] != view["ty"]
-    page.click("#reset")                                        # the case as opened; the view stays
+    asked = []
+    page.once("dialog", lambda dialog: (asked.append(dialog.type), dialog.accept()))
+    page.click("#reset")                                        # the case as opened (asked first); the view stays
+    assert asked == ["confirm"]
     d = wait_for(page, f"d.seq > {d['seq']} && d.final === '1' && d.pending === d.seq")
     assert d["contourHash"] == before["contourHash"]
     page.click("#fit")
