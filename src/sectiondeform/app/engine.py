@@ -14,7 +14,9 @@ with the library's own message.
 
 from __future__ import annotations
 
+import contextlib
 import json
+import threading
 import time
 from collections import OrderedDict
 
@@ -30,7 +32,7 @@ from ..problem import V2, Problem
 from ..result import RESULT_V1, Result
 from ..section import local_green
 
-__all__ = ["FIELDS", "MODELS", "DeformerCache", "answer", "case_from_json", "case_json_of", "case_model", "describe",
+__all__ = ["FIELDS", "MODELS", "DeformerCache", "SharedDeformers", "answer", "case_from_json", "case_json_of", "case_model", "describe",
            "field_view", "full_result", "is_assembly", "law_of", "laws_of", "model_of_json", "outline", "report_figure",
            "section_key", "with_model"]
 
@@ -97,21 +99,57 @@ def section_key(case_json: dict, model: str) -> str:
     return json.dumps([rest, model], sort_keys=True)
 
 
+class SharedDeformers:
+    """Prepared problems shared by every page of a server, by :func:`section_key` (the last ``size`` used).
+
+    Pages on the same case prepare it once (thirty pages of the paper example,
+    one preparation). A :class:`Deformer` holds no state between calls, but
+    one thread at a time uses it: each comes with its lock, held by
+    :func:`answer` while it deforms. A page keeps the deformers it uses
+    (:class:`DeformerCache`) even when they leave this list.
+    """
+
+    def __init__(self, size: int = 8):
+        self.size = size
+        self._items: OrderedDict[str, tuple[Deformer, threading.Lock]] = OrderedDict()
+        self._lock = threading.Lock()
+
+    def get(self, key: str, build) -> tuple[Deformer, threading.Lock]:
+        """The deformer of ``key`` and its lock; ``build()`` prepares it if no page has (outside the list's lock)."""
+        with self._lock:
+            if key in self._items:
+                self._items.move_to_end(key)
+                return self._items[key]
+        deformer = build()  # another page's preparation meanwhile does not wait for this one
+        with self._lock:
+            entry = self._items.setdefault(key, (deformer, threading.Lock()))
+            self._items.move_to_end(key)
+            while len(self._items) > self.size:
+                self._items.popitem(last=False)
+        return entry
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+
 class DeformerCache:
-    """The last few prepared problems, by :func:`section_key`.
+    """The last few prepared problems of one page, by :func:`section_key`.
 
     Dragging the target or a law reuses one :class:`Deformer`; editing the
     section or switching the model prepares another (kept, so switching back
-    is free).
+    is free). With ``shared`` (the server's :class:`SharedDeformers`), a
+    problem another page has prepared is not prepared again.
     """
 
-    def __init__(self, size: int = 4):
+    def __init__(self, size: int = 4, shared: SharedDeformers | None = None):
         self.size = size
+        self.shared = shared
         self._items: OrderedDict[str, Deformer] = OrderedDict()
+        self._locks: dict[int, threading.Lock] = {}
         self._last: dict[int, Result] = {}  # the last full deformation of each deformer: the next warm start
 
     def get(self, case_json: dict, model: str, key: str | None = None) -> tuple[Deformer, bool]:
-        """The deformer of a case for a model; True if it was prepared now.
+        """The deformer of a case for a model; True if it is new to this page (prepared now, or by another page).
 
         ``key`` is the case's :func:`section_key` for ``model`` if known (from :meth:`ready`), not computed again.
         """
@@ -120,12 +158,24 @@ class DeformerCache:
         if key in self._items:
             self._items.move_to_end(key)
             return self._items[key], False
-        deformer = Deformer(case_from_dict(case_json), model=model)
+        def build():
+            return Deformer(case_from_dict(case_json), model=model)
+
+        if self.shared is not None:
+            deformer, lock = self.shared.get(key, build)
+        else:
+            deformer, lock = build(), threading.Lock()
         self._items[key] = deformer
+        self._locks[id(deformer)] = lock
         while len(self._items) > self.size:
             _, old = self._items.popitem(last=False)
             self._last.pop(id(old), None)
+            self._locks.pop(id(old), None)
         return deformer, True
+
+    def lock(self, deformer: Deformer):
+        """The lock a thread holds while it uses ``deformer`` (shared deformers: one thread at a time)."""
+        return self._locks.get(id(deformer)) or contextlib.nullcontext()
 
     def ready(self, case_json, model) -> str | None:
         """The :func:`section_key` of ``case_json`` if it is already prepared for ``model`` (a preview is then fast), else None."""
@@ -187,11 +237,10 @@ def answer(cache: DeformerCache, case_json: dict, model: str, ratio, final: bool
     target = curve_from_json(case_json.get("target"), "target")
     laws = laws_of(case_json, ratio)
     start = cache.start(deformer)
+    with cache.lock(deformer):
+        result = deformer.deform(target, laws, start=start) if final else deformer.preview(target, laws, start=start)
     if final:
-        result = deformer.deform(target, laws, start=start)
         cache.remember(deformer, result)
-    else:
-        result = deformer.preview(target, laws, start=start)
     support = target.at_fractions(deformer.fractions)
     out = describe(result, support, final, prepared, meshes, 1e3 * (time.perf_counter() - t0))
     if field is not None and final:

@@ -73,6 +73,8 @@ WORKERS = max(2, min(4, os.cpu_count() or 2))
 """Worker threads computing for all connections (the bound of the pool: nothing waits in its queue)."""
 CACHE_SIZE = 2
 """Prepared sections kept per connection (the section being dragged and one other, e.g. the other model)."""
+SHARED_SECTIONS = 8
+"""Prepared sections shared by all connections (pages on the same case prepare it once)."""
 MAX_DEPTH = 32
 """Deepest nesting of a request's JSON (a case needs about eight levels)."""
 UVICORN_OPTIONS = {"ws_max_size": MAX_MESSAGE, "ws_per_message_deflate": False}
@@ -334,6 +336,8 @@ def _read_upload(name: str, data: bytes, form: dict) -> dict:
                 report.append(f"the drawing gives no law: area ratio {ratio} used")
             except UnicodeDecodeError:
                 raise CaseError("file", "not a text file") from None
+            if case.name == path.stem:  # named after the file: the user's, not the server's
+                case = case.replace(name=Path(shown).stem)
             out = {"case": engine.case_json_of(case), "model": engine.case_model(case), "report": report}
             out["outline"] = engine.outline(out["case"])
         except SectionDeformError as exc:
@@ -507,6 +511,7 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
     first = {"case": case_json, "model": start_model, "models": list(engine.MODELS),
              "fields": list(engine.FIELDS), "limit": message_limit, "outline": engine.outline(case_json)}
     shared = Workers(workers)
+    prepared = engine.SharedDeformers(SHARED_SECTIONS)
     connections = 0
 
     async def offload(fn, *args, what: str, names: dict | None = None):
@@ -581,7 +586,7 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
             await ws.close(code=1013)
             return
         connections += 1
-        cache = engine.DeformerCache(size=cache_size)
+        cache = engine.DeformerCache(size=cache_size, shared=prepared)
         pending: dict = {}
         wake = asyncio.Event()
 
