@@ -540,13 +540,24 @@ function connect() {
     svg.dataset.connected = "0";
     if (e.code === 1013) return;   // the server is full: its refusal, already shown, says so
     if (e.code === 1008) { message(CLOSED[1008], "error"); return; }
-    resend = e.code !== 1009;      // a case too large would be refused again
+    if (retries === 0) resend = e.code !== 1009;   // a case too large would be refused again
     const wait = Math.min(RETRY_MAX_MS, RETRY_MS * 2 ** retries);
     retries += 1;
     message((CLOSED[e.code] || "connection to the server lost") +
             `; reconnecting in ${(wait / 1000).toFixed(1)} s (attempt ${retries}); your edits are kept`, "error");
-    setTimeout(connect, wait);
+    setTimeout(retry, wait);
   };
+}
+// A refused handshake looks like a lost connection (1006): after two failures, ask the server whether it still
+// knows this page's token (a restart with a new one: reconnecting cannot help).
+async function retry() {
+  if (retries >= 2) {
+    try {
+      const r = await fetch("/api/start", { cache: "no-store" });
+      if (r.status === 403) { svg.dataset.closed = "1008"; message(CLOSED[1008], "error"); return; }
+    } catch (err) { /* the server is still down: try the WebSocket again */ }
+  }
+  connect();
 }
 const CLOSED = {
   1008: "the server refused this page (wrong or missing token; it may have restarted with a new one): open the " +
