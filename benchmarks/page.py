@@ -15,6 +15,8 @@ Usage::
     python benchmarks/page.py --socket [--moves 300]   # the server alone, from a Python WebSocket client
     python benchmarks/page.py --profile                # the paper preview's parts, in one process
     python benchmarks/page.py --trace trace.json       # also a Chromium trace of 60 moves (chrome://tracing)
+    python benchmarks/page.py --load [--clients 30 --seconds 30 --heavy-layers 24] [--out docs/benchmarks-page.md]
+                                                       # many pages at once, one of them on a heavy section
 
 Needs the extras ``[app]``, Playwright for Python and a Chromium (``--chromium``,
 default the ``chromium`` on the PATH). ``--images`` also writes the README
@@ -48,6 +50,9 @@ browser round trip each), not by the page; every answer drawn is the latest one.
 LAUNCH_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
                "--disable-sync", "--no-first-run"]
 
+
+WORKERS_NOTE = f"{max(2, min(4, os.cpu_count() or 2))}"
+"""The server's worker threads on this machine (``sectiondeform.app.server.WORKERS``)."""
 
 TOKEN = "benchmark-" + secrets.token_urlsafe(16)
 """The server's token for this run (given with --token; the page's address carries it)."""
@@ -282,6 +287,199 @@ def server_profile(calls: int = 1000) -> str:
                                    f"{len(sec.upper)} upper points.", ""])
 
 
+LOAD_READING = """Reading (2026-11-24; the machine shared, load average 8 on 2 cores). Prepared sections shared by the
+pages keep the light pages' worst round trip at 0.2 to 0.4 s; before, each of the 29 pages prepared the
+paper example itself on its first request (0.7 s each on this machine, almost all of it in the library's
+layout check, `layout._samples` through shapely's `line_locate_point`), and the last waited 17 s. Beside
+the heavy page the light pages' p95 is 2.5 to 2.7 times their p95 alone: **the 2x target is not met**.
+The heavy solve runs Python and numerical code that holds the interpreter lock for part of each second,
+so the event loop and the light pages' worker share one lock with it, not two cores; running heavy solves
+in a process of their own would remove that (not done). **The memory is not bounded**: it grows by about
+10 MB per heavy solve whenever another thread computes at the same time (the same solves on one thread stay
+flat at 164 MB; the growth is the same with `MALLOC_ARENA_MAX=1` and after `malloc_trim`, and it is not
+Python objects (tracemalloc)): native memory of the solver under concurrent threads, to be found in the
+library.
+"""
+
+
+def heavy_case(layers: int) -> dict:
+    """The paper example for the hyperelastic model with ``layers`` elements through its thickness (a fine mesh)."""
+    import json
+
+    from sectiondeform import example_case_path
+
+    case = json.loads(Path(example_case_path()).read_text(encoding="utf-8"))
+    case["options"] = {**case.get("options", {}), "model": "hyperelastic", "elements_through_thickness": layers}
+    return case
+
+
+def rss_mb(pid: int) -> float:
+    """The resident memory of process ``pid`` (MB, from /proc), or NaN where there is no /proc."""
+    try:
+        for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1]) / 1024
+    except OSError:
+        pass
+    return float("nan")
+
+
+def load_run(clients: int, seconds: float, layers: int, rounds: int = 1) -> dict:
+    """Many pages at once: ``clients - 1`` light pages dragging, alone, then beside one page on a heavy section.
+
+    Each light page drags the paper example's target with the paper model (previews in step: each request
+    waits for its answer, as a page does while the server is slower than the pointer) for ``seconds``;
+    their round trips are measured alone, then again while one more page asks for full deformations of
+    :func:`heavy_case` (each about a second of compute: the worst a page can hold a worker, a release after
+    every move) the whole time; ``rounds`` times. The server's resident memory is sampled every half
+    second throughout, and a few seconds after the pages have gone. The heavy page alternates its area ratio between 0.85 and
+    0.7, so that the warm start from its previous solve saves little.
+    """
+    import asyncio
+    import json
+    import struct
+
+    from websockets.asyncio.client import connect
+
+    from sectiondeform import example_case_path
+
+    light = json.loads(Path(example_case_path()).read_text(encoding="utf-8"))
+    heavy = heavy_case(layers)
+
+    def message(case: dict, i: int, model: str, final: bool) -> str:
+        arc = case["target"]["arc"]
+        radius = arc["radius"] * (1 + 0.3 * math.sin(i / 30))
+        target = {"arc": {**arc, "radius": radius, "center": [arc["center"][0], arc["center"][1] + radius - arc["radius"]]}}
+        ratio = (0.85 if i % 2 else 0.7) if final else 0.8  # full solves: a new law each time, little for a warm start
+        return json.dumps({"seq": i, "final": final, "case": {**case, "target": target}, "model": model, "ratio": ratio})
+
+    proc, url = start_server()
+    host = url.split("//", 1)[1].split("/", 1)[0]
+    memory: list[tuple[float, float, str]] = []
+    t_start = time.perf_counter()
+
+    async def page(case, model, final, until, out, computes, refused, offset):
+        for _ in range(200):  # the address is printed just before the server listens
+            try:
+                ws = await connect(f"ws://{host}/ws?token={TOKEN}", origin=f"http://{host}", max_size=None,
+                                   compression=None, open_timeout=30)
+                break
+            except OSError:
+                await asyncio.sleep(0.05)
+        async with ws:
+            i = 0
+            while time.perf_counter() < until:
+                i += 1
+                t0 = time.perf_counter()
+                await ws.send(message(case, offset + i, model, final))
+                data = await ws.recv()
+                ms = 1e3 * (time.perf_counter() - t0)
+                if isinstance(data, str):
+                    refused.append(json.loads(data).get("message"))
+                    continue
+                (n,) = struct.unpack_from("<I", data, 0)
+                out.append(ms)
+                computes.append(json.loads(data[4:4 + n])["compute_ms"])
+
+    async def sample(phase: dict, stop: asyncio.Event):
+        while not stop.is_set():
+            memory.append((time.perf_counter() - t_start, rss_mb(proc.pid), phase["name"]))
+            await asyncio.sleep(0.5)
+
+    async def phase_run(with_heavy: bool, phase: dict, round_: int) -> dict:
+        phase["name"] = ("light + heavy" if with_heavy else "light alone") + (f", round {round_}" if rounds > 1 else "")
+        until = time.perf_counter() + seconds
+        rtts, computes, refused, heavy_rtts, heavy_computes = [], [], [], [], []
+        tasks = [page(light, "paper", False, until, rtts, computes, refused, 1000 * k) for k in range(clients - 1)]
+        if with_heavy:
+            tasks.append(page(heavy, "hyperelastic", True, until, heavy_rtts, heavy_computes, refused, 0))
+        start_load = load()
+        await asyncio.gather(*tasks)
+        row = {"phase": phase["name"], "clients": clients - 1 + with_heavy, "answers": len(rtts),
+               "median_ms": statistics.median(rtts), "p95_ms": p95(rtts), "max_ms": max(rtts),
+               "compute_median_ms": statistics.median(computes), "refused": len(refused),
+               "load": f"{start_load} to {load()}"}
+        if with_heavy:
+            row.update(heavy_answers=len(heavy_rtts), heavy_compute_median_ms=statistics.median(heavy_computes),
+                       heavy_rtt_median_ms=statistics.median(heavy_rtts))
+        print(row, flush=True)
+        return row
+
+    async def main() -> dict:
+        phase, stop = {"name": "start"}, asyncio.Event()
+        sampler = asyncio.create_task(sample(phase, stop))
+        warm = time.perf_counter() + 0.1  # one request of each kind: the server's first imports are not measured
+        await asyncio.gather(page(light, "paper", False, warm, [], [], [], 0), page(heavy, "hyperelastic", True, warm, [], [], [], 0))
+        phases = []
+        for k in range(1, rounds + 1):
+            phases += [await phase_run(False, phase, k), await phase_run(True, phase, k)]
+        phase["name"] = "after"
+        await asyncio.sleep(5.0)
+        stop.set()
+        await sampler
+        return {"phases": phases}
+
+    try:
+        rows = asyncio.run(main())
+    finally:
+        proc.terminate()
+        proc.wait(timeout=10)
+    rows.update(memory=memory, clients=clients, seconds=seconds, layers=layers)
+    return rows
+
+
+def load_report(run_: dict, command: str) -> str:
+    """The load run as a Markdown section (see :func:`load_run`)."""
+    phases = run_["phases"]
+    ratios = [b["p95_ms"] / a["p95_ms"] for a, b in zip(phases[::2], phases[1::2])]
+    lines = [
+        "## Many pages at once: the load run",
+        "",
+        f"{run_['clients']} pages on one server (127.0.0.1, the run's token), each a WebSocket client in one Python",
+        f"process, for {run_['seconds']:.0f} s per phase. {run_['clients'] - 1} *light* pages drag the paper example's",
+        "target (paper model, previews, each request waiting for its answer); first alone, then beside one *heavy*",
+        "page asking the whole time for full deformations of the paper example with the hyperelastic model and",
+        f"{run_['layers']} elements through its thickness (about a second of compute each: the longest a page can",
+        f"hold one of the server's {WORKERS_NOTE} worker threads). Round trips of the light pages:",
+        "",
+        "| phase | pages | light answers | median ms | p95 ms | max ms | light compute median ms | heavy: answers, compute median ms | refused | load average |",
+        "|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in phases:
+        heavy = f"{r['heavy_answers']}, {r['heavy_compute_median_ms']:.0f}" if "heavy_answers" in r else "—"
+        lines.append(f"| {r['phase']} | {r['clients']} | {r['answers']} | {r['median_ms']:.1f} | {r['p95_ms']:.1f} | "
+                     f"{r['max_ms']:.0f} | {r['compute_median_ms']:.2f} | {heavy} | {r['refused']} | {r['load']} |")
+    mem = run_["memory"]
+    by_phase: dict[str, list[float]] = {}
+    for _, mb, name in mem:
+        by_phase.setdefault(name, []).append(mb)
+    shown = ", ".join(f"**{r:.2f}x**" for r in ratios)
+    lines += ["", f"p95 beside the heavy page / alone: {shown} (target: within 2x, "
+                  f"{'met' if max(ratios) <= 2 else 'not met'}).", "",
+              "Server memory (resident, MB), sampled every 0.5 s:", "",
+              "| phase | samples | first | max | last |", "|---|---|---|---|---|"]
+    for name, values in by_phase.items():
+        lines.append(f"| {name} | {len(values)} | {values[0]:.0f} | {max(values):.0f} | {values[-1]:.0f} |")
+    series = ", ".join(f"{t:.0f} s {mb:.0f}" for t, mb, _ in mem[::10])
+    lines += ["", f"Every 5 s: {series}.", "", LOAD_READING, "",
+              f"Machine: {platform.machine()}, {os.cpu_count()} cores shared with other jobs (load average in the "
+              "table); the clients run on the same cores as the server.", "", f"Command: `{command}`", ""]
+    return "\n".join(lines)
+
+
+def replace_section(path: Path, section: str) -> None:
+    """Write ``section`` (a ``## `` Markdown section) into ``path``, replacing the section of the same title."""
+    text = path.read_text(encoding="utf-8") if path.exists() else ""
+    title = section.splitlines()[0]
+    at = text.find(title + "\n")
+    if at >= 0:
+        end = text.find("\n## ", at + len(title))
+        text = text[:at] + section + (text[end + 1:] if end >= 0 else "")
+    else:
+        text = text.rstrip("\n") + "\n\n" + section
+    path.write_text(text, encoding="utf-8")
+
+
 def socket_report(rows: list[dict], command: str) -> str:
     lines = ["| model | requests | compression | answer bytes | round trip median / p95 ms | server compute median / p95 ms "
              "| beyond compute median / p95 ms | load average |", "|---|---|---|---|---|---|---|---|"]
@@ -366,10 +564,22 @@ def main(argv=None) -> int:
                         help="no browser: preview requests over the WebSocket from Python (round trip against compute)")
     parser.add_argument("--profile", action="store_true", help="no browser: the paper preview's parts, in this process")
     parser.add_argument("--trace", type=Path, help="write a Chromium trace (devtools.timeline) of 60 moves in step here")
+    parser.add_argument("--load", action="store_true", help="no browser: many pages at once, one on a heavy section")
+    parser.add_argument("--clients", type=int, default=30, help="--load: pages at once, the heavy one included")
+    parser.add_argument("--seconds", type=float, default=30.0, help="--load: seconds of each phase")
+    parser.add_argument("--rounds", type=int, default=1, help="--load: the two phases this many times (memory over time)")
+    parser.add_argument("--heavy-layers", type=int, default=20,
+                        help="--load: elements through the heavy section's thickness (about a second per solve)")
     args = parser.parse_args(argv)
     command = "python benchmarks/page.py " + " ".join(argv if argv is not None else sys.argv[1:])
     if args.profile:
         print(server_profile())
+        return 0
+    if args.load:
+        text = load_report(load_run(args.clients, args.seconds, args.heavy_layers, args.rounds), command)
+        print(text)
+        if args.out:
+            replace_section(args.out, text)
         return 0
     if args.socket:
         print(socket_report(socket_run(args.moves, tuple(args.models.split(","))), command))

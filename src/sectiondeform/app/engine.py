@@ -14,7 +14,9 @@ with the library's own message.
 
 from __future__ import annotations
 
+import contextlib
 import json
+import threading
 import time
 from collections import OrderedDict
 
@@ -28,13 +30,17 @@ from ..laws import AreaRatio, law_from_json
 from ..models import MODEL_NAMES
 from ..problem import V2, Problem
 from ..result import RESULT_V1, Result
+from ..section import local_green
 
-__all__ = ["MODELS", "DeformerCache", "answer", "case_from_json", "case_json_of", "case_model", "describe",
-           "full_result", "is_assembly", "law_of", "laws_of", "model_of_json", "outline", "section_key", "with_model"]
+__all__ = ["FIELDS", "MODELS", "DeformerCache", "SharedDeformers", "answer", "case_from_json", "case_json_of", "case_model", "describe",
+           "field_view", "full_result", "is_assembly", "law_of", "laws_of", "model_of_json", "outline", "report_figure",
+           "section_key", "with_model"]
 
 MODELS = MODEL_NAMES
 OUTLINE_SAMPLES = 65
 """Points of each curve of a body's outline."""
+FIELDS = ("J", "max_principal_strain", "von_mises_stress", "pressure")
+"""The colour maps the page offers on the final mesh (:data:`sectiondeform.field_plot.PLOT_FIELDS` names)."""
 
 
 def is_assembly(case_json) -> bool:
@@ -93,21 +99,57 @@ def section_key(case_json: dict, model: str) -> str:
     return json.dumps([rest, model], sort_keys=True)
 
 
+class SharedDeformers:
+    """Prepared problems shared by every page of a server, by :func:`section_key` (the last ``size`` used).
+
+    Pages on the same case prepare it once (thirty pages of the paper example,
+    one preparation). A :class:`Deformer` holds no state between calls, but
+    one thread at a time uses it: each comes with its lock, held by
+    :func:`answer` while it deforms. A page keeps the deformers it uses
+    (:class:`DeformerCache`) even when they leave this list.
+    """
+
+    def __init__(self, size: int = 8):
+        self.size = size
+        self._items: OrderedDict[str, tuple[Deformer, threading.Lock]] = OrderedDict()
+        self._lock = threading.Lock()
+
+    def get(self, key: str, build) -> tuple[Deformer, threading.Lock]:
+        """The deformer of ``key`` and its lock; ``build()`` prepares it if no page has (outside the list's lock)."""
+        with self._lock:
+            if key in self._items:
+                self._items.move_to_end(key)
+                return self._items[key]
+        deformer = build()  # another page's preparation meanwhile does not wait for this one
+        with self._lock:
+            entry = self._items.setdefault(key, (deformer, threading.Lock()))
+            self._items.move_to_end(key)
+            while len(self._items) > self.size:
+                self._items.popitem(last=False)
+        return entry
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+
 class DeformerCache:
-    """The last few prepared problems, by :func:`section_key`.
+    """The last few prepared problems of one page, by :func:`section_key`.
 
     Dragging the target or a law reuses one :class:`Deformer`; editing the
     section or switching the model prepares another (kept, so switching back
-    is free).
+    is free). With ``shared`` (the server's :class:`SharedDeformers`), a
+    problem another page has prepared is not prepared again.
     """
 
-    def __init__(self, size: int = 4):
+    def __init__(self, size: int = 4, shared: SharedDeformers | None = None):
         self.size = size
+        self.shared = shared
         self._items: OrderedDict[str, Deformer] = OrderedDict()
+        self._locks: dict[int, threading.Lock] = {}
         self._last: dict[int, Result] = {}  # the last full deformation of each deformer: the next warm start
 
     def get(self, case_json: dict, model: str, key: str | None = None) -> tuple[Deformer, bool]:
-        """The deformer of a case for a model; True if it was prepared now.
+        """The deformer of a case for a model; True if it is new to this page (prepared now, or by another page).
 
         ``key`` is the case's :func:`section_key` for ``model`` if known (from :meth:`ready`), not computed again.
         """
@@ -116,12 +158,24 @@ class DeformerCache:
         if key in self._items:
             self._items.move_to_end(key)
             return self._items[key], False
-        deformer = Deformer(case_from_dict(case_json), model=model)
+        def build():
+            return Deformer(case_from_dict(case_json), model=model)
+
+        if self.shared is not None:
+            deformer, lock = self.shared.get(key, build)
+        else:
+            deformer, lock = build(), threading.Lock()
         self._items[key] = deformer
+        self._locks[id(deformer)] = lock
         while len(self._items) > self.size:
             _, old = self._items.popitem(last=False)
             self._last.pop(id(old), None)
+            self._locks.pop(id(old), None)
         return deformer, True
+
+    def lock(self, deformer: Deformer):
+        """The lock a thread holds while it uses ``deformer`` (shared deformers: one thread at a time)."""
+        return self._locks.get(id(deformer)) or contextlib.nullcontext()
 
     def ready(self, case_json, model) -> str | None:
         """The :func:`section_key` of ``case_json`` if it is already prepared for ``model`` (a preview is then fast), else None."""
@@ -144,7 +198,7 @@ class DeformerCache:
 
 
 def answer(cache: DeformerCache, case_json: dict, model: str, ratio, final: bool, meshes: bool = True,
-           key: str | None = None) -> dict:
+           key: str | None = None, field: str | None = None) -> dict:
     """Deform a case for the page: the preview while dragging, the full deformation on release.
 
     Parameters
@@ -162,6 +216,9 @@ def answer(cache: DeformerCache, case_json: dict, model: str, ratio, final: bool
         Send the meshes.
     key : str, optional
         The case's :func:`section_key` for ``model``, if known (:meth:`DeformerCache.ready`).
+    field : str, optional
+        One of :data:`FIELDS`: its values on each body's final mesh come
+        with a full deformation (:func:`field_view`).
 
     Returns
     -------
@@ -180,13 +237,52 @@ def answer(cache: DeformerCache, case_json: dict, model: str, ratio, final: bool
     target = curve_from_json(case_json.get("target"), "target")
     laws = laws_of(case_json, ratio)
     start = cache.start(deformer)
+    with cache.lock(deformer):
+        result = deformer.deform(target, laws, start=start) if final else deformer.preview(target, laws, start=start)
     if final:
-        result = deformer.deform(target, laws, start=start)
         cache.remember(deformer, result)
-    else:
-        result = deformer.preview(target, laws, start=start)
     support = target.at_fractions(deformer.fractions)
-    return describe(result, support, final, prepared, meshes, 1e3 * (time.perf_counter() - t0))
+    out = describe(result, support, final, prepared, meshes, 1e3 * (time.perf_counter() - t0))
+    if field is not None and final:
+        out.update(field_view(result, field))
+        out["compute_ms"] = 1e3 * (time.perf_counter() - t0)
+    return out
+
+
+def field_view(result: Result, name) -> dict:
+    """A colour map of the page: ``{"field": {...}}``, the values of ``name`` per element of each body's final mesh.
+
+    The strain and stress fields the command line draws
+    (:func:`sectiondeform.field_plot.field_values`): ``values`` is one
+    ``(M_b,)`` float64 array per body, element by element of its final mesh
+    (at the top level for a ``section-case/1`` case, under each body for
+    an assembly), with the field's ``label`` (the stresses' unit), ``kind``
+    (``mechanical``, or ``geometric`` for the paper model's mesh), ``min``
+    and ``max``. A field the result has not (a stress of the paper model)
+    comes back as ``{"field": {"name", "error"}}``, one line.
+    """
+    from ..field_plot import PLOT_FIELDS, STRESS_FIELDS, field_values, stress_unit
+
+    if name not in FIELDS:
+        raise CaseError("field", f"unknown field {name!r}; use one of {', '.join(FIELDS)}")
+    if name in STRESS_FIELDS and result.model != "hyperelastic":
+        return {"field": {"name": name, "error": f"field: {name} is a stress and the {result.model} model has no "
+                                                  "material; choose the hyperelastic model or a strain field"}}
+    try:
+        kind, values = field_values(result, name)
+    except CaseError as exc:
+        return {"field": {"name": name, "error": f"field: {exc.problem}"}}
+    label = PLOT_FIELDS[name][2] + (f" ({stress_unit(result)})" if name in STRESS_FIELDS else "")
+    if kind == "geometric":
+        label += " (geometric: the paper model's mesh, not a material)"
+    both = np.concatenate(values)
+    view = {"name": name, "kind": kind, "label": label, "min": float(both.min()), "max": float(both.max())}
+    if result.dialect == RESULT_V1:
+        view["values"] = values[0]
+    else:
+        view["values"] = None
+        view["bodies"] = [{"values": v} for v in values]
+    return {"field": view}
 
 
 def describe(result: Result, support: np.ndarray, final: bool, prepared: bool, meshes: bool, compute_ms: float) -> dict:
@@ -260,7 +356,8 @@ def outline(case_json: dict) -> list[dict]:
     """Each body of a case as a closed ``(n, 2)`` outline (lower then upper), to draw before any answer.
 
     Only the curves are read: the page shows a problem whose deformation
-    the library refuses (with its message).
+    the library refuses (with its message). Each body's ``area`` is the
+    exact area its curves enclose (units²), shown until the first answer.
     """
     bodies = (case_json.get("bodies") or []) if is_assembly(case_json) else [case_json]
     s = np.linspace(0.0, 1.0, OUTLINE_SAMPLES)
@@ -271,7 +368,9 @@ def outline(case_json: dict) -> list[dict]:
         where = f"bodies[{i}]." if is_assembly(case_json) else ""
         lower = curve_from_json(body.get("lower"), f"{where}lower")
         upper = curve_from_json(body.get("upper"), f"{where}upper")
-        out.append({"name": str(body.get("name", i)), "contour": np.concatenate((lower.at_fractions(s), upper.at_fractions(s)[1:-1]))})
+        area = abs(local_green(lower, lower.start) + local_green(upper, lower.start))
+        out.append({"name": str(body.get("name", i)), "area": float(area),
+                    "contour": np.concatenate((lower.at_fractions(s), upper.at_fractions(s)[1:-1]))})
     return out
 
 
@@ -291,3 +390,23 @@ def case_json_of(problem: Problem) -> dict:
 def full_result(case_json: dict, model: str) -> Result:
     """The full deformation of a case, one body or several, by ``model`` (for saving)."""
     return Deformer(with_model(case_from_dict(case_json), model), model=model).deform()
+
+
+def report_figure(case_json: dict, model: str, path) -> None:
+    """Write the report figure of a case's full deformation by ``model`` to ``path`` (.png, .svg, .pdf).
+
+    The library's figure (:func:`sectiondeform.plot.draw_result`: the title
+    with the case's name and each body's law, the four panels with the
+    model, the legends with the areas or volumes), its axes labelled with
+    the case's units (the scale). Drawn with matplotlib's Agg canvas, on
+    the caller's thread (the server's workers), never pyplot.
+    """
+    from ..plot import draw_result, write_figure
+
+    result = full_result(case_json, model)
+    fig = draw_result(result)
+    unit = f" ({result.units})" if result.units else ""
+    for ax in fig.axes:
+        ax.set_xlabel("x" + unit, fontsize=8)
+        ax.set_ylabel("y" + unit, fontsize=8)
+    write_figure(fig, path)

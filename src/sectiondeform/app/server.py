@@ -16,8 +16,9 @@ Routes
     An uploaded case file (.json, .dxf, .svg, multipart field ``file``),
     read in a private temporary folder: the case as JSON.
 ``POST /api/save/{what}.{ext}``
-    The case (``what = case``: .json, .dxf, .svg) or its full deformation
-    (``what = result``: .json, .dxf, .svg, .vtu) as a download.
+    The case (``what = case``: .json, .dxf, .svg), its full deformation
+    (``what = result``: .json, .dxf, .svg, .vtu) or the library's report
+    figure of it (``what = figure``: .png, .svg, .pdf) as a download.
 
 Safety: every request needs the run's secret token (``?token=`` once, then
 the cookie the page's first load sets); the ``Host`` header must be one of
@@ -72,6 +73,8 @@ WORKERS = max(2, min(4, os.cpu_count() or 2))
 """Worker threads computing for all connections (the bound of the pool: nothing waits in its queue)."""
 CACHE_SIZE = 2
 """Prepared sections kept per connection (the section being dragged and one other, e.g. the other model)."""
+SHARED_SECTIONS = 8
+"""Prepared sections shared by all connections (pages on the same case prepare it once)."""
 MAX_DEPTH = 32
 """Deepest nesting of a request's JSON (a case needs about eight levels)."""
 UVICORN_OPTIONS = {"ws_max_size": MAX_MESSAGE, "ws_per_message_deflate": False}
@@ -90,8 +93,14 @@ STATIC = Path(str(resources.files(__package__) / "static"))
 OPEN_FORMATS = (".json", ".dxf", ".svg")
 CASE_FORMATS = (".json", ".dxf", ".svg")
 RESULT_FORMATS = (".json", ".dxf", ".svg", ".vtu")
+FIGURE_FORMATS = (".png", ".svg", ".pdf")
+SAVE_FORMATS = {"case": CASE_FORMATS, "result": RESULT_FORMATS, "figure": FIGURE_FORMATS}
 MEDIA = {".json": "application/json", ".dxf": "application/dxf", ".svg": "image/svg+xml",
-         ".vtu": "application/octet-stream"}
+         ".vtu": "application/octet-stream", ".png": "image/png", ".pdf": "application/pdf"}
+DRAWING_OPTIONS = ("layers", "split", "split_tol", "lower_side", "target_arc", "bbox", "snap", "close_gap",
+                   "join_tol", "simplify", "chordal_error", "units")
+"""The drawing options the page may send with an upload: every one the command line has (``--layers``...),
+by their :class:`~sectiondeform.io.outline.DrawingOptions` names; the law comes as ``area_ratio``."""
 SECURITY_HEADERS = [
     (b"x-frame-options", b"DENY"),
     (b"content-security-policy", b"frame-ancestors 'none'"),
@@ -301,13 +310,7 @@ def _read_upload(name: str, data: bytes, form: dict) -> dict:
     ext = Path(shown).suffix.lower()
     if ext not in OPEN_FORMATS:
         raise CaseError("file", f"unknown case format {ext or '(none)'!r}; open a .json, .dxf or .svg file")
-    options = {}
-    for key in ("snap", "close_gap", "join_tol", "simplify", "target_arc"):
-        if form.get(key) not in (None, ""):
-            try:
-                options[key] = float(form[key])
-            except ValueError:
-                raise CaseError(key, f"expected a number, got {one_line(repr(form[key]), limit=40)}") from None
+    options = _drawing_options(form)
     report: list[str] = []
     if ext == ".json":
         data_json = parse_json(data, "file")
@@ -328,16 +331,47 @@ def _read_upload(name: str, data: bytes, form: dict) -> dict:
                 if exc.field != "law" or ext == ".json":
                     raise
                 ratio = float(form.get("area_ratio") or 0.8)
+                report.clear()  # read again with the law: its report once
                 case = read_case(path, report=report, law=engine.law_of(ratio), **options)
                 report.append(f"the drawing gives no law: area ratio {ratio} used")
             except UnicodeDecodeError:
                 raise CaseError("file", "not a text file") from None
+            if case.name == path.stem:  # named after the file: the user's, not the server's
+                case = case.replace(name=Path(shown).stem)
             out = {"case": engine.case_json_of(case), "model": engine.case_model(case), "report": report}
+            out["outline"] = engine.outline(out["case"])
         except SectionDeformError as exc:
             raise CaseError("file", one_line(str(exc), names)) from None
         except Exception as exc:  # noqa: BLE001 - any unreadable upload is the user's file, not a crash
             raise CaseError("file", "cannot be read" + (f" ({one_line(str(exc), names)})" if str(exc) else "")) from None
     return {**out, "report": [one_line(line, names) for line in report]}
+
+
+def _drawing_options(form: dict) -> dict:
+    """The reader's options from an upload's form: checked by the library, one line naming the field if wrong.
+
+    ``options`` is a JSON object of :data:`DRAWING_OPTIONS` (``{"bbox": [xmin,
+    ymin, xmax, ymax], "split": [[xa, ya], [xb, yb]], "layers": {"lower":
+    "BASE"}, "lower_side": "longer", "units": "mm", ...}``); the single
+    numeric fields ``snap``, ``close_gap``, ``join_tol``, ``simplify`` and
+    ``target_arc`` are read too. Nothing here is a path.
+    """
+    from ..io.outline import DrawingOptions
+
+    options = {}
+    for key in ("snap", "close_gap", "join_tol", "simplify", "target_arc"):
+        if form.get(key) not in (None, ""):
+            try:
+                options[key] = float(form[key])
+            except ValueError:
+                raise CaseError(key, f"expected a number, got {one_line(repr(form[key]), limit=40)}") from None
+    if form.get("options") not in (None, ""):
+        given = parse_json(form["options"], "options")
+        if not isinstance(given, dict):
+            raise CaseError("options", "expected a JSON object of drawing options")
+        options.update({k: v for k, v in given.items() if v is not None})
+    DrawingOptions.from_mapping(options, allowed=DRAWING_OPTIONS)  # unknown names and bad values: one line each
+    return options
 
 
 def _opened(name: str, data: bytes, form: dict, limit: int) -> bytes:
@@ -369,7 +403,7 @@ def _assembly_opened(case_json: dict) -> dict:
 
 
 def _write(case_json, model, what: str, ext: str) -> bytes:
-    """The bytes of a case or result file, written in a private temporary folder."""
+    """The bytes of a case, result or figure file, written in a private temporary folder."""
     from ..io import write_case, write_result
 
     if not isinstance(case_json, dict):
@@ -380,6 +414,8 @@ def _write(case_json, model, what: str, ext: str) -> bytes:
         path = Path(tmp) / f"out{ext}"
         if what == "case":
             write_case(path, engine.with_model(engine.case_from_json(case_json), model))
+        elif what == "figure":
+            engine.report_figure(case_json, model, path)
         else:
             write_result(path, engine.full_result(case_json, model))
         return path.read_bytes()
@@ -388,7 +424,7 @@ def _write(case_json, model, what: str, ext: str) -> bytes:
 def _compute(cache: engine.DeformerCache, msg: dict) -> bytes:
     """The answer to one WebSocket request, framed (run on a worker thread)."""
     out = engine.answer(cache, msg.get("case"), msg.get("model", "paper"), msg.get("ratio"), bool(msg.get("final")),
-                        key=cache.ready(msg.get("case"), msg.get("model", "paper")))
+                        key=cache.ready(msg.get("case"), msg.get("model", "paper")), field=msg.get("field"))
     return framed({"type": "result", "seq": msg["seq"], **out})
 
 
@@ -473,10 +509,9 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
     cookie = cookie_name(token)
     start_model = engine.model_of_json(case_json)
     first = {"case": case_json, "model": start_model, "models": list(engine.MODELS),
-             "limit": message_limit}
-    if engine.is_assembly(case_json):
-        first["outline"] = engine.outline(case_json)
+             "fields": list(engine.FIELDS), "limit": message_limit, "outline": engine.outline(case_json)}
     shared = Workers(workers)
+    prepared = engine.SharedDeformers(SHARED_SECTIONS)
     connections = 0
 
     async def offload(fn, *args, what: str, names: dict | None = None):
@@ -520,10 +555,9 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
         if not origin_ok(request.headers, hosts):
             return _refusal(403, "request: from another origin; use the page this server serves")
         what, ext = request.path_params["what"], "." + request.path_params["ext"].lower()
-        formats = CASE_FORMATS if what == "case" else RESULT_FORMATS if what == "result" else ()
-        if ext not in formats:
-            return _refusal(404, one_line(f"save: cannot save {what}{ext}; save case.json/.dxf/.svg or "
-                                          "result.json/.dxf/.svg/.vtu", limit=120))
+        if ext not in SAVE_FORMATS.get(what, ()):
+            return _refusal(404, one_line(f"save: cannot save {what}{ext}; save case.json/.dxf/.svg, "
+                                          "result.json/.dxf/.svg/.vtu or figure.png/.svg/.pdf", limit=140))
         try:
             raw = await _body(request, upload_limit)
             body = await offload(parse_json, raw, "request", what="request")
@@ -552,7 +586,7 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
             await ws.close(code=1013)
             return
         connections += 1
-        cache = engine.DeformerCache(size=cache_size)
+        cache = engine.DeformerCache(size=cache_size, shared=prepared)
         pending: dict = {}
         wake = asyncio.Event()
 

@@ -29,6 +29,9 @@ const state = {
   drag: null,
   editsPending: false, // an edit made while dragging, drawn with its answer (editLater)
   latencies: [],       // ms from pointer event to redrawn section (for the benchmark)
+  saved: "",           // the edits as last opened or saved (see dirty)
+  field: "",           // the colour map on the final mesh ("" none)
+  probe: null,         // the thickness probe: null (off) or its points [[x, y], ...] (world units)
 };
 window.sdState = state;
 
@@ -52,12 +55,15 @@ function meshPath(mesh) {
   for (let i = 0; i < n; i++) S[i] = round(P[2 * i]) + " " + round(P[2 * i + 1]);
   let d = "";
   for (const c of mesh.cells) {
-    d += "M" + S[c[0]];
-    for (let j = 1; j < c.length; j++) d += "L" + S[c[j]];
+    const order = BOUNDARY[c.length];
+    d += "M" + S[c[order ? order[0] : 0]];
+    for (let j = 1; j < c.length; j++) d += "L" + S[c[order ? order[j] : j]];
     d += "Z";
   }
   return d;
 }
+// The boundary order of a quadratic cell's nodes (corners first, then mid-edge nodes): triangle6, quad8.
+const BOUNDARY = { 6: [0, 3, 1, 4, 2, 5], 8: [0, 4, 1, 5, 2, 6, 3, 7] };
 
 function applyView() {
   const v = state.view;
@@ -65,12 +71,128 @@ function applyView() {
   const q = 10 ** Math.max(0, Math.ceil(Math.log10(Math.max(20 * v.s, 1e-300))));
   if (q !== state.q && Number.isFinite(q)) { state.q = q; drawResult(true); drawEdits(false); }
   drawHandles();
+  drawAxes();
+  drawProbe();
 }
 
 const toScreen = (p) => [state.view.s * p[0] + state.view.tx, -state.view.s * p[1] + state.view.ty];
 function toWorld(evt) {
   const r = svg.getBoundingClientRect();
   return [(evt.clientX - r.left - state.view.tx) / state.view.s, (state.view.ty - (evt.clientY - r.top)) / state.view.s];
+}
+
+// ---- axes, scale bar, pointer read-out, thickness probe -------------------
+
+const units = () => (state.case && state.case.units) || "";
+// A round step (1, 2 or 5 times a power of ten) near `size`.
+function niceStep(size) {
+  const p = 10 ** Math.floor(Math.log10(size)), m = size / p;
+  return (m < 1.5 ? 1 : m < 3.5 ? 2 : m < 7.5 ? 5 : 10) * p;
+}
+// A length or coordinate as text: as many decimals as `step` needs, no more.
+function numText(v, step) {
+  const d = Math.max(0, Math.min(12, -Math.floor(Math.log10(step) + 1e-9)));
+  return (Math.abs(v) < step / 2 ? 0 : v).toFixed(d);
+}
+function svgEl(tag, attrs, text) {
+  const e = document.createElementNS(NS, tag);
+  for (const k in attrs) e.setAttribute(k, attrs[k]);
+  if (text !== undefined) e.textContent = text;
+  return e;
+}
+
+// Axes along the bottom and left edges (ticks about every 100 px, a faint grid), the units, a scale bar.
+function drawAxes() {
+  const g = $("axes"), bar = $("scale");
+  const r = svg.getBoundingClientRect(), v = state.view;
+  if (!state.case || !(v.s > 0) || !r.width) { g.replaceChildren(); bar.replaceChildren(); return; }
+  const step = niceStep(100 / v.s), u = units();
+  const out = [];
+  const x0 = -v.tx / v.s, x1 = (r.width - v.tx) / v.s, y0 = (v.ty - r.height) / v.s, y1 = v.ty / v.s;
+  for (let x = Math.ceil(x0 / step) * step; x <= x1; x += step) {
+    const sx = v.s * x + v.tx;
+    out.push(svgEl("line", { class: "grid", x1: sx, x2: sx, y1: 0, y2: r.height }));
+    out.push(svgEl("line", { x1: sx, x2: sx, y1: r.height - 6, y2: r.height }));
+    out.push(svgEl("text", { x: sx + 2, y: r.height - 8, class: "tick-x" }, numText(x, step)));
+  }
+  for (let y = Math.ceil(y0 / step) * step; y <= y1; y += step) {
+    const sy = -v.s * y + v.ty;
+    out.push(svgEl("line", { class: "grid", x1: 0, x2: r.width, y1: sy, y2: sy }));
+    out.push(svgEl("line", { x1: 0, x2: 6, y1: sy, y2: sy }));
+    out.push(svgEl("text", { x: 8, y: sy - 2, class: "tick-y" }, numText(y, step)));
+  }
+  out.push(svgEl("text", { x: r.width - 60, y: r.height - 22, id: "axis-x-label" }, "x" + (u ? ` (${u})` : "")));
+  out.push(svgEl("text", { x: 8, y: 14, id: "axis-y-label" }, "y" + (u ? ` (${u})` : "")));
+  g.replaceChildren(...out);
+  // the scale bar: a round length between about 60 and 150 px, bottom left
+  const len = niceStep(100 / v.s), px = len * v.s, bx = 40, by = r.height - 34;
+  bar.replaceChildren(svgEl("line", { x1: bx, x2: bx + px, y1: by, y2: by }),
+                      svgEl("line", { x1: bx, x2: bx, y1: by - 4, y2: by + 4 }),
+                      svgEl("line", { x1: bx + px, x2: bx + px, y1: by - 4, y2: by + 4 }),
+                      svgEl("text", { x: bx, y: by - 6, id: "scale-label" }, `${numText(len, len)}${u ? " " + u : ""}`));
+  bar.dataset.length = len; bar.dataset.pixels = px;
+}
+
+// The pointer's coordinates (world units), shown under the readouts.
+function showPointer(e) {
+  if (!state.case || !(state.view.s > 0)) return;
+  const [x, y] = toWorld(e), step = niceStep(0.5 / state.view.s);   // to half a screen pixel
+  $("r-pointer").textContent = `${numText(x, step)}, ${numText(y, step)}${units() ? " " + units() : ""}`;
+}
+
+// The nearest point of a polyline (flat or [[x, y]...]) to p, and its distance.
+function nearest(line, p) {
+  let best = { d: Infinity, q: null };
+  for (let i = 0; i + 1 < line.length; i++) {
+    const a = line[i], b = line[i + 1], ab = Geo.sub(b, a), l2 = Geo.dot(ab, ab);
+    const t = l2 > 0 ? Math.max(0, Math.min(1, Geo.dot(Geo.sub(p, a), ab) / l2)) : 0;
+    const q = [a[0] + t * ab[0], a[1] + t * ab[1]], d = Math.hypot(p[0] - q[0], p[1] - q[1]);
+    if (d < best.d) best = { d, q };
+  }
+  return best;
+}
+
+// The lower curve a probed point is measured to: the deformed one of the answer on screen, else the outline's.
+function probeLower() {
+  if (state.result && state.result.lower) return { line: state.result.lower, what: "deformed lower curve" };
+  if (state.outline && state.outline.length === 1) return { line: state.outline[0].contour.slice(0, OUTLINE_SAMPLES), what: "lower curve" };
+  return null;
+}
+const OUTLINE_SAMPLES = 65;   // points of each curve of an outline (engine.OUTLINE_SAMPLES)
+
+function drawProbe() {
+  const g = $("probe-marks");
+  const pts = state.probe || [];
+  if (!pts.length) { g.replaceChildren(); $("r-probe").textContent = state.probe ? "click a point" : "—"; return; }
+  const u = units() ? " " + units() : "", out = [], low = probeLower();
+  const step = niceStep(0.5 / state.view.s);
+  const texts = [];
+  pts.forEach((p, i) => {
+    const sp = toScreen(p), name = "AB"[i];
+    if (low && i === 0) {
+      const n = nearest(low.line, p), sq = toScreen(n.q);
+      out.push(svgEl("line", { x1: sp[0], y1: sp[1], x2: sq[0], y2: sq[1] }));
+      texts.push(`${name}: ${numText(n.d, step)}${u} to the ${low.what}`);
+      g.dataset.lowerDistance = n.d;
+    }
+    out.push(svgEl("circle", { cx: sp[0], cy: sp[1], r: 4 }));
+    out.push(svgEl("text", { x: sp[0] + 6, y: sp[1] - 6 }, name));
+  });
+  if (pts.length === 2) {
+    const [a, b] = pts, sa = toScreen(a), sb = toScreen(b), d = Math.hypot(b[0] - a[0], b[1] - a[1]);
+    out.push(svgEl("line", { x1: sa[0], y1: sa[1], x2: sb[0], y2: sb[1] }));
+    texts.push(`|AB| = ${numText(d, step)}${u}`);
+    g.dataset.distance = d;
+  } else delete g.dataset.distance;
+  g.replaceChildren(...out);
+  $("r-probe").textContent = texts.join("; ");
+}
+
+function setProbe(on) {
+  state.probe = on ? [] : null;
+  $("probe").classList.toggle("on", on);
+  svg.classList.toggle("probing", on);
+  drawProbe();
 }
 
 function fit() {
@@ -85,6 +207,7 @@ function fit() {
   const r = svg.getBoundingClientRect();
   const s = 0.8 * Math.min(r.width / Math.max(x1 - x0, 1e-9), r.height / Math.max(y1 - y0, 1e-9));
   state.view = { s, tx: r.width / 2 - s * (x0 + x1) / 2, ty: r.height / 2 + s * (y0 + y1) / 2 };
+  state.fitted = JSON.stringify(state.view);
   applyView();
 }
 
@@ -93,7 +216,7 @@ function drawResult(all) {
   if (!res) { drawOutline(); return; }
   const show = $("show-mesh").checked;
   if (res.assembly) { drawBodies(res, all, show); return; }
-  if (all) $("bodies").replaceChildren();
+  if (all || $("bodies").children.length) $("bodies").replaceChildren();   // the outline drawn before any answer
   // the initial section and mesh change only with the section: redrawn only then
   if (all || res.initialSent) {
     $("initial").setAttribute("d", pathOf(res.initial_contour, true));
@@ -102,6 +225,62 @@ function drawResult(all) {
   $("deformed").setAttribute("d", pathOf(res.contour, true));
   $("target").setAttribute("d", pathOf(res.lower, false));
   $("mesh-final").setAttribute("d", show ? meshPath(res.mesh_final) : "");
+  drawField(res, all);
+}
+
+// ---- colour maps ----------------------------------------------------------
+
+// viridis at nine stops
+const VIRIDIS = ["#440154", "#472d7b", "#3b528b", "#2c728e", "#21918c", "#28ae80", "#5ec962", "#addc30", "#fde725"];
+const BINS = 32;   // the colour map in 32 steps: one path per step, whatever the number of elements
+function viridis(t) {
+  const x = Math.max(0, Math.min(1, t)) * (VIRIDIS.length - 1), i = Math.min(VIRIDIS.length - 2, Math.floor(x)), f = x - i;
+  const c = (h, k) => parseInt(h.slice(1 + 2 * k, 3 + 2 * k), 16);
+  const mix = (k) => Math.round(c(VIRIDIS[i], k) * (1 - f) + c(VIRIDIS[i + 1], k) * f);
+  return `rgb(${mix(0)},${mix(1)},${mix(2)})`;
+}
+// Cells of a mesh as polygons of their corners (a quadratic cell's corners and mid-edge nodes in boundary order).
+function cellPath(P, c) {
+  const order = BOUNDARY[c.length];
+  let d = "";
+  for (let j = 0; j < c.length; j++) {
+    const k = c[order ? order[j] : j];
+    d += (j ? "L" : "M") + round(P[2 * k]) + " " + round(P[2 * k + 1]);
+  }
+  return d + "Z";
+}
+
+// The colour map of the answer on screen: each final element filled by its value's colour, clipped to the
+// deformed section(s). A preview carries no field (its colours would be stale): the map waits for the release.
+function drawField(res, all) {
+  const g = $("field-overlay");
+  const f = res && res.field;
+  if (!f || f.error || !state.field) {
+    g.replaceChildren(); delete g.dataset.field;
+    $("field-clip-path").setAttribute("d", "");
+    $("colourbar").hidden = true;
+    return;
+  }
+  const parts = res.assembly ? res.bodies.map((b, i) => [b, f.bodies[i].values]) : [[res, f.values]];
+  const span = f.max - f.min || 1;
+  const ds = new Array(BINS).fill("");
+  let clip = "", cells = 0;
+  for (const [b, values] of parts) {
+    const mesh = b.mesh_final;
+    if (!mesh || !mesh.cells) continue;
+    mesh.cells.forEach((c, e) => { ds[Math.min(BINS - 1, Math.floor(BINS * (values[e] - f.min) / span))] += cellPath(mesh.points, c); });
+    cells += mesh.cells.length;
+    clip += pathOf(b.contour, true);
+  }
+  $("field-clip-path").setAttribute("d", clip);
+  g.replaceChildren(...ds.map((d, i) => svgEl("path", { d, fill: viridis((i + 0.5) / BINS) })).filter((p) => p.getAttribute("d")));
+  g.dataset.field = f.name; g.dataset.cells = cells; g.dataset.min = f.min; g.dataset.max = f.max;
+  $("colourbar").hidden = false;
+  $("colourbar-label").textContent = f.label;
+  $("colourbar-ramp").style.background = `linear-gradient(to right, ${VIRIDIS.join(", ")})`;
+  const step = niceStep(Math.max(Math.abs(f.max - f.min), Math.abs(f.max) * 1e-6, 1e-300) / 1000);
+  $("colourbar-min").textContent = numText(f.min, step);
+  $("colourbar-max").textContent = numText(f.max, step);
 }
 
 // An assembly's bodies: one group per body (initial, its mesh, deformed, its mesh), in the body's colour.
@@ -138,10 +317,13 @@ function drawBodies(res, all, show) {
     meshFinal.setAttribute("d", show ? meshPath(b.mesh_final) : "");
   });
   $("target").setAttribute("d", pathOf(res.lower, false));
+  drawField(res, all);
 }
 
-// An assembly the library has not deformed (yet, or at all): its bodies as drawn.
+// A case the library has not deformed (yet, or at all): its bodies as drawn, from their own curves.
 function drawOutline() {
+  for (const id of ["initial", "mesh-initial", "deformed", "mesh-final"]) $(id).setAttribute("d", "");
+  drawField(null);
   if (!state.outline) { $("bodies").replaceChildren(); return; }
   const paths = bodyPaths(state.outline.length);
   state.outline.forEach((b, i) => {
@@ -222,7 +404,9 @@ function drawHandles() {
 
 // ---- readouts ----------------------------------------------------------
 
-const fmt = (v, d = 4) => (v === null || v === undefined ? "—" : Number(v).toPrecision(d + 2));
+// A figure as text: a whole number as it is, others to d + 2 digits, yes/no for a flag.
+const fmt = (v, d = 4) => (v === null || v === undefined ? "—" : typeof v === "boolean" ? (v ? "yes" : "no")
+  : typeof v !== "number" ? String(v) : Number.isInteger(v) ? String(v) : v.toPrecision(d + 2));
 
 const expo = (v) => (v === null || v === undefined ? "—" : Number(v).toExponential(2));
 
@@ -273,7 +457,7 @@ function showReadout(res, roundtrip) {
   $("r-error").textContent = expo(res.relative_error);
   showBodies(res, u);
   $("r-jacobian").textContent = fmt(res.jacobian_min, 3);
-  $("r-info").textContent = Object.entries(res.info).map(([k, v]) => `${k} ${typeof v === "number" ? fmt(v, 3) : v}`).join(", ") || "—";
+  showInfo(res);
   $("r-compute").textContent = res.compute_ms.toFixed(2) + " ms";
   $("r-roundtrip").textContent = roundtrip.toFixed(1) + " ms";
   $("r-state").textContent = (res.final ? "full deformation" : "preview") + ` (${res.model})`;
@@ -289,6 +473,32 @@ function showReadout(res, roundtrip) {
   d.roundtripMs = roundtrip; d.computeMs = res.compute_ms;
 }
 
+// The model's figures as a table: one row per figure, one column per body.
+function showInfo(res) {
+  const bodies = res.assembly ? res.bodies : [res];
+  const keys = [...new Set(bodies.flatMap((b) => Object.keys(b.info || {})))];
+  const head = document.createElement("tr");
+  for (const t of ["figure", ...(res.assembly ? bodies.map((b) => b.name) : [res.model + " model"])]) {
+    const th = document.createElement("th"); th.textContent = t; head.appendChild(th);
+  }
+  $("info-head").replaceChildren(head);
+  $("info-rows").replaceChildren(...keys.map((k) => {
+    const tr = document.createElement("tr");
+    tr.dataset.key = k;
+    for (const t of [k.replace(/_/g, " "), ...bodies.map((b) => fmt((b.info || {})[k], 3))]) {
+      const td = document.createElement("td"); td.textContent = t; tr.appendChild(td);
+    }
+    return tr;
+  }));
+}
+
+// The warnings of the answer on screen (and only of it), in the warning colour.
+function showWarnings(list) {
+  const w = $("warnings");
+  w.textContent = list && list.length ? "warning: " + list.join("; ") : "";
+  w.hidden = !w.textContent;
+}
+
 function message(text, kind) {
   const m = $("message");
   m.textContent = text || "";
@@ -299,7 +509,14 @@ function message(text, kind) {
 
 let socket = null;
 let queued = null;
+let retries = 0;       // reconnection attempts since the connection was lost
+let resend = false;    // on reconnecting, send the page's current state again
 
+// The live link. When it drops (the server restarted, the network), the page reconnects by itself, waiting
+// longer after each failed attempt (RETRY_MS, doubling up to RETRY_MAX_MS), keeps every edit meanwhile, and
+// once connected sends its current state again: the answer on screen is then the server's for the case
+// being edited. Only a refusal of the page itself (wrong token, 1008) or a full server (1013) stops it.
+const RETRY_MS = 250, RETRY_MAX_MS = 5000;
 function connect() {
   socket = new WebSocket(`ws://${location.host}/ws`);
   socket.binaryType = "arraybuffer";
@@ -307,15 +524,44 @@ function connect() {
     const t = performance.now();
     onAnswer(typeof e.data === "string" ? JSON.parse(e.data) : unframe(e.data), t);
   };
-  socket.onopen = () => { if (queued) { socket.send(queued); queued = null; } };
+  socket.onopen = () => {
+    svg.dataset.connected = "1";
+    const again = retries > 0;
+    retries = 0;
+    if (again) {
+      svg.dataset.reconnects = Number(svg.dataset.reconnects || 0) + 1;
+      queued = null;
+      if (resend && state.case) { message("reconnected to the server; the case being edited was sent again", "info"); request(true); }
+      else message("reconnected to the server", "info");
+    } else if (queued) { socket.send(queued); queued = null; }
+  };
   socket.onclose = (e) => {
     svg.dataset.closed = String(e.code);
+    svg.dataset.connected = "0";
     if (e.code === 1013) return;   // the server is full: its refusal, already shown, says so
-    message(CLOSED[e.code] || "connection to the server lost; reload the page when it runs again", "error");
+    if (e.code === 1008) { message(CLOSED[1008], "error"); return; }
+    if (retries === 0) resend = e.code !== 1009;   // a case too large would be refused again
+    const wait = Math.min(RETRY_MAX_MS, RETRY_MS * 2 ** retries);
+    retries += 1;
+    message((CLOSED[e.code] || "connection to the server lost") +
+            `; reconnecting in ${(wait / 1000).toFixed(1)} s (attempt ${retries}); your edits are kept`, "error");
+    setTimeout(retry, wait);
   };
 }
+// A refused handshake looks like a lost connection (1006): after two failures, ask the server whether it still
+// knows this page's token (a restart with a new one: reconnecting cannot help).
+async function retry() {
+  if (retries >= 2) {
+    try {
+      const r = await fetch("/api/start", { cache: "no-store" });
+      if (r.status === 403) { svg.dataset.closed = "1008"; message(CLOSED[1008], "error"); return; }
+    } catch (err) { /* the server is still down: try the WebSocket again */ }
+  }
+  connect();
+}
 const CLOSED = {
-  1008: "the server refused this page (wrong or missing token): open the address the serve command printed",
+  1008: "the server refused this page (wrong or missing token; it may have restarted with a new one): open the " +
+        "address the serve command printed in this tab; the case being edited is kept in it",
   1009: "the case is too large to send to the server; simplify it (open it again with the simplify option)",
 };
 
@@ -323,7 +569,10 @@ function request(final, t0) {
   state.seq += 1;
   state.sent.set(state.seq, t0 === undefined ? performance.now() : t0);
   if (!isAssembly()) state.case.law = { area_ratio: state.ratio };   // an assembly's laws are its bodies' (setRatio)
-  const text = JSON.stringify({ seq: state.seq, final, case: state.case, model: state.model, ratio: state.ratio });
+  const req = { seq: state.seq, final, case: state.case, model: state.model, ratio: state.ratio };
+  if (final && state.field) req.field = state.field;
+  if (final) keep();
+  const text = JSON.stringify(req);
   if (socket.readyState === WebSocket.OPEN) socket.send(text); else queued = text;
   state.sentAt.set(state.seq, performance.now());
   svg.dataset.pending = state.seq;
@@ -406,8 +655,12 @@ function onAnswer(msg, received) {
   }
   showReadout(msg, t0 === undefined ? NaN : now - t0);
   if ($("message").dataset.kind === "error") message("", "none");
-  if (msg.warnings.length) message("warning: " + msg.warnings.join("; "), "info");
-  if (state.fitPending) { state.fitPending = false; fit(); }
+  showWarnings(msg.warnings);
+  $("field-note").hidden = !(msg.field && msg.field.error);
+  $("field-note").textContent = msg.field && msg.field.error ? msg.field.error : "";
+  if (state.probe && state.probe.length) drawProbe();
+  // fitted to the outline before the answer: fitted again to the answer (with the deformed section) unless moved since
+  if (state.fitPending) { state.fitPending = false; if (state.fitted === JSON.stringify(state.view)) fit(); }
 }
 
 // ---- editing -----------------------------------------------------------
@@ -415,6 +668,43 @@ function onAnswer(msg, received) {
 function snapshot() {
   return { target: clone(state.case.target), upper: clone(state.case.upper), ratio: state.ratio,
            laws: isAssembly() ? state.case.bodies.map((b) => clone(b.law)) : null };
+}
+
+// The whole page's case, before a reset or an opened file replaces it: undo brings it back.
+function wholeSnapshot() {
+  return { whole: true, case: clone(state.case), model: state.model, ratio: state.ratio, body: state.body,
+           opened: state.opened, openedModel: state.openedModel, outline: state.outline, saved: state.saved,
+           name: $("case-name").textContent };
+}
+
+// ---- unsaved edits -------------------------------------------------------
+
+// What an edit changes: the case (target, section, laws), the model and the ratio.
+function editKey() {
+  if (!state.case) return "";
+  if (!isAssembly()) state.case.law = { area_ratio: state.ratio };
+  return JSON.stringify([state.case, state.model]);
+}
+// True if the case on the page differs from the one last opened or saved as a case file.
+const dirty = () => Boolean(state.case) && editKey() !== state.saved;
+// Ask before `what` replaces unsaved edits (it can be undone, say so); true to go on.
+function mayReplace(what) {
+  return !dirty() || window.confirm(`${what} replaces the edits not saved as a case file. Go on? (Ctrl+Z or undo brings them back)`);
+}
+window.addEventListener("beforeunload", (e) => {
+  if (!dirty()) return;
+  e.preventDefault();
+  e.returnValue = "";   // the browser asks whether to leave the page
+});
+// The case being edited, kept in this tab (sessionStorage): a page reopened here after the server restarted
+// with a new token takes it back.
+const KEPT = "sectiondeform-edits";
+function keep() {
+  try {
+    if (dirty()) sessionStorage.setItem(KEPT, JSON.stringify({ case: state.case, model: state.model, ratio: state.ratio,
+                                                               opened: state.opened, openedModel: state.openedModel }));
+    else sessionStorage.removeItem(KEPT);
+  } catch (err) { /* storage full or off: the prompts still guard the edits */ }
 }
 
 function setPoints(curve, P) {
@@ -441,9 +731,19 @@ svg.addEventListener("pointerdown", (e) => {
   }
 });
 
+// With the probe on, a click on the background (a press and release without moving) places a point:
+// the first is measured to the lower curve, the second to the first; a third starts again.
+function probeClick(e, d) {
+  if (!state.probe || !d || !d.pan || Math.hypot(e.clientX - d.x, e.clientY - d.y) > 3) return;
+  if (state.probe.length >= 2) state.probe = [];
+  state.probe.push(toWorld(e));
+  drawProbe();
+}
+
 svg.addEventListener("pointermove", (e) => {
   const t0 = performance.now();
   const d = state.drag;
+  if (!d || d.pan) showPointer(e);
   if (!d) return;
   if (d.pan) {
     state.view.tx = d.tx + e.clientX - d.x; state.view.ty = d.ty + e.clientY - d.y;
@@ -482,6 +782,7 @@ function flushEdits() {
 function endDrag(e) {
   const d = state.drag;
   state.drag = null;
+  if (d && d.pan && e.type === "pointerup") probeClick(e, d);
   if (!d || d.pan) return;
   flushEdits();
   if (d.moved) request(true); else state.undo.pop();
@@ -502,9 +803,11 @@ svg.addEventListener("wheel", (e) => {
 function undo() {
   const s = state.undo.pop();
   if (!s) return;
+  if (s.whole) { restore(s); return; }
   state.case.target = s.target;
   if (s.laws) { s.laws.forEach((law, i) => { state.case.bodies[i].law = law; }); showRatio(); }
   else { state.case.upper = s.upper; setRatio(s.ratio); }
+  if (s.model) setModel(s.model);
   drawEdits(); request(true);
 }
 
@@ -540,6 +843,7 @@ document.addEventListener("keydown", (e) => {
   if (e.target.tagName === "INPUT" || e.target.tagName === "SELECT") return;
   if ((e.ctrlKey || e.metaKey) && e.key === "z") { e.preventDefault(); undo(); return; }
   if (e.key === "f" || e.key === "F") { fit(); return; }
+  if (e.key === "p" || e.key === "P") { setProbe(!state.probe); return; }
   const dirs = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
   const sel = state.selected;
   if (!sel || !dirs[e.key]) return;
@@ -562,56 +866,132 @@ $("ratio-value").addEventListener("change", (e) => {
   request(true);
 });
 $("body").addEventListener("change", (e) => { state.body = Number(e.target.value); showRatio(); });
-$("model").addEventListener("change", (e) => { state.model = e.target.value; request(true); });
+// A model change: the warnings on screen were the other model's; the stresses exist for the hyperelastic model only.
+$("model").addEventListener("change", (e) => {
+  state.undo.push({ ...snapshot(), model: state.model });
+  setModel(e.target.value);
+  request(true);
+});
+function setModel(model) {
+  state.model = model;
+  $("model").value = model;
+  showWarnings([]);
+  for (const o of $("field").options) o.disabled = Boolean(o.dataset.stress) && model !== "hyperelastic";
+  if ($("field").selectedOptions[0].disabled) { $("field").value = ""; state.field = ""; }
+}
+$("field").addEventListener("change", (e) => { state.field = e.target.value; drawField(null); if (state.field) request(true); });
+$("probe").addEventListener("click", () => setProbe(!state.probe));
 $("show-mesh").addEventListener("change", () => drawResult(true));
 $("undo").addEventListener("click", undo);
 $("fit").addEventListener("click", fit);
-$("reset").addEventListener("click", () => load({ case: state.opened, model: state.openedModel }, false));
+$("reset").addEventListener("click", () => {
+  if (!mayReplace("Reset")) return;
+  load({ case: state.opened, model: state.openedModel, outline: state.openedOutline }, false, true);
+});
 
 // ---- files -------------------------------------------------------------
 
-function load(data, refit = true) {
+// Show a case: opened (a file, the server's start, a reset) or brought back by undo. `undoable`: the case it
+// replaces goes on the undo stack; otherwise the stack starts empty.
+function load(data, refit = true, undoable = false) {
+  if (undoable && state.case) state.undo.push(wholeSnapshot()); else state.undo = [];
   state.opened = clone(data.case);
   state.openedModel = data.model || "paper";
-  state.case = clone(data.case);
-  state.model = state.openedModel;
-  $("model").value = state.model;
-  state.body = 0;
-  state.outline = data.outline || null;
+  state.openedOutline = data.outline || null;
+  show(data.case, state.openedModel, data.outline || null, refit);
+  state.saved = editKey();
+  keep();
+  request(true);
+}
+
+// Undo of a reset or an opened file: the case before it, with what it was opened from.
+function restore(s) {
+  state.opened = s.opened; state.openedModel = s.openedModel;
+  show(s.case, s.model, s.outline, true, s.ratio, s.body);
+  state.saved = s.saved;
+  $("case-name").textContent = s.name;
+  keep();
+  request(true);
+}
+
+// Put a case on the page, drawn at once from its own curves (`outline`) until the server's answer comes.
+function show(caseJson, model, outline, refit, ratio, body) {
+  state.case = clone(caseJson);
+  setModel(model);
+  state.body = body || 0;
+  state.outline = outline;
   const bodies = isAssembly() ? state.case.bodies : [];
   $("body").replaceChildren(...bodies.map((b, i) => new Option(b.name || `body ${i}`, i)));
   $("body-label").hidden = !bodies.length;
   $("assembly-hint").hidden = !bodies.length;
   svg.classList.remove("refused");
-  if (bodies.length) { showRatio(); quantityLabels(Boolean(state.case.revolution)); }
+  if (bodies.length) { $("body").value = state.body; showRatio(); quantityLabels(Boolean(state.case.revolution)); }
   else {
-    setRatio(data.case.law && data.case.law.area_ratio !== undefined ? data.case.law.area_ratio : 0.8);
+    setRatio(ratio !== undefined ? ratio : caseJson.law && caseJson.law.area_ratio !== undefined ? caseJson.law.area_ratio : 0.8);
     quantityLabels(false);
   }
   $("bodies-readout").hidden = true;
-  for (const id of ["initial", "target", "final", "error", "jacobian", "info", "compute", "roundtrip", "state"]) $("r-" + id).textContent = "—";
-  state.undo = []; state.selected = null;
-  $("case-name").textContent = data.case.name || "";
+  showOutlineReadout();
+  state.selected = null;
+  $("case-name").textContent = caseJson.name || "";
   state.result = null;
-  state.fitPending = refit;
+  showWarnings([]);
   drawResult(true);
-  drawEdits();
-  if (refit && state.outline) fit();
-  request(true);
+  state.fitPending = refit;
+  state.fitted = JSON.stringify(state.view);
+  if (refit && state.outline) fit(); else { drawEdits(); drawAxes(); }
+}
+
+// Until the first answer: the areas from the case's own curves, the rest "computing".
+function showOutlineReadout() {
+  const waiting = "computing…";
+  for (const id of ["final", "error", "jacobian", "compute", "roundtrip"]) $("r-" + id).textContent = waiting;
+  $("r-state").textContent = "sent to the server";
+  $("info-head").replaceChildren(); $("info-rows").replaceChildren();
+  const u = " " + units() + "²";
+  const areas = state.outline && !state.case.revolution ? state.outline.map((b) => b.area) : null;
+  if (!areas) { $("r-initial").textContent = waiting; $("r-target").textContent = waiting; return; }
+  const ratios = isAssembly() ? state.case.bodies.map((b) => (b.law && b.law.area_ratio) || NaN) : [state.ratio];
+  const total = areas.reduce((s, a) => s + a, 0), target = areas.reduce((s, a, i) => s + ratios[i] * a, 0);
+  $("r-initial").textContent = fmt(total) + u;
+  $("r-target").textContent = Number.isFinite(target) ? fmt(target) + u : waiting;
+}
+
+// The drawing options of the form, by their library names (the server checks them: one line if wrong).
+// Lists are split at commas; what is not a number is sent as typed, for the library to name.
+function drawingOptions() {
+  const list = (id) => $(id).value.split(/[,;\s]+/).filter((t) => t !== "").map((t) => (Number.isFinite(Number(t)) ? Number(t) : t));
+  const out = {};
+  for (const [id, key] of [["o-snap", "snap"], ["o-close-gap", "close_gap"], ["o-join-tol", "join_tol"],
+                           ["o-target-arc", "target_arc"], ["o-simplify", "simplify"], ["o-split-tol", "split_tol"],
+                           ["o-chordal-error", "chordal_error"]]) {
+    if ($(id).value !== "") out[key] = Number($(id).value);
+  }
+  if ($("o-bbox").value.trim()) out.bbox = list("o-bbox");
+  if ($("o-split-a").value.trim() || $("o-split-b").value.trim()) out.split = [list("o-split-a"), list("o-split-b")];
+  if ($("o-lower-side").value) out.lower_side = $("o-lower-side").value;
+  if ($("o-units").value) out.units = $("o-units").value;
+  if ($("o-layers").value.trim()) {
+    out.layers = {};
+    for (const item of $("o-layers").value.split(",")) {
+      const [role, name] = item.split("=").map((t) => t.trim());
+      if (role) out.layers[role] = name || "";
+    }
+  }
+  return out;
 }
 
 async function openFile(file) {
+  if (!mayReplace(`Opening ${file.name}`)) return;
   const form = new FormData();
   form.append("file", file);
-  for (const [id, key] of [["o-area-ratio", "area_ratio"], ["o-snap", "snap"], ["o-close-gap", "close_gap"],
-                           ["o-join-tol", "join_tol"], ["o-target-arc", "target_arc"]]) {
-    if ($(id).value !== "") form.append(key, $(id).value);
-  }
+  if ($("o-area-ratio").value !== "") form.append("area_ratio", $("o-area-ratio").value);
+  form.append("options", JSON.stringify(drawingOptions()));
   try {
     const r = await fetch("/api/open", { method: "POST", body: form });
     if (!r.ok) { message(`cannot open ${file.name}: ${await failure(r)}`, "error"); return; }
     const data = await r.json();
-    load(data);
+    load(data, true, true);
     message(`opened ${file.name}` + (data.report.length ? ": " + data.report.join("; ") : ""), "info");
   } catch (err) {
     message(`cannot open ${file.name}: ${err}`, "error");
@@ -643,7 +1023,7 @@ async function failure(r) {
 
 document.querySelectorAll("[data-save]").forEach((b) => b.addEventListener("click", async () => {
   const name = b.dataset.save;
-  if (!isAssembly()) state.case.law = { area_ratio: state.ratio };   // an assembly's laws are its bodies'
+  const sent = editKey();   // sets a one-body case's law from the slider (an assembly's laws are its bodies')
   try {
     const r = await fetch("/api/save/" + name, {
       method: "POST", headers: { "Content-Type": "application/json" },
@@ -651,39 +1031,32 @@ document.querySelectorAll("[data-save]").forEach((b) => b.addEventListener("clic
     });
     if (!r.ok) { message(`not saved: ${name}: ${await failure(r)}`, "error"); return; }
     download(await r.blob(), (state.case.name || "section") + "-" + name);
+    if (name.startsWith("case.") && sent === editKey()) { state.saved = sent; keep(); }
   } catch (err) {
     message(`not saved: ${name}: the server cannot be reached (${err.message || err}); nothing was written`, "error");
   }
 }));
 
-// The view as PNG: the SVG (with its own style) drawn on a canvas.
-function viewPng() {
-  return new Promise((resolve, reject) => {
-    const r = svg.getBoundingClientRect();
-    const copy = svg.cloneNode(true);
-    copy.setAttribute("width", r.width); copy.setAttribute("height", r.height);
-    const url = URL.createObjectURL(new Blob([new XMLSerializer().serializeToString(copy)], { type: "image/svg+xml" }));
-    const img = new Image();
-    img.onload = () => {
-      const canvas = document.createElement("canvas");
-      canvas.width = r.width * 2; canvas.height = r.height * 2;
-      const ctx = canvas.getContext("2d");
-      ctx.scale(2, 2);
-      ctx.drawImage(img, 0, 0);
-      URL.revokeObjectURL(url);
-      canvas.toBlob(resolve, "image/png");
-    };
-    img.onerror = reject;
-    img.src = url;
-  });
-}
-$("save-png").addEventListener("click", async () => download(await viewPng(), (state.case.name || "section") + "-view.png"));
 
 window.addEventListener("resize", () => applyView());
+svg.addEventListener("pointerleave", () => { $("r-pointer").textContent = "—"; });
 
 // ---- start -------------------------------------------------------------
 
 // The address carried the run's token: the server has set it as a cookie; keep it off the address bar.
 if (new URLSearchParams(location.search).has("token")) history.replaceState(null, "", location.pathname);
 connect();
-fetch("/api/start").then((r) => r.json()).then((data) => load(data));
+fetch("/api/start").then((r) => r.json()).then((data) => {
+  let kept = null;
+  try { kept = JSON.parse(sessionStorage.getItem(KEPT) || "null"); } catch (err) { kept = null; }
+  load(data);
+  if (kept && kept.case) {   // edits of this tab not saved before the page was left: back, one undo away
+    state.undo.push(wholeSnapshot());
+    state.opened = kept.opened || kept.case; state.openedModel = kept.openedModel || kept.model;
+    state.openedOutline = null;
+    show(kept.case, kept.model, null, true, kept.ratio);
+    keep();
+    request(true);
+    message("the edits not saved before this page was left are back (undo shows the case the server started with)", "info");
+  }
+});
