@@ -233,7 +233,7 @@ def result_mechanics(result) -> list:
         material = state.materials[b]
         preview = getattr(body.info, "preview", False)
         mean = None if preview else _mean_stress(state.state.z, state.pressure_dofs[b])
-        growth = float(state.stretches[b]) if state.growth else 1.0
+        growth = float(state.stretches[b]) if state.growth else float(state.growths[b]) if getattr(state, "growths", ()) else 1.0
         out.append(Mechanics(material, mean, growth, relative=result.dialect == RESULT_V1))
     return out
 
