@@ -145,9 +145,10 @@ class Problem:
         if self.dialect not in DIALECTS:
             raise CaseError("format", f"unknown case format {self.dialect!r}; use one of {', '.join(DIALECTS)}")
         if self.dialect == V1 and (len(self.bodies) != 1 or self.revolution is not None or self.bodies[0].material != "{}"
-                                   or self.bodies[0].holes or self.bodies[0].lower.to_json() != self.support.to_json()):
-            raise CaseError("format", "section-case/1 holds one body on its own lower curve, without revolution, material or "
-                                      "holes; write it as section-case/2")
+                                   or self.bodies[0].holes or self.bodies[0].law.growth is not None
+                                   or self.bodies[0].lower.to_json() != self.support.to_json()):
+            raise CaseError("format", "section-case/1 holds one body on its own lower curve, without revolution, material, "
+                                      "holes or growth (volume_ratio); write it as section-case/2")
         seen: dict[str, int] = {}
         for i, body in enumerate(self.bodies):
             if body.name in seen:
