@@ -119,8 +119,7 @@ def test_scale_roots_of_a_cubic_are_exact_and_nearest_first():
 def test_volume_ratio_law_reads_and_writes_its_key_and_needs_an_axis():
     law = law_from_json({"volume_ratio": 0.98}, axis=X_AXIS)
     assert law == VolumeRatio(0.98, X_AXIS) and law.to_json() == {"volume_ratio": 0.98}
-    with pytest.raises(CaseError, match=r"^law\.volume_ratio: only valid for a body of revolution"):
-        law_from_json({"volume_ratio": 0.98})
+    assert law_from_json({"volume_ratio": 0.98}).axis is None  # an extruded body's growth
     with pytest.raises(CaseError, match="law.volume_ratio: must be between"):
         VolumeRatio(200.0)
     with pytest.raises(LawError, match="volume_ratio sets the volume, not the area"):
@@ -244,15 +243,15 @@ def test_the_physical_root_is_taken_when_the_body_grows_towards_the_axis():
 # -- refusals ------------------------------------------------------------------
 
 
-def test_a_volume_law_without_revolution_is_refused():
+def test_a_volume_law_without_revolution_is_a_growth_of_version_2_only():
     data = json.loads(DRUM.read_text())
     del data["revolution"]
-    with pytest.raises(CaseError, match=r"^bodies\[0\]\.law\.volume_ratio: only valid for a body of revolution"):
-        case_from_dict(data)
+    law = case_from_dict(data).bodies[0].law
+    assert law.axis is None and law.measure == "area" and law.growth == law.ratio
     v1 = {"format": "section-case/1", "lower": {"polyline": [[0, 0], [1, 0]]},
           "upper": {"polyline": [[1, 0], [1, 1], [0, 1], [0, 0]]}, "target": {"polyline": [[0, 0], [1, 0]]},
           "law": {"volume_ratio": 1.0}}
-    with pytest.raises(CaseError, match=r"^law\.volume_ratio: only valid for a body of revolution"):
+    with pytest.raises(CaseError, match=r"^format: section-case/1 holds one body .* growth"):
         case_from_dict(v1)
 
 

@@ -39,7 +39,7 @@ import shapely
 
 from .curves import Curve, Polyline, as_points, polygon_area
 from .errors import CaseError, GeometryError, LawError, MeshError
-from .laws import Law
+from .laws import Law, check_growth
 from .models import get_model
 from .models.hyperelastic_contact import contact_results
 from .pappus import signed_distance, volume
@@ -212,8 +212,8 @@ class Deformer:
         rev = self.problem.revolution
         if not law.needs_axis:
             return law
-        if rev is None:
-            raise CaseError(f"bodies[{i}].law.{law.key}", "only valid for a body of revolution; use area_ratio")
+        if rev is None:  # the growth of an extruded body
+            return check_growth(law if law.axis is None else law.about(None), f"bodies[{i}].law")
         return law if law.axis == rev.axis else law.about(rev.axis)
 
     def deform(self, target: Curve | np.ndarray | None = None, law=None, *,
@@ -325,13 +325,16 @@ class Deformer:
         if body.contour_order is not None:
             contour_upper = np.concatenate((images[b], taken))[body.contour_order]
         polygon = np.concatenate((lowers[b], images[b][1:-1]))
-        if not (np.isfinite(polygon).all() and np.isfinite(placement.final_mesh.points).all()):
+        holes = tuple(np.asarray(h) for h in placement.holes)
+        if not (np.isfinite(polygon).all() and np.isfinite(placement.final_mesh.points).all()
+                and all(np.isfinite(h).all() for h in holes)):
             raise renamed(GeometryError("result: the deformation produced non-finite points; the target or the law is too severe "
                                         "for this section"), problem.label(b))
         volumes = {}
         if problem.revolution is not None:
             v0 = fixed["volume_initial"]
-            volumes = {"volume_initial": v0, "volume_final": volume(polygon, problem.revolution.axis)}
+            axis = problem.revolution.axis
+            volumes = {"volume_initial": v0, "volume_final": volume(polygon, axis) - sum(volume(h, axis) for h in holes)}
             if law.measure == "volume":
                 volumes["volume_target"] = abs(law.target(v0))
         prepared = self.prepared.bodies[b]
@@ -344,12 +347,15 @@ class Deformer:
             initial_upper=body.original_upper,
             initial_contour=fixed["initial_contour"],
             area_initial=fixed["area_initial"],
-            area_target=law.target_area(fixed["area_initial"]) if law.measure == "area" else None,
-            area_final=abs(polygon_area(polygon)),
+            area_target=(abs(placement.target) if placement.target is not None else law.target_area(fixed["area_initial"]))
+            if law.measure == "area" else None,
+            area_final=abs(polygon_area(polygon)) - sum(abs(polygon_area(h)) for h in holes),
             initial_mesh=prepared.initial_mesh,
             final_mesh=placement.final_mesh,
             quality=ResultQuality(prepared.quality, placement.quality),
             info=placement.info,
+            holes=holes,
+            initial_holes=body.section.holes,
             **volumes,
         )
 
@@ -380,6 +386,10 @@ class Deformer:
             if self.check and not shapely.is_simple(rings[b]):
                 raise renamed(GeometryError("result: the deformed contour crosses itself; the target or the law is too severe "
                                             "for this section"), label(b))
+            failed = hole_failure(r.contour, r.holes, r.initial_holes)
+            if failed:
+                raise renamed(GeometryError(f"result: {failed}; the target or the law is too severe for this hollow section "
+                                            "(the contact of a hole's sides with each other is not modelled)"), label(b))
             if problem.revolution is not None:
                 after = signed_distance(r.contour, problem.revolution.axis)
                 if (stack.fixed_parts[b]["axis_side"] * after < -stack.layout.tolerance).any():
@@ -463,6 +473,41 @@ class Deformer:
                 "ends swapped and the section comes out on the other side of it (turned over); "
                 f"if the lower curve was drawn the other way than the target, {fix}")
         return dataclasses.replace(result, warnings=(*result.warnings, note))
+
+
+def hole_failure(contour: np.ndarray, holes, initial_holes) -> str | None:
+    """What is wrong with a deformed body's holes, naming the hole; None when each stays open and inside.
+
+    A hole fails when it closes (its area changes sign or vanishes), its
+    boundary crosses itself, or it crosses or touches the contour or another
+    hole.
+
+    Parameters
+    ----------
+    contour : (k, 2) float64 ndarray
+        The deformed contour.
+    holes, initial_holes : sequence of (k_h, 2) float64 ndarray
+        Each hole after and before deformation.
+    """
+    if not len(holes):
+        return None
+    outer = shapely.Polygon(contour)
+    polys = []
+    for k, (h, h0) in enumerate(zip(holes, initial_holes)):
+        a, a0 = polygon_area(h), polygon_area(h0)
+        if not a * a0 > 0 or not abs(a) > 1e-9 * abs(a0):
+            return f"holes[{k}] closes (its area goes from {abs(a0):.6g} to {a if a * a0 > 0 else -abs(a):.3g})"
+        ring = shapely.linearrings(h)
+        if not shapely.is_simple(ring):
+            return f"holes[{k}]: its deformed boundary crosses itself"
+        poly = shapely.Polygon(h)
+        if not (outer.contains(poly) and not shapely.intersects(outer.exterior, ring)):
+            return f"holes[{k}]: its deformed boundary crosses or touches the body's contour"
+        for j, other in enumerate(polys):
+            if other.intersects(poly):
+                return f"holes[{k}]: its deformed boundary crosses or touches holes[{j}]"
+        polys.append(poly)
+    return None
 
 
 class _Prepared:

@@ -10,7 +10,16 @@ class, not a new branch. A model asks a law, generically:
 - :meth:`Law.target` of the initial quantity;
 - :meth:`Law.coefficients` of the quantity of a polygon ``fixed + k moving``
   as a polynomial in ``k`` (the paper model's nodes are affine in its height
-  scale ``k``: the area is a quadratic, the volume a cubic).
+  scale ``k``: the area is a quadratic, the volume a cubic);
+- :attr:`Law.growth`: the volumetric growth of the body's material the law
+  stands for (cure shrinkage, swelling), None for none.
+
+``{"volume_ratio": r}`` means the volume of revolution of a body of
+revolution, and, without an axis, the isotropic growth of an extruded body
+(a growth stretch r^(1/3) in every direction, the extrusion free along its
+length): its section's area is then the volume per unit length over the
+axial stretch, r^(2/3) for a free body (:meth:`VolumeRatio.target`), what
+the mechanics give for a bonded one (the hyperelastic model).
 
 The hyperelastic model also asks an area law for its out-of-plane stretch,
 the physical reason a volume-preserving section changes area.
@@ -28,10 +37,14 @@ from .checks import number
 from .curves import closed_parts
 from .errors import CaseError, LawError
 
-__all__ = ["Law", "AreaRatio", "VolumeRatio", "law_from_json", "area_coefficients", "LAWS", "RATIO_RANGE"]
+__all__ = ["Law", "AreaRatio", "VolumeRatio", "law_from_json", "check_growth", "area_coefficients", "LAWS", "RATIO_RANGE",
+           "GROWTH_RANGE"]
 
 RATIO_RANGE = (0.01, 100.0)
 """Accepted area and volume ratios, inclusive: beyond them no rubber section means anything."""
+GROWTH_RANGE = (0.1, 10.0)
+"""Accepted growth of an extruded body (its volume ratio), inclusive: curing shrinks a rubber by a few per cent,
+the strongest solvents swell it a few times; beyond, no growth of a rubber means anything."""
 
 LAWS: dict[str, type[Law]] = {}
 
@@ -65,13 +78,15 @@ class Law:
     A subclass sets ``key`` (its case-file key) and ``measure`` (the name of
     its quantity, for results and messages), and gives :meth:`target`; a law
     on another quantity than the area also gives :meth:`quantity` and
-    :meth:`coefficients`. ``needs_axis`` marks a law that only means
-    something for a body of revolution.
+    :meth:`coefficients`. ``needs_axis`` marks a law bound to the case's
+    axis of revolution when there is one; ``growth`` is the volumetric
+    growth of the material the law stands for (None: none).
     """
 
     key: ClassVar[str] = ""
     measure: ClassVar[str] = "area"
     needs_axis: ClassVar[bool] = False
+    growth: ClassVar[float | None] = None
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -158,7 +173,16 @@ class AreaRatio(Law):
 
 @dataclass(frozen=True)
 class VolumeRatio(Law):
-    """Final volume of revolution = ``ratio`` x initial volume (a body of revolution).
+    """Final volume = ``ratio`` x initial volume: a body of revolution, or the growth of an extruded body.
+
+    With an axis, the volume of revolution. Without one (an extruded body),
+    the isotropic growth of the material by ``ratio`` (curing, swelling:
+    a growth stretch ``ratio^(1/3)`` in every direction, the extrusion free
+    along its length); the law then sets the section's area, whose target
+    is a free body's, ``ratio^(2/3)`` times the initial area
+    (:meth:`target`). A model that solves the axial stretch ``lz`` (the
+    hyperelastic model) meets ``ratio / lz`` instead
+    (:meth:`area_for_axial_stretch`).
 
     The volume is ``2 pi`` times the section's first moment about the axis
     (Pappus: area times the centroid's distance from the axis,
@@ -185,8 +209,17 @@ class VolumeRatio(Law):
     ratio: float
     axis: tuple | None = None
     key: ClassVar[str] = "volume_ratio"
-    measure: ClassVar[str] = "volume"
     needs_axis: ClassVar[bool] = True
+
+    @property
+    def measure(self) -> str:
+        """``"volume"`` about an axis, else ``"area"`` (an extruded body's section)."""
+        return "volume" if self.axis is not None else "area"
+
+    @property
+    def growth(self) -> float:
+        """The material's volumetric growth: ``ratio``."""
+        return self.ratio
 
     def __post_init__(self):
         low, high = RATIO_RANGE
@@ -204,24 +237,43 @@ class VolumeRatio(Law):
         """The same law about ``axis``."""
         return VolumeRatio(self.ratio, axis)
 
-    def _axis(self):
-        if self.axis is None:
-            raise CaseError("law.volume_ratio", "needs the axis of revolution; give the case a revolution axis")
-        return self.axis
-
     def quantity(self, polygon):
-        """Signed volume of revolution, ``2 pi`` x first moment about the axis, units³."""
-        return 2.0 * np.pi * pappus.first_moment(polygon, self._axis())
+        """Signed volume of revolution, ``2 pi`` x first moment about the axis, units³; the area without an axis."""
+        if self.axis is None:
+            return super().quantity(polygon)
+        return 2.0 * np.pi * pappus.first_moment(polygon, self.axis)
 
     def curve_quantity(self, curves):
         """Exact signed volume of revolution of the area the curves enclose (:func:`~sectiondeform.pappus.curve_moment`), units³."""
-        return 2.0 * np.pi * pappus.curve_moment(curves, self._axis())
+        if self.axis is None:
+            return super().curve_quantity(curves)
+        return 2.0 * np.pi * pappus.curve_moment(curves, self.axis)
 
     def coefficients(self, fixed, moving):
-        return 2.0 * np.pi * pappus.moment_coefficients(fixed, moving, self._axis())
+        if self.axis is None:
+            return super().coefficients(fixed, moving)
+        return 2.0 * np.pi * pappus.moment_coefficients(fixed, moving, self.axis)
 
     def target(self, initial):
+        """``ratio`` x the initial volume; without an axis, a free body's area, ``ratio^(2/3)`` x the initial one."""
+        if self.axis is None:
+            return self.area_for_axial_stretch(initial, self.ratio ** (1.0 / 3.0))
         return self.ratio * initial
+
+    def area_for_axial_stretch(self, initial_area: float, axial_stretch: float) -> float:
+        """An extruded body's area after growth when its length stretches by ``axial_stretch``: ``ratio / lz`` x the initial area.
+
+        The material grows its volume by ``ratio`` (nearly incompressible
+        otherwise), so the volume per unit initial length is ``ratio`` x the
+        initial area. Signed as ``initial_area``.
+        """
+        return self.ratio / axial_stretch * initial_area
+
+    def out_of_plane_stretch(self, initial_area: float) -> float:
+        """A free body's axial stretch under growth, ``ratio^(1/3)`` (an extruded body); the start of a solved one."""
+        if self.axis is None:
+            return self.ratio ** (1.0 / 3.0)
+        return super().out_of_plane_stretch(initial_area)
 
     def to_json(self):
         return {"volume_ratio": float(self.ratio)}
@@ -237,14 +289,15 @@ def law_from_json(obj, field: str = "law", axis=None) -> Law:
     field : str
         Where it sits in the case, for messages.
     axis : ((float, float), (float, float)), optional
-        The case's axis of revolution; a law that needs one (``volume_ratio``)
-        is refused without it.
+        The case's axis of revolution; a law that binds to one
+        (``volume_ratio``) is bound to it, else left as the growth of an
+        extruded body (checked against :data:`GROWTH_RANGE`).
 
     Raises
     ------
     CaseError
-        If the object is not a one-key object naming a known law, or names
-        a law of bodies of revolution in a case without an axis.
+        If the object is not a one-key object naming a known law, or a
+        growth beyond :data:`GROWTH_RANGE`.
 
     Examples
     --------
@@ -261,9 +314,25 @@ def law_from_json(obj, field: str = "law", axis=None) -> Law:
     if key not in LAWS:
         raise CaseError(field, f"unknown law {key!r}; use one of {', '.join(sorted(LAWS))}")
     law = LAWS[key](value)
-    if law.needs_axis:
-        if axis is None:
-            raise CaseError(f"{field}.{key}", "only valid for a body of revolution; give the case a revolution axis "
-                            "(section-case/2) or use area_ratio")
+    if law.needs_axis and axis is not None:
         law = law.about(axis)
+    check_growth(law, field)
+    return law
+
+
+def check_growth(law: Law, field: str = "law") -> Law:
+    """``law``, refused in one line if it grows an extruded body beyond :data:`GROWTH_RANGE`.
+
+    Examples
+    --------
+    >>> check_growth(VolumeRatio(50.0))
+    Traceback (most recent call last):
+    ...
+    sectiondeform.errors.CaseError: law.volume_ratio: a growth of an extruded body must be between 0.1 and 10 (its volume ratio), got 50.0
+    """
+    if law.growth is not None and getattr(law, "axis", True) is None:
+        low, high = GROWTH_RANGE
+        if not low <= law.growth <= high:
+            raise CaseError(f"{field}.{law.key}", f"a growth of an extruded body must be between {low:g} and {high:g} "
+                            f"(its volume ratio), got {law.growth!r}")
     return law

@@ -12,6 +12,8 @@
   (touching is allowed; the error gives the overlap area and its place);
 - a piece shared by two bodies is in exactly one body's lower curve (a
   piece in both upper curves, or in both lower curves, is refused);
+- every hole of a body is a closed curve strictly inside its contour, apart
+  from it and from the other holes (:func:`check_holes`);
 
 and :func:`check_axis` that the axis of a body of revolution crosses no
 body and that every body lies on the same side of it. Every message is one
@@ -32,7 +34,7 @@ from .curves import Curve
 from .errors import GeometryError
 from .pappus import signed_distance
 
-__all__ = ["Layout", "layout", "check_axis", "problem_size", "CONTACT_FRACTION", "SAMPLES"]
+__all__ = ["Layout", "layout", "check_axis", "check_holes", "problem_size", "CONTACT_FRACTION", "SAMPLES"]
 
 CONTACT_FRACTION = 1e-6
 """Default contact tolerance, as a fraction of the problem's bounding-box diagonal."""
@@ -185,7 +187,9 @@ def layout(problem) -> Layout:
     for i in range(n):
         ring = np.concatenate((lowers[i], uppers[i][1:-1]))
         poly = shapely.Polygon(ring) if len(ring) >= 3 else shapely.Polygon()  # a flat body: refused by its section
-        polygons.append(poly if poly.is_valid else shapely.make_valid(poly))
+        poly = poly if poly.is_valid else shapely.make_valid(poly)
+        holes = check_holes(bodies[i].holes, poly, tol, label(i) or "body")
+        polygons.append(shapely.difference(poly, shapely.union_all(holes)) if holes else poly)
     for i in range(n):
         for j in range(i + 1, n):
             overlap = shapely.intersection(polygons[i], polygons[j])
@@ -224,6 +228,53 @@ def _check_rigid_start(problem, polygons, tol: float) -> None:
                     f"(area {overlap.area:.6g} near {_where(c)}); a part starts outside the bodies: "
                     "lengthen its travel or move its contour"
                 )
+
+
+def check_holes(holes, contour, tol: float, name: str) -> list:
+    """Check a body's holes against its contour polygon ``contour``; their polygons.
+
+    Each hole must be a closed curve (its ends within ``tol``) that does not
+    cross itself, lie strictly inside the contour, farther than ``tol``
+    from it and from every other hole.
+
+    Raises
+    ------
+    GeometryError
+        One line naming the body (``name``) and the hole: open, crossing
+        itself, outside the body, touching its contour or another hole.
+    """
+    polys = []
+    outline = contour.boundary
+    for k, hole in enumerate(holes):
+        what = f"{name}: holes[{k}]"
+        gap = float(np.hypot(*(hole.end - hole.start)))
+        if gap > tol:
+            raise GeometryError(f"{what}: the curve is open (its ends are {gap:.6g} apart, tolerance {tol:.3g}); "
+                                "a hole is a closed curve: end it where it starts")
+        ring = _fine(hole, 0.25 * tol)
+        line = shapely.LinearRing(ring)
+        if not line.is_simple:
+            raise GeometryError(f"{what}: the curve crosses itself; a hole is a simple closed curve")
+        poly = shapely.Polygon(ring)
+        if not poly.area > 0:
+            raise GeometryError(f"{what}: the curve encloses no area")
+        c = shapely.get_coordinates(poly.representative_point())[0]
+        if not contour.contains(poly.representative_point()) or not contour.covers(poly):
+            raise GeometryError(f"{what}: it lies outside the body's contour near {_where(c)}; a hole lies strictly inside "
+                                "its body (draw it inside, or as another body)")
+        d = float(shapely.distance(outline, line))
+        if d <= tol:
+            p = shapely.get_coordinates(shapely.shortest_line(line, outline))[0]
+            raise GeometryError(f"{what}: it touches the body's contour near {_where(p)} (gap {d:.3g}, tolerance {tol:.3g}); "
+                                "a hole stays apart from the contour (an open notch is part of the contour)")
+        for j, other in enumerate(polys):
+            d = float(shapely.distance(other.exterior, line))
+            if d <= tol or other.contains(poly.representative_point()) or poly.contains(other.representative_point()):
+                p = shapely.get_coordinates(shapely.shortest_line(line, other.exterior))[0]
+                raise GeometryError(f"{what}: it touches or overlaps holes[{j}] near {_where(p)}; holes stay apart "
+                                    "(draw one hole around both)")
+        polys.append(poly)
+    return polys
 
 
 def check_axis(problem) -> None:

@@ -27,7 +27,7 @@ import numpy as np
 
 from .curves import Curve
 from .errors import CaseError
-from .laws import Law
+from .laws import Law, check_growth
 from .layout import Layout, check_axis, layout, problem_size
 from .options import Options, options_from_json
 from .section import SectionCurves
@@ -128,6 +128,11 @@ class Body:
     material : str
         The ``material`` object as canonical JSON (:attr:`material_data`);
         ``"{}"`` for none (the model's default rubber).
+    holes : tuple of Curve
+        Closed curves strictly inside the contour, apart from it and from
+        each other (a hollow profile); their boundaries are free. The body's
+        area is its contour's less its holes' (checked in
+        :func:`~sectiondeform.layout.layout`).
     """
 
     name: str
@@ -135,6 +140,10 @@ class Body:
     upper: Curve
     law: Law
     material: str = "{}"
+    holes: tuple = ()
+
+    def __post_init__(self):
+        object.__setattr__(self, "holes", tuple(self.holes))
 
     @property
     def material_data(self) -> dict:
@@ -143,7 +152,10 @@ class Body:
 
     def to_json(self) -> dict:
         """The body's object of the case format."""
-        out = {"name": self.name, "lower": self.lower.to_json(), "upper": self.upper.to_json(), "law": self.law.to_json()}
+        out = {"name": self.name, "lower": self.lower.to_json(), "upper": self.upper.to_json()}
+        if self.holes:
+            out["holes"] = [h.to_json() for h in self.holes]
+        out["law"] = self.law.to_json()
         if self.material != "{}":
             out["material"] = self.material_data
         return out
@@ -195,9 +207,10 @@ class Problem:
         if self.dialect not in DIALECTS:
             raise CaseError("format", f"unknown case format {self.dialect!r}; use one of {', '.join(DIALECTS)}")
         if self.dialect == V1 and (len(self.bodies) != 1 or self.revolution is not None or self.bodies[0].material != "{}"
+                                   or self.bodies[0].holes or self.bodies[0].law.growth is not None
                                    or self.bodies[0].lower.to_json() != self.support.to_json()):
-            raise CaseError("format", "section-case/1 holds one body on its own lower curve, without revolution or material; "
-                                      "write it as section-case/2")
+            raise CaseError("format", "section-case/1 holds one body on its own lower curve, without revolution, material, "
+                                      "holes or growth (volume_ratio); write it as section-case/2")
         seen: dict[str, int] = {}
         for i, body in enumerate(self.bodies):
             if body.name in seen:
@@ -235,13 +248,15 @@ class Problem:
                    options=options if options is not None else Options(), dialect=V1)
 
     def _bound(self, i: int, body: Body) -> Body:
-        """``body`` with a law of bodies of revolution bound to the axis; refused without one."""
+        """``body`` with a law of bodies of revolution bound to the axis; without one, the growth of an extruded body."""
         law = body.law
         if not law.needs_axis:
             return body
-        if self.revolution is None:
-            raise CaseError(f"bodies[{i}].law.{law.key}", "only valid for a body of revolution; give the case a "
-                            "revolution axis or use area_ratio")
+        if self.revolution is None:  # the growth of an extruded body
+            if law.axis is not None:
+                body = dataclasses.replace(body, law=law.about(None))
+            check_growth(body.law, f"bodies[{i}].law")
+            return body
         if law.axis == self.revolution.axis:
             return body
         return dataclasses.replace(body, law=law.about(self.revolution.axis))
@@ -296,7 +311,7 @@ class Problem:
         body = self.bodies[i]
         on_support = body.lower.to_json() == self.support.to_json()
         return SectionCurves(lower=body.lower, upper=upper or body.upper, target=self.target if on_support else body.lower,
-                             options=self.options)
+                             options=self.options, holes=body.holes)
 
     def replace(self, **changes) -> Problem:
         """The problem with ``changes`` (fields of :class:`Problem`; ``law``, ``lower``, ``upper`` for one body).
@@ -304,7 +319,7 @@ class Problem:
         A one-body problem accepts ``law``, ``lower`` and ``upper`` (a
         ``section-case/1`` one keeps its lower curve as the support).
         """
-        body_changes = {k: changes.pop(k) for k in ("law", "lower", "upper", "material") if k in changes}
+        body_changes = {k: changes.pop(k) for k in ("law", "lower", "upper", "material", "holes") if k in changes}
         if body_changes:
             body = dataclasses.replace(self._only(next(iter(body_changes))), **body_changes)
             changes["bodies"] = (body,)

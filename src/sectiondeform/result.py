@@ -73,6 +73,10 @@ class BodyResult:
         Volumes of revolution (Pappus), units³, for a body of revolution.
     volume_target : float, optional
         Units³, for a body whose law sets its volume.
+    holes, initial_holes : tuple of (k_h, 2) float64 ndarray
+        Each hole's points after and before deformation (closed, the first
+        point not repeated); the areas and volumes above are the body's,
+        its holes taken out.
     """
 
     name: str
@@ -92,6 +96,8 @@ class BodyResult:
     volume_initial: float | None = None
     volume_target: float | None = None
     volume_final: float | None = None
+    holes: tuple = ()
+    initial_holes: tuple = ()
 
     @property
     def measure(self) -> str:
@@ -128,6 +134,10 @@ class BodyResult:
             "lower": self.lower.tolist(),
             "upper": self.upper.tolist(),
             "contour": self.contour.tolist(),
+        }
+        if self.holes:
+            out["holes"] = [h.tolist() for h in self.holes]
+        out |= {
             "area": _measure(self.area_initial, self.area_target, self.area_final),
         }
         if self.volume_initial is not None:

@@ -39,6 +39,7 @@ recorded in :attr:`Section.orientation`.
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 from dataclasses import dataclass
 
@@ -91,12 +92,15 @@ class SectionCurves:
         lower curve only).
     options : Options
         The problem's options (``chordal_error``, ``element_size``, ``refine``).
+    holes : tuple of Curve
+        Closed curves inside the contour (checked by the layout).
     """
 
     lower: Curve
     upper: Curve
     target: Curve
     options: object
+    holes: tuple = ()
 
 
 @dataclass(frozen=True, eq=False)
@@ -115,7 +119,7 @@ class Section:
         +1 when lower-then-upper runs counter-clockwise (the section lies to
         the left of the lower curve), -1 when clockwise.
     area : float
-        Area of the contour polygon, units², positive.
+        Area of the contour polygon less its holes', units², positive.
     lower_length : float
         Arc length of the lower curve, units.
     element_size : float
@@ -123,11 +127,16 @@ class Section:
     chordal_error : float
         Chordal error asked for, units.
     curve_area : float
-        Exact area enclosed by the curves themselves, units².
+        Exact area enclosed by the curves themselves less the holes', units².
     characteristic : (m0,) int ndarray, optional
         Index in ``upper`` of each characteristic point, when ``upper`` has
         points between them (:func:`densified`); None when every upper
         point is one.
+    holes : tuple of (k_h, 2) float64 ndarray
+        Each hole's points, closed (the closing edge implied, the first point
+        not repeated), oriented against the contour (so that the contour's
+        signed area plus the holes' is the body's), at most an element
+        apart: characteristic points, mapped like the upper curve's.
     """
 
     lower: np.ndarray
@@ -140,6 +149,7 @@ class Section:
     chordal_error: float
     curve_area: float
     characteristic: np.ndarray | None = None
+    holes: tuple = ()
 
     @property
     def characteristic_index(self) -> np.ndarray:
@@ -347,17 +357,75 @@ def build_section(case, element_size: float | None = None) -> Section:
         )
     for arr in (lower, s, upper):
         arr.setflags(write=False)
+    orientation = 1 if signed > 0 else -1
+    holes, hole_area, hole_exact = hole_rings(case.holes, tol, origin, orientation, element_size)
     return Section(
         lower=lower,
         fractions=s,
         upper=upper,
-        orientation=1 if signed > 0 else -1,
-        area=abs(signed),
+        orientation=orientation,
+        area=abs(signed) - hole_area,
         lower_length=length,
         element_size=element_size,
         chordal_error=tol,
-        curve_area=exact,
+        curve_area=exact - hole_exact,
+        holes=holes,
     )
+
+
+def hole_rings(holes, tol: float, origin: np.ndarray, orientation: int, element_size: float) -> tuple[tuple, float, float]:
+    """Each hole's points within the chordal error and its area's, oriented against the contour, an element apart at most.
+
+    Parameters
+    ----------
+    holes : sequence of Curve
+        Closed curves (checked by the layout).
+    tol : float
+        Chordal error, units; divided by 4 until the hole's polygon misses
+        its exact area by at most ``AREA_FRACTION`` of it.
+    origin : (2,) float64 ndarray
+        Where the areas are integrated about.
+    orientation : int
+        The contour's: +1 counter-clockwise. Each hole runs the other way.
+    element_size : float
+        Largest step between two points, units (:func:`densified`).
+
+    Returns
+    -------
+    rings : tuple of (k, 2) float64 ndarray
+        Read-only, the closing point not repeated.
+    area : float
+        Sum of the rings' areas, units².
+    exact : float
+        Sum of the curves' exact areas, units².
+    """
+    rings, area, exact = [], 0.0, 0.0
+    for k, hole in enumerate(holes):
+        green = local_green(hole, origin)
+        pts = None
+        for pts in itertools.islice(hole.characteristic_refinements(tol, 4.0), AREA_REFINEMENTS):
+            bounded(len(pts), MAX_UPPER_POINTS, "hole points", "raise options.chordal_error or simplify the hole")
+            if len(pts) >= 4 and abs(open_green(pts, origin) - green) <= AREA_FRACTION * abs(green):
+                break
+        else:
+            raise GeometryError(f"holes[{k}]: its points miss the curve's exact area {abs(green):.9g} by more than "
+                                f"{AREA_FRACTION:g} of it; smooth it or set a smaller options.chordal_error")
+        ring = np.asarray(pts[:-1], dtype=np.float64)  # closed: the last point is the first
+        if np.sign(polygon_area(ring)) != -orientation:
+            ring = ring[::-1].copy()
+        closed = np.concatenate((ring, ring[:1]))
+        steps = np.hypot(*np.diff(closed, axis=0).T)
+        with np.errstate(all="ignore"):
+            parts = np.maximum(1, np.ceil(steps / element_size - 1e-9)).astype(np.int64)
+        bounded(float(parts.sum()), MAX_UPPER_POINTS, "hole points", "raise options.element_size or simplify the hole")
+        seg = np.repeat(np.arange(len(steps)), parts)
+        t = (np.arange(len(seg)) - np.repeat(np.cumsum(parts) - parts, parts)) / parts[seg]
+        ring = closed[seg] + t[:, None] * (closed[seg + 1] - closed[seg])
+        ring.setflags(write=False)
+        rings.append(ring)
+        area += abs(polygon_area(ring))
+        exact += abs(green)
+    return tuple(rings), area, exact
 
 
 def densified(section: Section, shared: np.ndarray | None = None) -> Section:

@@ -27,7 +27,7 @@ from .laws import AreaRatio, VolumeRatio
 from .pappus import signed_distance
 from .section import Section, build_section, densified
 
-__all__ = ["Stack", "StackedBody", "Target", "SUPPORT", "renamed"]
+__all__ = ["Stack", "StackedBody", "Target", "SUPPORT", "renamed", "net_quantity"]
 
 SUPPORT = -1
 """Source of a lower node resting on the support."""
@@ -44,6 +44,17 @@ def renamed(exc: SectionDeformError, label: str) -> SectionDeformError:
 
 def _cumulative(points: np.ndarray) -> np.ndarray:
     return np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(points, axis=0).T))))
+
+
+def net_quantity(outer: float, holes) -> float:
+    """A body's signed quantity: its contour's ``outer`` less the magnitude of each of its ``holes``' (any sign).
+
+    Examples
+    --------
+    >>> net_quantity(-10.0, [2.0, -3.0])
+    -5.0
+    """
+    return outer - np.sign(outer) * float(sum(abs(h) for h in holes))
 
 
 class StackedBody:
@@ -103,15 +114,17 @@ class Stack:
         """``law``'s quantity of body ``b``'s curves, exactly (:meth:`~sectiondeform.laws.Law.curve_quantity`), signed.
 
         The quantity of the case's own curves, not of their polygon: a law
-        met to 1e-9 on the deformed contour is met against the curves given.
-        Kept per law (a slider asks many ratios of one law: a bounded store).
+        met to 1e-9 on the deformed contour is met against the curves given;
+        the body's holes taken out (:func:`net_quantity`). Kept per law (a
+        slider asks many ratios of one law: a bounded store).
         """
         key = (b, law.measure, getattr(law, "axis", None))
         try:
             return self._initial[key]
         except KeyError:
             body = self.problem.bodies[b]
-            value = self._initial[key] = law.curve_quantity((body.lower, body.upper))
+            value = self._initial[key] = net_quantity(law.curve_quantity((body.lower, body.upper)),
+                                                      [law.curve_quantity((h,)) for h in body.holes])
             return value
 
     @property

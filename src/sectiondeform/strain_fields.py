@@ -458,7 +458,7 @@ def result_mechanics(result) -> list:
         material = state.materials[b]
         preview = getattr(body.info, "preview", False)
         corners = None if preview else state.state.z[state.pressure_dofs[b]]
-        growth = float(state.stretches[b]) if state.growth else 1.0
+        growth = float(state.stretches[b]) if state.growth else float(state.growths[b]) if getattr(state, "growths", ()) else 1.0
         nodal = nodal_stresses(body.initial_mesh, body.final_mesh, material, corners,
                                getattr(body.info, "out_of_plane_stretch", 1.0), result.axis, growth)
         size = getattr(getattr(body.quality, "initial", None), "element_size", None)

@@ -157,7 +157,7 @@ def _boundary_positions(ring: RingGeometry, corners: np.ndarray, h: float) -> np
 
 
 def _lattice(poly, h: float) -> np.ndarray:
-    """Hexagonal lattice points of spacing ``h`` inside ``poly``, half a step off its boundary."""
+    """Hexagonal lattice points of spacing ``h`` inside ``poly`` (holes allowed), half a step off its boundary."""
     x0, y0, x1, y1 = poly.bounds
     dy = h * math.sqrt(3.0) / 2.0
     ys = np.arange(y0 + 0.5 * dy, y1, dy)
@@ -167,7 +167,7 @@ def _lattice(poly, h: float) -> np.ndarray:
     pts = np.column_stack((gx.ravel(), gy.ravel()))
     inside = shapely.contains_xy(poly, pts[:, 0], pts[:, 1])
     pts = pts[inside]
-    d = shapely.distance(poly.exterior, shapely.points(pts))
+    d = shapely.distance(poly.boundary, shapely.points(pts))  # the holes' rings too
     return pts[d >= 0.5 * h]
 
 

@@ -1,6 +1,6 @@
 """One P2 triangle mesh of several bodies that share pieces of their contours.
 
-The contours (closed polylines, one per body) are merged into one planar
+The contours (closed polylines, one per body, and the rings of its holes) are merged into one planar
 graph: contour points closer than a tolerance become one *vertex*, and the
 contour edges between vertices its edges, each kept once. A piece shared by
 two bodies is then one run of edges. The graph is cut into *chains* at its
@@ -13,7 +13,8 @@ hexagonal lattice per body, half a step off its contour; a Delaunay
 triangulation of all nodes is made to contain every chain segment by
 splitting the missing ones (a conforming Delaunay mesh, as
 :func:`~sectiondeform.fem.mesh.coarse_mesh` does for one body). Each
-triangle is tagged with the body holding its centroid; the interior nodes
+triangle is tagged with the body holding its centroid (a triangle inside a
+hole belongs to none and is dropped); the interior nodes
 are smoothed while no triangle turns over; mid-edge nodes of chain segments
 are put on the chain (isoparametric edges).
 
@@ -104,6 +105,8 @@ class UnionMesh:
     n_pressures : int
         Number of pressure unknowns: ``n_vertices`` plus one for every
         further body at a corner node shared by several.
+    holes : tuple of tuple of (k,) int64 ndarray
+        Per body, each hole's ring as vertex indices, in the order given.
     """
 
     nodes: np.ndarray
@@ -118,6 +121,7 @@ class UnionMesh:
     size: float
     pressure_cells: np.ndarray
     n_pressures: int
+    holes: tuple = ()
 
     def chain_of(self, u: int, w: int) -> int:
         """Index of the chain holding the graph edge ``u``-``w``."""
@@ -221,7 +225,7 @@ def _blocked_message(bpts: np.ndarray, missing: np.ndarray, h: float) -> str:
             "check that the bodies' contours do not cross or touch without sharing their points")
 
 
-def union_mesh(rings, fixed, h, tol: float) -> UnionMesh:
+def union_mesh(rings, fixed, h, tol: float, holes=None) -> UnionMesh:
     """Mesh several bodies, given by their contours, with P2 triangles of size about ``h`` (per body).
 
     Parameters
@@ -237,6 +241,10 @@ def union_mesh(rings, fixed, h, tol: float) -> UnionMesh:
         contour shared by bodies of different sizes takes the smallest.
     tol : float
         Contour points closer than this are one point, units.
+    holes : sequence of sequence of (k, 2) float64 ndarray, optional
+        Per body, the closed rings of its holes (inside its contour, apart
+        from it and from each other): their boundaries are chains like the
+        contours', no triangle lies inside them.
 
     Returns
     -------
@@ -257,20 +265,23 @@ def union_mesh(rings, fixed, h, tol: float) -> UnionMesh:
     [2.0, 2.0]
     """
     rings = [np.asarray(r, dtype=np.float64) for r in rings]
+    holes = [[np.asarray(r, dtype=np.float64) for r in hb] for hb in holes] if holes is not None else [[] for _ in rings]
     sizes = np.broadcast_to(np.asarray(h, dtype=np.float64), (len(rings),))
     if not (np.all(sizes > 0) and np.all(np.isfinite(sizes))):
         raise MeshError(f"assembly: the element sizes {sizes.tolist()!r} are not positive finite lengths; check the bodies' scale")
     h = float(sizes.min())
-    polys = [shapely.Polygon(r) for r in rings]
+    polys = [shapely.Polygon(r, hb) for r, hb in zip(rings, holes)]
     with np.errstate(all="ignore"):
         estimate = sum(float(p.length) / hb + abs(float(p.area)) / (hb * hb * math.sqrt(3.0) / 2.0) for p, hb in zip(polys, sizes))
     bounded(estimate, MAX_FE_VERTICES, "mesh vertices",
             "lower options.elements_through_thickness, or simplify the bodies' small features", MeshError)
-    points, ids = _merge(rings, tol)
+    hole_owner = [b for b, hb in enumerate(holes) for _ in hb]
+    points, all_ids = _merge(rings + [r for hb in holes for r in hb], tol)
+    ids, hole_ids = all_ids[: len(rings)], all_ids[len(rings):]
     fixed_v = np.concatenate([ids[b][np.asarray(f, dtype=np.int64)] for b, f in enumerate(fixed)])
-    paths, corners = _chains(points, ids, fixed_v)
+    paths, corners = _chains(points, all_ids, fixed_v)
     edge_size = {}  # graph edge -> the smallest size of the bodies it bounds
-    for b, ring in enumerate(ids):
+    for b, ring in [*enumerate(ids), *zip(hole_owner, hole_ids)]:
         for u, w in zip(ring, np.roll(ring, -1)):
             key = (min(int(u), int(w)), max(int(u), int(w)))
             edge_size[key] = min(edge_size.get(key, math.inf), float(sizes[b]))
@@ -335,7 +346,9 @@ def union_mesh(rings, fixed, h, tol: float) -> UnionMesh:
     areas = _signed_areas(pts, tri)
     tri[areas < 0] = tri[areas < 0][:, [0, 2, 1]]
     for b, ring in enumerate(ids):
-        want = abs(float(shapely.area(shapely.Polygon(bpts[_ring_nodes(ring, geo, chain_nodes)]))))
+        want = abs(float(shapely.area(shapely.Polygon(bpts[_ring_nodes(ring, geo, chain_nodes)])))) - sum(
+            abs(float(shapely.area(shapely.Polygon(bpts[_ring_nodes(r, geo, chain_nodes)]))))
+            for r, o in zip(hole_ids, hole_owner) if o == b)
         got = float(np.abs(areas[body == b]).sum())
         if not math.isclose(got, want, rel_tol=1e-9):
             raise MeshError(f"assembly: the mesh (h = {h:.4g}) does not cover body {b} exactly ({got:.9g} for {want:.9g})")
@@ -367,8 +380,9 @@ def union_mesh(rings, fixed, h, tol: float) -> UnionMesh:
     weights = _vertex_weights(nodes, cells, nv, points, chains, edge_cell)
     body = body.astype(np.int64)
     pressure_cells, n_pressures = body_pressure_cells(cells, body, nv)
+    per_body = tuple(tuple(r for r, o in zip(hole_ids, hole_owner) if o == b) for b in range(len(rings)))
     return UnionMesh(nodes, cells, body, nv, points, tuple(ids), tuple(chains), edge_chain, weights, float(h),
-                     pressure_cells, n_pressures)
+                     pressure_cells, n_pressures, per_body)
 
 
 def body_pressure_cells(cells: np.ndarray, body: np.ndarray, n_vertices: int) -> tuple[np.ndarray, int]:

@@ -32,7 +32,7 @@ __all__ = [
 V1_KEYS = ("format", "name", "units", "lower", "upper", "target", "law", "options", "note")
 V2_KEYS = ("format", "name", "units", "support", "target", "revolution", "bodies", "rigid", "options", "note")
 RIGID_KEYS = ("name", "contour", "travel", "friction", "note")
-BODY_KEYS = ("name", "lower", "upper", "law", "material", "note")
+BODY_KEYS = ("name", "lower", "upper", "holes", "law", "material", "note")
 MATERIAL_KEYS = ("model", "shear_modulus", "bulk_to_shear", "bulk_modulus", "c10", "c01", "c20", "c30")
 MATERIAL_MODELS = tuple(RUBBERS)
 
@@ -150,12 +150,16 @@ def _body_from_json(obj, field: str, axis=None) -> Body:
     name = obj["name"]
     if not isinstance(name, str) or not name:
         raise CaseError(f"{field}.name", f"expected a non-empty string, got {name!r}")
+    holes = obj.get("holes", [])
+    if not isinstance(holes, list):
+        raise CaseError(f"{field}.holes", f"expected a list of closed curves, got {type(holes).__name__}")
     return Body(
         name=name,
         lower=curve_from_json(obj["lower"], f"{field}.lower"),
         upper=curve_from_json(obj["upper"], f"{field}.upper"),
         law=law_from_json(obj["law"], f"{field}.law", axis),
         material=material_from_json(obj.get("material"), f"{field}.material"),
+        holes=tuple(curve_from_json(h, f"{field}.holes[{k}]") for k, h in enumerate(holes)),
     )
 
 

@@ -195,6 +195,12 @@ class Placement:
     state : object, optional
         The model's solved state, to pass back as ``start`` of a later
         placement (a warm start); None for a model without one.
+    holes : tuple of (k_h, 2) float64 ndarray
+        Image of each hole's points (the section's, in order).
+    target : float, optional
+        The law's quantity the placement meets when the model decides it
+        (the area a growth leaves for the axial stretch the model solved),
+        units²; None: the law's own target.
     """
 
     upper: np.ndarray
@@ -203,6 +209,8 @@ class Placement:
     info: Info = Info()
     warnings: tuple = ()
     state: object = None
+    holes: tuple = ()
+    target: float | None = None
 
 
 @dataclass(frozen=True, eq=False)

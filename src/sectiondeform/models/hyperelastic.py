@@ -60,10 +60,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..checks import positive
-from ..errors import CaseError, LawError, MeshError
+from ..errors import CaseError, ConvergenceError, LawError, MeshError
 from ..fem.elements import geometry
 from ..fem.mapping import offset_root, rigid_fit
-from ..fem.neohooke import MixedNeoHooke, Pattern
+from ..fem.neohooke import Fields, MixedNeoHooke, Pattern
 from ..fem.newton import NewtonSolver, State
 from ..fem.rubber import MixedRubber
 from ..fem.union_mesh import union_mesh
@@ -80,6 +80,9 @@ DEFAULT_THROUGH_THICKNESS = 4.0
 DEFAULT_BULK_TO_SHEAR = 1000.0
 DEFAULT_TOLERANCE = 1e-7
 CORRECTION_WARNING = 0.02
+AXIAL_TOLERANCE = 1e-8
+"""A growing extruded body's axial force is zero when below this times its shear modulus x area."""
+AXIAL_STEPS = 30
 
 
 
@@ -143,20 +146,58 @@ class PreviewInfo(Info):
     preview: bool = True
 
 
+@dataclass(frozen=True, eq=False)
+class _GrownFields(Fields):
+    """:class:`~sectiondeform.fem.neohooke.Fields` with each cell's volumetric growth ``c`` ``(E, 1)``."""
+
+    c: np.ndarray = None
+
+
 class _Stretches(MixedNeoHooke):
-    """The mixed neo-Hookean problem with one out-of-plane stretch per body.
+    """The mixed neo-Hookean problem with one out-of-plane stretch and one volumetric growth per body.
 
     The solver's scalar stretch ``s`` is a path parameter: cell ``e`` has
-    ``lz_e = exp(ln s * ln lz_b(e))``, so ``s = 1`` is the undeformed state
-    and ``s = e`` every body's own stretch.
+    ``lz_e = exp(ln s * ln lz_b(e))`` and ``c_e = exp(ln s * ln c_b(e))``,
+    so ``s = 1`` is the undeformed state and ``s = e`` every body's own
+    stretch and growth. A growth ``c`` (an extruded body growing
+    isotropically, ``F = Fe c^(1/3)``) makes the energy per unit initial
+    volume ``c (a I1 - 3) / 2 + p (J - c) - c p² / (2 kappa)`` (times the
+    shear modulus), as for bodies of revolution
+    (:mod:`~sectiondeform.fem.axisymmetric`): the isochoric part does not
+    see an isotropic growth.
     """
 
-    def __init__(self, cells, n_nodes, geom, kappa, mu, ln_stretch, pressure_cells=None):
+    def __init__(self, cells, n_nodes, geom, kappa, mu, ln_stretch, pressure_cells=None, ln_growth=None):
         super().__init__(cells, n_nodes, geom, kappa, mu, pressure_cells)
         self.ln_stretch = np.asarray(ln_stretch, dtype=np.float64)[:, None]  # (E, 1)
+        self.ln_growth = np.zeros_like(self.ln_stretch) if ln_growth is None else np.asarray(ln_growth, np.float64)[:, None]
 
     def fields(self, z, lz):
-        return super().fields(z, np.exp(math.log(lz) * self.ln_stretch))
+        f = super().fields(z, np.exp(math.log(lz) * self.ln_stretch))
+        if f is None:
+            return None
+        return _GrownFields(f.F, f.det, f.J, f.i1, f.p, np.exp(math.log(lz) * self.ln_growth))
+
+    def _shear(self, f):
+        return super()._shear(f) * f.c
+
+    def _pressure_residual(self, f):
+        return (f.J - f.c - f.c * f.p / self.kappa) * self.geom.weight
+
+    def element_matrices(self, f):
+        out = super().element_matrices(f)
+        out[:, 12:, 12:] *= f.c[:, :, None]
+        return out
+
+    def axial_force(self, f, body: np.ndarray, n_bodies: int) -> np.ndarray:
+        """Each body's axial force ``∫ P_zz dA`` (per unit shear modulus x length², in the moduli's units), ``(B,)``.
+
+        ``P_zz = c mu a (lz - I1 / (3 lz)) + p det F``, the nominal stress
+        along the extrusion; zero for a free extrusion.
+        """
+        lz = np.sqrt(np.maximum(f.i1 - np.einsum("eqij,eqij->eq", f.F, f.F), 0.0))
+        pzz = self._shear(f) * (lz - f.i1 / (3.0 * lz)) + f.p * f.det
+        return np.bincount(body, weights=(pzz * self.geom.weight).sum(axis=1), minlength=n_bodies)
 
 
 def offset_to_area(ring: np.ndarray, movable: np.ndarray, signed_area: float) -> tuple[np.ndarray, float]:
@@ -230,7 +271,10 @@ class HyperelasticState:
     array, the entries of ``state.z`` holding the pressure unknown at its
     elements' corners (in the order of its final mesh's cells; the body's
     own unknowns, so at a shared vertex each body reads its own pressure); ``growth``,
-    True when ``stretches`` are volumetric growths (bodies of revolution).
+    True when ``stretches`` are volumetric growths (bodies of revolution);
+    ``growths``, each extruded body's growth (empty: none); ``guess``, the
+    stretches the laws start from (:meth:`HyperelasticPrepared.stretches_of`)
+    when the solve found others (a growing body's axial stretch).
     """
 
     state: State
@@ -238,6 +282,8 @@ class HyperelasticState:
     materials: tuple = ()
     pressure_dofs: tuple = ()
     growth: bool = False
+    growths: tuple = ()
+    guess: tuple = ()
     contact: object = None  # a ContactState with rigid parts (models/hyperelastic_contact.py)
 
 
@@ -274,7 +320,7 @@ class HyperelasticPrepared(Prepared):
         self.sizes = np.array([s.mesh_scale for s in self.sections]) / options.elements_through_thickness
         rings = [s.contour for s in self.sections]
         fixed = [np.array([0, len(s.lower) - 1]) for s in self.sections]
-        mesh = union_mesh(rings, fixed, self.sizes, self.layout.tolerance)
+        mesh = union_mesh(rings, fixed, self.sizes, self.layout.tolerance, [s.holes for s in self.sections])
         self.mesh = mesh
         n_low = [len(s.lower) for s in self.sections]
         self.lower_ids = [r[:n] for r, n in zip(mesh.rings, n_low)]
@@ -344,22 +390,40 @@ class HyperelasticPrepared(Prepared):
 
     def _physics(self, cells, geom, kappa, mu):
         """The mixed problem on the union mesh, per cell its body's moduli and out-of-plane stretch; sets ``stretches``."""
-        self.stretches = self.stretches_of(tuple(body.law for body in self.problem.bodies))
-        ln_stretch = np.log(self.stretches)[self.mesh.body]
+        laws = tuple(body.law for body in self.problem.bodies)
+        self.stretches = self.stretches_of(laws)
+        ln_stretch = np.log(self.stretches[: len(laws)])[self.mesh.body]
+        ln_growth = np.log(self.growths_of(laws))[self.mesh.body]
         if all(type(m) is NeoHookean for m in self.materials):  # the closed form, else any rubber
-            return _Stretches(cells, len(self.mesh.nodes), geom, kappa, mu, ln_stretch, self.mesh.pressure_cells)
+            return _Stretches(cells, len(self.mesh.nodes), geom, kappa, mu, ln_stretch, self.mesh.pressure_cells, ln_growth)
+        for i, growth in enumerate(self.growths_of(laws)):
+            if growth != 1.0:
+                raise CaseError(f"bodies[{i}].law.volume_ratio", "the growth of an extruded body takes a neo-Hookean rubber "
+                                "for now; give the body a neo-Hookean material (shear_modulus only)")
         return MixedRubber(cells, len(self.mesh.nodes), geom, self.materials, self.mesh.body, ln_stretch,
                            self.mesh.pressure_cells)
 
     def _physics_for(self, stretches: tuple):
-        """A copy of the prepared physics under other per-body ``stretches`` (same mesh and moduli)."""
+        """A copy of the prepared physics under other per-body ``stretches`` and growths (same mesh and moduli).
+
+        ``stretches`` are the bodies' out-of-plane stretches, followed, for
+        growing extruded bodies, by their growths (:meth:`stretches_of`).
+        """
         physics = copy.copy(self.physics)
-        physics.ln_stretch = np.log(np.asarray(stretches))[self.mesh.body][:, None]
+        n = len(self.sections)
+        physics.ln_stretch = np.log(np.asarray(stretches[:n]))[self.mesh.body][:, None]
+        if len(stretches) > n:
+            physics.ln_growth = np.log(np.asarray(stretches[n:]))[self.mesh.body][:, None]
         return physics
 
-    def _law_offset(self, b: int, ring: np.ndarray, movable: np.ndarray, law) -> tuple[np.ndarray, float]:
-        """Body ``b``'s contour ``ring`` with its movable points offset to meet ``law`` exactly (:func:`offset_to_area`)."""
-        return offset_to_area(ring, movable, law.target(self.stack.initial_quantity(b, law)))
+    def _law_offset(self, b: int, ring: np.ndarray, movable: np.ndarray, law, wanted: float) -> tuple[np.ndarray, float]:
+        """Body ``b``'s contour ``ring`` with its movable points offset to the signed area ``wanted`` (:func:`offset_to_area`)."""
+        return offset_to_area(ring, movable, wanted)
+
+    @staticmethod
+    def growths_of(laws) -> tuple:
+        """Each body's volumetric growth under ``laws``: an extruded body's growth, else 1."""
+        return tuple(float(law.growth) if law.growth is not None and law.measure == "area" else 1.0 for law in laws)
 
     def _body_mesh(self, b: int, geom, unknowns: int, through: float) -> _BodyMesh:
         mesh = self.mesh
@@ -372,8 +436,16 @@ class HyperelasticPrepared(Prepared):
         return _BodyMesh(MeshData(mesh.nodes[used], cells, "triangle6"), quality, cells, used, elements)
 
     def stretches_of(self, laws) -> tuple:
-        """Each body's out-of-plane stretch ``lz`` under ``laws`` (one :class:`~sectiondeform.laws.Law` per body)."""
-        return tuple(float(law.out_of_plane_stretch(sec.area)) for law, sec in zip(laws, self.sections))
+        """Each body's out-of-plane stretch ``lz`` under ``laws`` (one :class:`~sectiondeform.laws.Law` per body).
+
+        A growing extruded body starts from a free body's axial stretch
+        (its growth's cube root); :meth:`place` then solves the stretch that
+        leaves no axial force. When a body grows, the growths follow the
+        stretches in the tuple (what the physics is solved for).
+        """
+        out = tuple(float(law.out_of_plane_stretch(sec.area)) for law, sec in zip(laws, self.sections))
+        growths = self.growths_of(laws)
+        return out + growths if any(g != 1.0 for g in growths) else out
 
     def _problem(self, stretches: tuple) -> tuple[_Stretches, NewtonSolver]:
         """The physics and solver for other stretches than the prepared ones (same mesh, pattern, reference tangent).
@@ -392,7 +464,8 @@ class HyperelasticPrepared(Prepared):
     def _dres_dlns(self, physics: _Stretches) -> np.ndarray:
         """The derivative d R_free / d ln s at J = 1: each cell's pressure rows times its body's ln lz."""
         mesh, pattern = self.mesh, self.solver.pattern
-        wm = (physics._wM * physics.ln_stretch[:, :, None]).sum(axis=1)
+        ln = physics.ln_stretch - physics.ln_growth if isinstance(physics, _Stretches) else physics.ln_stretch  # R_p: J - c
+        wm = (physics._wM * ln[:, :, None]).sum(axis=1)
         full = np.zeros(pattern.n_dofs)
         full[2 * len(mesh.nodes) :] = np.bincount(mesh.pressure_cells.ravel(), weights=wm.ravel(), minlength=mesh.n_pressures)
         return full[pattern.free]
@@ -407,7 +480,7 @@ class HyperelasticPrepared(Prepared):
         if start is not None:
             if not isinstance(start, HyperelasticState) or start.state.z.shape != self.reference.z.shape:
                 raise CaseError("start", "give an earlier result of this problem's deformer (its state is of another problem or model)")
-            if start.stretches == stretches:
+            if (start.guess or start.stretches) == stretches:
                 return start.state
         mesh = self.mesh
         q, t = rigid_fit(mesh.nodes[self.fixed_ids], xd)
@@ -453,9 +526,10 @@ class HyperelasticPrepared(Prepared):
             If ``start`` is not a state of this problem.
         """
         xd = curve.at_fractions(self.fixed_fractions)
-        stretches = self.stretches_of(laws)
+        guess = self.stretches_of(laws)
+        base = self._base(xd, start, guess)
+        stretches = start.stretches if start is not None and base is start.state else guess
         physics, solver = self._problem(stretches)
-        base = self._base(xd, start, stretches)
         a0, f0 = solver.assemblies, solver.factorisations
         contact = None
         if self.contact is not None:  # rigid parts: loaded with the support, the contact carried by the state
@@ -464,6 +538,8 @@ class HyperelasticPrepared(Prepared):
         else:
             state = solver.solve(base, xd.ravel(), math.e)
         f = state.fields if state.fields is not None else physics.fields(state.z, state.lz)
+        if self.plane and len(stretches) > len(laws):  # growing extruded bodies: the axial stretch with no axial force
+            stretches, state, f, physics, solver = self._free_extrusion(stretches, state, f, physics, solver, xd)
 
         def info(b, correction):
             return HyperelasticInfo(
@@ -473,8 +549,47 @@ class HyperelasticPrepared(Prepared):
                 area_correction=float(correction), out_of_plane_stretch=float(stretches[b]) if self.plane else 1.0,
             )
 
-        return Placed(*self._finish(curve, laws, state.z, f, info),
-                      HyperelasticState(state, stretches, self.materials, self.pressure_dofs, not self.plane, contact))
+        growths = tuple(stretches[len(laws):]) if self.plane else ()
+        return Placed(*self._finish(curve, laws, state.z, f, info, stretches),
+                      HyperelasticState(state, stretches, self.materials, self.pressure_dofs, not self.plane, growths,
+                                        guess if stretches != guess else (), contact))
+
+    def _free_extrusion(self, stretches, state, f, physics, solver, xd):
+        """Solve each growing extruded body's axial stretch so that its axial force vanishes.
+
+        A scalar condition per body, ``∫ P_zz dA = 0``, met by secant steps
+        on ``ln lz`` (the first from the stiffness of a free bar, ``3 mu A``),
+        each a Newton solve continued from the last; a free body starts at
+        its root (the growth's cube root) and stops at once.
+
+        Raises
+        ------
+        ConvergenceError
+            If the axial forces do not vanish within :data:`AXIAL_STEPS` solves.
+        """
+        n = len(self.sections)
+        growing = np.flatnonzero(np.asarray(stretches[n:]) != 1.0)
+        mu = np.array([m.shear_modulus for m in self.materials])
+        scale = mu * np.array([s.area for s in self.sections])
+        ln = np.log(np.asarray(stretches[:n], dtype=np.float64))
+        previous = None
+        for _ in range(AXIAL_STEPS):
+            force = physics.axial_force(f, self.mesh.body, n)
+            if (np.abs(force[growing]) <= AXIAL_TOLERANCE * scale[growing]).all():
+                return stretches, state, f, physics, solver
+            if previous is None:
+                slope = 3.0 * scale
+            else:
+                d_ln, d_force = ln - previous[0], force - previous[1]
+                slope = np.where(np.abs(d_ln) > 0, d_force / np.where(d_ln == 0, 1.0, d_ln), 3.0 * scale)
+            previous = (ln.copy(), force)
+            ln[growing] -= np.clip(force[growing] / slope[growing], -0.2, 0.2)
+            stretches = tuple(float(v) for v in np.exp(ln)) + tuple(stretches[n:])
+            physics, solver = self._problem(stretches)
+            state = solver.solve(state, xd.ravel(), math.e)
+            f = state.fields if state.fields is not None else physics.fields(state.z, state.lz)
+        raise ConvergenceError(f"{self.problem.label(int(growing[0])) or 'body'}: the axial stretch of the growing extruded "
+                               f"body leaves an axial force after {AXIAL_STEPS} solves; the growth is too severe for it")
 
     def preview(self, curve, laws: tuple, start: HyperelasticState | None = None) -> Placed:
         """Drag preview: one linear step from ``start`` (or the undeformed bodies), no new factorisation.
@@ -489,16 +604,19 @@ class HyperelasticPrepared(Prepared):
         returned is ``start``).
         """
         xd = curve.at_fractions(self.fixed_fractions)
-        stretches = self.stretches_of(laws)
+        guess = self.stretches_of(laws)
+        base = self._base(xd, start, guess)
+        stretches = start.stretches if start is not None and base is start.state else guess
         physics, solver = self._problem(stretches)
-        z = solver.predict(self._base(xd, start, stretches), xd.ravel(), math.e)
+        z = solver.predict(base, xd.ravel(), math.e)
         f = physics.fields(z, math.e)
         if f is None:
             raise MeshError("preview: an element is inverted in the linear step; the target moved too far from the "
                             "start for a preview (deform instead)")
-        return Placed(*self._finish(curve, laws, z, f, lambda b, correction: PreviewInfo(area_correction=float(correction))), start)
+        return Placed(*self._finish(curve, laws, z, f, lambda b, correction: PreviewInfo(area_correction=float(correction)),
+                                    stretches), start)
 
-    def _finish(self, curve, laws: tuple, z: np.ndarray, f, info) -> tuple[list, list, list]:
+    def _finish(self, curve, laws: tuple, z: np.ndarray, f, info, stretches) -> tuple[list, list, list]:
         """Per body its lower nodes, upper points (each law made exact) and placement, from the solved ``z``."""
         mesh = self.mesh
         n = len(mesh.nodes)
@@ -508,14 +626,22 @@ class HyperelasticPrepared(Prepared):
         fixed = np.zeros(len(img), bool)
         fixed[self.support_vertices] = True
         corrections = [0.0] * len(self.sections)
+        targets = [None] * len(self.sections)
         for b in self.layout.order:
             sec = self.sections[b]
             ring = mesh.rings[b]
             n_low = len(sec.lower)
             movable = np.zeros(len(ring), bool)
             movable[n_low:] = ~fixed[ring[n_low:]]
+            law = laws[b]
+            initial = self.stack.initial_quantity(b, law)
+            wanted = law.target(initial)
+            if self.plane and law.growth is not None and law.measure == "area":  # the volume grown over the axial stretch
+                wanted = targets[b] = law.area_for_axial_stretch(initial, stretches[b])
+            # The holes are not moved: the outer contour takes the holes' quantity on top of the body's.
+            wanted -= sum(law.quantity(img[h]) for h in mesh.holes[b]) if mesh.holes else 0.0
             try:
-                new, k = self._law_offset(b, img[ring], movable, laws[b])
+                new, k = self._law_offset(b, img[ring], movable, law, wanted)
             except LawError as exc:
                 raise renamed(exc, self.problem.label(b)) from None
             img[ring[movable]] = new[movable]
@@ -535,7 +661,8 @@ class HyperelasticPrepared(Prepared):
                             "mesh misses this deformation's physics (refine with options.elements_through_thickness)",)
             final = MeshData(x[bm.used].copy(), bm.cells, "triangle6")
             quality = FinalQuality(area_stretch_min=float(det.min()), area_stretch_max=float(det.max()))
-            placements.append(Placement(images[-1], final, quality, info(b, corrections[b]), warnings, None))
+            holes = tuple(img[h] for h in mesh.holes[b]) if mesh.holes else ()
+            placements.append(Placement(images[-1], final, quality, info(b, corrections[b]), warnings, None, holes, targets[b]))
         return lowers, images, placements
 
 

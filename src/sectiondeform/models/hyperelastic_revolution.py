@@ -163,5 +163,5 @@ class RevolutionPrepared(HyperelasticPrepared):
         physics.ln_stretch = -physics.ln_growth
         return physics
 
-    def _law_offset(self, b: int, ring: np.ndarray, movable: np.ndarray, law) -> tuple[np.ndarray, float]:
-        return offset_to_law(ring, movable, law, law.target(self.stack.initial_quantity(b, law)))
+    def _law_offset(self, b: int, ring: np.ndarray, movable: np.ndarray, law, wanted: float) -> tuple[np.ndarray, float]:
+        return offset_to_law(ring, movable, law, wanted)

@@ -193,6 +193,18 @@ def _column_matrix(weights: np.ndarray, columns: np.ndarray, n: int) -> np.ndarr
     return out
 
 
+def _hole_location(mesh, section: Section, upper: Location) -> Location:
+    """``upper`` followed by the location of every hole's points (each one located, else refused), 8 weights a row."""
+    if not section.holes:
+        return upper
+    pts = np.concatenate(section.holes)
+    loc = locate(mesh.points, mesh.quads, pts)
+    nodes = np.concatenate((loc.nodes, loc.nodes), axis=1)
+    weights = np.concatenate((loc.weights, np.zeros_like(loc.weights)), axis=1)
+    return Location(np.concatenate((upper.elements, loc.elements)), np.concatenate((upper.local, loc.local)),
+                    np.concatenate((upper.nodes, nodes)), np.concatenate((upper.weights, weights)))
+
+
 def _upper_location(mesh, section: Section) -> Location:
     """Where every upper point sits in the layered mesh, as bilinear weights of mesh nodes.
 
@@ -242,13 +254,14 @@ class PaperSection:
         self._lower_polyline_length = float(np.hypot(*np.diff(section.lower, axis=0).T).sum())
         size = section.size
         h = section.element_size
-        characteristic = section.upper[section.characteristic_index]
+        characteristic = np.concatenate((section.upper[section.characteristic_index], *section.holes))
         self.extension = plan_extension(section.lower, section.orientation, characteristic, h)
         base = extend_base(section.lower, *self.extension)
         mesh = grow_mesh(base, h, section.orientation, characteristic, tol=1e-9 * size)
         self.mesh = mesh
         self.quads = mesh.quads
-        self.location = _upper_location(mesh, section)
+        self.location = _hole_location(mesh, section, _upper_location(mesh, section))
+        self._hole_slices = np.cumsum([len(section.upper)] + [len(h) for h in section.holes])
         nodes = mesh.nodes
         t0, n0 = node_frames(nodes[0], section.orientation)
         rel = nodes - nodes[0][None]
@@ -322,7 +335,8 @@ class PaperSection:
         steps = real[1:] - real[:-1]
         lengths = np.hypot(steps[:, 0], steps[:, 1]).sum()
         guess = wanted / initial * sec.lower_length / lengths
-        fixed_up = self._map(0, target_nodes)
+        fixed_all = self._map(0, target_nodes)
+        fixed_up, *fixed_holes = np.split(fixed_all, self._hole_slices)[:-1] if sec.holes else (fixed_all,)
         fixed = np.concatenate((real, fixed_up[1:-1]))
         zeros = np.zeros_like(real)
         smoothing = 0.0
@@ -330,9 +344,13 @@ class PaperSection:
         for lam in TARGET_SMOOTHING:
             if lam:
                 t, n = _frames_from_normals(self._smoother(n, lam), sec.orientation)
-            moving_up = self._moving_up(t, n)
+            moving_all = self._moving_up(t, n)
+            moving_up, *moving_holes = np.split(moving_all, self._hole_slices)[:-1] if sec.holes else (moving_all,)
             moving = np.concatenate((zeros, moving_up[1:-1]))
-            roots = scale_roots(law.coefficients(fixed, moving), wanted, guess)
+            coefficients = law.coefficients(fixed, moving)
+            for hf, hm in zip(fixed_holes, moving_holes):  # oriented against the contour: their quantity comes off
+                coefficients = coefficients + law.coefficients(hf, hm)
+            roots = scale_roots(coefficients, wanted, guess)
             if not roots:  # converging normals cap the reachable quantity: smooth them more
                 law_error = LawError(
                     f"law: no height scale gives the {law.measure} {abs(wanted):.6g}; the target cannot carry "
@@ -360,6 +378,7 @@ class PaperSection:
             )
         upper = fixed_up + k * moving_up
         upper[0], upper[-1] = real[-1], real[0]
+        holes = tuple(hf + k * hm for hf, hm in zip(fixed_holes, moving_holes))
         final = MeshData(nodes.reshape(-1, 2), self.quads, "quad", self.initial_mesh.shape)
         jac_max = float(np.maximum(np.maximum(jac[0], jac[1]), np.maximum(jac[2], jac[3])).max())
         info = PaperInfo(
@@ -374,12 +393,18 @@ class PaperSection:
         refusal = extent_refusal(info.height_scale, info.aspect_change)
         if refusal:
             raise MeshError(refusal)
+        warnings = self.warnings(info)
+        if law.growth is not None and law.measure == "area":
+            warnings.append(f"law: the growth {law.growth:g} of an extruded body is met geometrically: the paper model scales "
+                            f"the section's area by {law.growth:g}^(2/3), a free body's growth; a bonded body's follows its "
+                            'mechanics (options.model "hyperelastic")')
         return Placement(
             upper=upper,
             final_mesh=final,
             quality=FinalQuality(jacobian_min=jac_min, jacobian_max=jac_max),
             info=info,
-            warnings=tuple(self.warnings(info)),
+            warnings=tuple(warnings),
+            holes=holes,
         )
 
     def warnings(self, info: PaperInfo) -> list[str]:

@@ -1,0 +1,147 @@
+"""Hollow bodies (``holes``) and the growth of extruded bodies (``volume_ratio`` without an axis), both models."""
+
+from __future__ import annotations
+
+import copy
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import sectiondeform as sd
+from sectiondeform.cli import main
+from sectiondeform.io.case import case_from_dict, case_to_dict
+
+DATA = Path(__file__).parent / "data"
+HOLLOW = DATA / "cases" / "v2" / "hollow-on-arc.json"
+MODELS = ("paper", "hyperelastic")
+
+
+def _circle(cx, cy, r):
+    return {"arc": {"center": [cx, cy], "radius": r, "start_deg": 0.0, "end_deg": 360.0}}
+
+
+def _case(target, law, holes=(), model="paper", length=4.0, upper=None, material=None):
+    body = {"name": "b", "lower": {"polyline": [[0, 0], [length, 0]]},
+            "upper": {"polyline": upper or [[length, 0], [length, 2], [length / 2, 3], [0, 2], [0, 0]]}, "law": law}
+    if holes:
+        body["holes"] = list(holes)
+    if material:
+        body["material"] = material
+    return {"format": "section-case/2", "support": {"polyline": [[0, 0], [length, 0]]},
+            "target": {"polyline": target}, "bodies": [body], "options": {"model": model}}
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_a_body_grown_on_a_support_that_grows_with_it_scales_every_length_by_the_cube_root(model):
+    r = 1.1
+    g = r ** (1.0 / 3.0)
+    problem = case_from_dict(_case([[0, 0], [4 * g, 0]], {"volume_ratio": r}, [_circle(2.0, 1.5, 0.6)], model))
+    result = sd.Deformer(problem).deform()
+    body = result.bodies[0]
+    size = 3.0
+    assert np.abs(body.upper - g * body.initial_upper).max() < 1e-5 * size
+    assert np.abs(body.holes[0] - g * body.initial_holes[0]).max() < 1e-5 * size
+    assert body.area_final == pytest.approx(g * g * body.area_initial, rel=1e-9)
+    if model == "hyperelastic":
+        assert body.info.out_of_plane_stretch == pytest.approx(g, rel=1e-6)  # free along the extrusion
+    else:
+        assert any("geometrically" in w for w in result.warnings)
+
+
+def test_a_bonded_thin_layer_grown_builds_the_closed_form_in_plane_stress():
+    """Bonded along x, free across and along the extrusion: elastic stretches r^(-1/3), r^(1/6), r^(1/6).
+
+    So sigma_xx = mu (r^(-2/3) - r^(1/3)) (the von Mises stress, the other two vanishing), the
+    thickness and the axial stretch r^(1/2), in the middle of a long layer.
+    """
+    r, mu, length = 1.2, 2.0, 40.0
+    upper = [[length, 0], [length, 1], [0, 1], [0, 0]]
+    problem = case_from_dict(_case([[0, 0], [length, 0]], {"volume_ratio": r}, model="hyperelastic", length=length,
+                                   upper=upper, material={"shear_modulus": mu}))
+    result = sd.Deformer(problem).deform()
+    body = result.bodies[0]
+    fields = result.to_json(meshes=False, fields=True)["bodies"][0]["fields"]
+    centre = body.initial_mesh.points[body.initial_mesh.cells[:, :3]].mean(axis=1)
+    middle = np.abs(centre[:, 0] - length / 2) < 5
+    von_mises = np.asarray(fields["von_mises_stress"])[middle]
+    assert von_mises == pytest.approx(mu * abs(r ** (-2 / 3) - r ** (1 / 3)), rel=2e-3)
+    top = body.contour[np.abs(body.contour[:, 0] - length / 2) < 2, 1].max()
+    assert top == pytest.approx(r ** 0.5, rel=3e-3)
+    assert body.info.out_of_plane_stretch == pytest.approx(r ** 0.5, rel=3e-3)  # the layer's ends relax it a little
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_a_hole_of_radius_going_to_zero_gives_the_solid_body(model):
+    target, law = [[0, 0], [2, 0.1], [4, 0]], {"area_ratio": 0.98}
+    solid = sd.Deformer(case_from_dict(_case(target, law, model=model))).deform().bodies[0]
+    gaps = []
+    for radius in (0.1, 0.01):
+        body = sd.Deformer(case_from_dict(_case(target, law, [_circle(2.0, 1.2, radius)], model))).deform().bodies[0]
+        assert body.area_initial == pytest.approx(solid.area_initial - np.pi * radius**2, rel=1e-9)
+        gaps.append(np.abs(body.upper - solid.upper).max())
+    assert gaps[1] < gaps[0] / 10
+    # The paper model's gap goes as the hole's area; the hyperelastic one's down to its mesh's error.
+    assert gaps[1] < (1e-5 if model == "paper" else 1e-4) * 3.0
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_the_public_hollow_profile_deforms_with_its_area_exact(model, tmp_path):
+    out = tmp_path / "out.json"
+    assert main(["deform", str(HOLLOW), "-o", str(out), "--model", model]) == 0
+    result = json.loads(out.read_text())
+    body = result["bodies"][0]
+    assert abs(body["area"]["relative_error"]) <= 1e-9
+    hole = np.asarray(body["holes"][0])
+    import shapely
+
+    assert shapely.Polygon(body["contour"]).contains(shapely.Polygon(hole))
+    assert shapely.Polygon(body["contour"]).area - shapely.Polygon(hole).area == pytest.approx(body["area"]["final"], rel=1e-9)
+
+
+def test_holes_are_read_and_written_back():
+    data = json.loads(HOLLOW.read_text())
+    problem = case_from_dict(data)
+    again = case_from_dict(case_to_dict(problem))
+    assert again == problem and len(again.bodies[0].holes) == 1
+    assert problem.bodies[0].to_json()["holes"] == data["bodies"][0]["holes"]
+
+
+BAD = {
+    "touching the contour": (lambda b: b.update(holes=[_circle(12.0, 4.0, 4.0)]), r"holes\[0\]: it touches the body's contour"),
+    "touching another hole": (lambda b: b.update(holes=[_circle(8.0, 6.0, 2.0), _circle(12.0, 6.0, 2.0)]),
+                              r"holes\[1\]: it touches or overlaps holes\[0\]"),
+    "open": (lambda b: b.update(holes=[{"polyline": [[10, 5], [14, 5], [12, 8]]}]), r"holes\[0\]: the curve is open"),
+    "outside": (lambda b: b.update(holes=[_circle(40.0, 6.0, 2.0)]), r"holes\[0\]: it lies outside the body's contour"),
+    "growth zero": (lambda b: b.update(law={"volume_ratio": 0.0}), r"law\.volume_ratio"),
+    "growth absurd": (lambda b: b.update(law={"volume_ratio": 50.0}), r"growth of an extruded body must be between"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(BAD))
+def test_bad_holes_and_growths_are_one_line_and_exit_2(name, tmp_path, capsys):
+    change, message = BAD[name]
+    data = copy.deepcopy(json.loads(HOLLOW.read_text()))
+    change(data["bodies"][0])
+    case = tmp_path / "case.json"
+    case.write_text(json.dumps(data))
+    out = tmp_path / "out.json"
+    assert main(["deform", str(case), "-o", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and not out.exists()
+    assert pytest.importorskip("re").search(message, err), err
+
+
+def test_a_hole_that_closes_or_crosses_the_contour_or_another_is_named():
+    from sectiondeform.deform import hole_failure
+
+    square = np.array([[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [0.0, 4.0]])
+    hole = np.array([[1.0, 1.0], [1.0, 2.0], [2.0, 2.0], [2.0, 1.0]])  # clockwise, inside
+    assert hole_failure(square, [hole], [hole]) is None
+    assert "holes[0] closes" in hole_failure(square, [hole[::-1]], [hole])
+    assert "holes[0] closes" in hole_failure(square, [hole * [1.0, 0.0] + [0.0, 1.0]], [hole])
+    assert "contour" in hole_failure(square, [hole + [2.5, 0.0]], [hole])
+    pulled = np.array([[1.0, 1.0], [1.0, 3.0], [3.0, 3.0], [3.0, 1.0], [0.5, 2.0]])  # its last edge crosses its first
+    assert "crosses itself" in hole_failure(square, [pulled], [hole])
+    assert "holes[0]" in hole_failure(square, [hole, hole + [0.5, 0.0]], [hole, hole]).split(": ")[1]
