@@ -32,11 +32,15 @@ from .layout import Layout, check_axis, layout, problem_size
 from .options import Options, options_from_json
 from .section import SectionCurves
 
-__all__ = ["Problem", "Body", "Revolution", "Rigid", "DIALECTS", "V1", "V2"]
+__all__ = ["Problem", "Body", "Revolution", "Rigid", "DIALECTS", "V1", "V2", "RESULT_V1", "RESULT_V2"]
 
 V1 = "section-case/1"
 V2 = "section-case/2"
 DIALECTS = (V1, V2)
+RESULT_V1 = "section-result/1"
+"""The result format of a ``section-case/1`` problem (the one body's figures at the top level)."""
+RESULT_V2 = "section-result/2"
+"""The result format of a ``section-case/2`` problem (a list of bodies)."""
 
 
 @dataclass(frozen=True)

@@ -16,11 +16,10 @@ import numpy as np
 
 from .errors import CaseError
 from .models.base import FinalQuality, Info, MeshData, MeshQuality
+from .problem import RESULT_V1, RESULT_V2
 
 __all__ = ["Result", "BodyResult", "ResultQuality", "RESULT_V1", "RESULT_V2"]
 
-RESULT_V1 = "section-result/1"
-RESULT_V2 = "section-result/2"
 
 
 @dataclass(frozen=True)

@@ -58,7 +58,7 @@ from .materials.measures import max_principal_strain, principal_stretches, von_m
 from .materials.models import gradient_3d
 from .models.base import MeshData
 from .pappus import signed_distance
-from .result import RESULT_V1
+from .problem import RESULT_V1
 
 __all__ = ["element_gradients", "element_centres", "strain_fields", "result_fields", "result_mechanics", "Mechanics",
            "fields_json", "STRAIN_NOTE", "STRESS_NOTES", "node_gradients", "nodal_stresses", "SingularPoint",
