@@ -28,8 +28,8 @@ import math
 import numpy as np
 
 from ..materials.models import gradient_3d
-from .neohooke import Fields, MixedNeoHooke
 from .elements import Geometry
+from .neohooke import Fields, MixedNeoHooke
 
 __all__ = ["MixedRubber"]
 
