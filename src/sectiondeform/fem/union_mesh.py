@@ -391,23 +391,37 @@ def body_pressure_cells(cells: np.ndarray, body: np.ndarray, n_vertices: int) ->
 
 
 def _ring_nodes(ring, geo, chain_nodes) -> np.ndarray:
-    """A ring's chain nodes in its order (each node once): its outline in the mesh."""
-    lookup = {}
-    for c, (path, _, _) in enumerate(geo):
-        for k, (u, w) in enumerate(zip(path[:-1], path[1:])):
-            lookup[(int(u), int(w))] = (c, k, 1)
-            lookup[(int(w), int(u))] = (c, k + 1, -1)
-    out = []
-    for u, w in zip(ring, np.roll(ring, -1)):
-        if u == w:
-            continue
-        c, k, sign = lookup[(int(u), int(w))]
-        path, s, ns = geo[c]
-        a, b = (s[k], s[k + 1]) if sign > 0 else (s[k], s[k - 1])
-        lo, hi = min(a, b), max(a, b)
-        pick = np.flatnonzero((ns >= lo) & (ns < hi)) if sign > 0 else np.flatnonzero((ns > lo) & (ns <= hi))[::-1]
-        out.append(chain_nodes[c][pick])
-    return np.concatenate(out)
+    """A ring's chain nodes in its order (each node once): its outline in the mesh.
+
+    Each edge ``u``-``w`` of the ring lies on one chain's segment ``k``; it
+    contributes the chain's nodes at arc lengths in ``[s_k, s_k+1)`` walked
+    forward, or in ``(s_k, s_k+1]`` walked backward. Vectorised: the directed
+    edges are looked up in one sorted array, the node runs gathered at once.
+    """
+    nv = int(max(int(np.max(path)) for path, _, _ in geo)) + 1
+    keys, first, count, step, flat = [], [], [], [], []
+    offset = 0
+    for c, (path, s, ns) in enumerate(geo):
+        path = np.asarray(path, dtype=np.int64)
+        f_lo, f_hi = np.searchsorted(ns, s[:-1], "left"), np.searchsorted(ns, s[1:], "left")
+        b_lo, b_hi = np.searchsorted(ns, s[:-1], "right"), np.searchsorted(ns, s[1:], "right")
+        keys += [path[:-1] * nv + path[1:], path[1:] * nv + path[:-1]]
+        first += [offset + f_lo, offset + b_hi - 1]  # a backward run starts at its last node
+        count += [f_hi - f_lo, b_hi - b_lo]
+        step += [np.ones(len(path) - 1, np.int64), -np.ones(len(path) - 1, np.int64)]
+        flat.append(np.asarray(chain_nodes[c], dtype=np.int64))
+        offset += len(ns)
+    keys, first, count, step = (np.concatenate(x) for x in (keys, first, count, step))
+    flat = np.concatenate(flat)
+    order = np.argsort(keys, kind="stable")
+    ring = np.asarray(ring, dtype=np.int64)
+    nxt = np.roll(ring, -1)
+    use = ring != nxt
+    pos = order[np.searchsorted(keys, ring[use] * nv + nxt[use], sorter=order)]
+    first, count, step = first[pos], count[pos], step[pos]
+    run = np.repeat(np.arange(len(pos)), count)
+    within = np.arange(int(count.sum())) - np.repeat(np.cumsum(count) - count, count)
+    return flat[first[run] + step[run] * within]
 
 
 def _midnodes(pts, tri):
