@@ -78,3 +78,21 @@ def test_later_factorisations_reuse_the_first_order_and_solve_the_same_system(sp
         x = later.solve(rhs[:, k])
         assert np.allclose(kff @ x, rhs[:, k], rtol=0, atol=1e-9 * np.abs(rhs[:, k]).max())
         assert np.allclose(x, fresh.solve(rhs[:, k]), rtol=1e-9, atol=1e-12)
+
+
+@pytest.mark.parametrize("offset", [(-1e5, 2e5), (3e3, -7e3)])
+def test_the_union_mesh_of_a_small_body_far_off_is_its_mesh_at_the_origin_moved(offset):
+    """A 0.06 mm body at 1e5 mm: meshed about its own point (it used to loop in Qhull's lost digits)."""
+    from sectiondeform.fem.union_mesh import union_mesh
+
+    ring = np.array([[0.0, 0.0], [0.0625, 0.0], [0.0139, 0.0031], [0.006, 0.0031]])
+    here = union_mesh([ring], [np.array([0, 1])], 0.0008, 1e-12)
+    there = union_mesh([ring + offset], [np.array([0, 1])], 0.0008, 1e-12)
+    assert there.cells.shape == here.cells.shape and there.nodes.shape == here.nodes.shape
+    a, b = here.nodes, np.round(there.nodes - offset, 9)  # the same nodes, in whatever order Qhull gave
+    assert np.allclose(a[np.lexsort(np.round(a, 9).T)], b[np.lexsort(b.T)], rtol=0, atol=1e-9)
+    corners = there.nodes[there.cells[:, :3]] - offset
+    e1, e2 = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
+    areas = 0.5 * (e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    x, y = ring.T
+    assert areas.min() > 0 and np.isclose(areas.sum(), 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y)), rtol=1e-9)
