@@ -1,6 +1,6 @@
 """Run the project's speed benchmark and write its report.
 
-Usage: python benchmarks/run.py [--quick] [--cases DIR] [-o DIR] [--changes FILE] [--no-profile]
+Usage: python benchmarks/run.py [--quick] [--cases DIR] [-o DIR] [--changes FILE] [--no-profile] [--hyperelastic-only]
 
 The full run writes ``docs/benchmarks.json`` and ``docs/benchmarks.md`` of this
 repository unless ``-o DIR`` names another folder. ``--quick`` (few
@@ -35,6 +35,8 @@ def build_parser() -> argparse.ArgumentParser:
                         help="folder for benchmarks.json and benchmarks.md (default: docs/ for a full run, a temporary folder for --quick)")
     parser.add_argument("--changes", type=Path, help="Markdown file appended to the table (what changed, what it gained)")
     parser.add_argument("--no-profile", action="store_true", help="leave pyinstrument's profile out")
+    parser.add_argument("--hyperelastic-only", action="store_true",
+                        help="only section 8 (the hyperelastic model on every shared case): print its table, write nothing")
     return parser
 
 
@@ -50,6 +52,10 @@ def output_folder(output: Path | None, quick: bool) -> Path:
 def main(argv: list[str] | None = None) -> int:
     """Parse ``argv``, run the benchmark, write the report, print the targets and where it went."""
     args = build_parser().parse_args(argv)
+    if args.hyperelastic_only:
+        rows = speed.bench_hyperelastic_cases(speed.QUICK if args.quick else speed.FULL)
+        print("\n".join(speed.hyperelastic_markdown(rows)))
+        return 0
     report = speed.run_benchmark(args.cases, quick=args.quick, profile=not args.no_profile,
                                  log=lambda s: print(s, file=sys.stderr))
     report["command"] = " ".join(["python", os.path.relpath(__file__)] + (sys.argv[1:] if argv is None else list(argv)))

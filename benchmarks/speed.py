@@ -28,6 +28,12 @@ What is timed:
 7. ``bodies``: the same calls (prepare, deform, warm re-deformation,
    preview) on a problem of one body and on one of two bonded bodies, per
    model, interleaved; the several bodies' time per body over the one body's.
+8. ``hyperelastic``: the hyperelastic model on every shared case
+   (``tests/data/cases/*.json`` and ``v2/*.json``; one body and several,
+   plane and revolution): full solve ``Deformer(case).deform()``, solve
+   again after a small move of the target (``start=``), drag preview, each
+   against its target; on the process's CPU clock (``time.process_time``),
+   which a shared machine's other work disturbs less than the wall clock.
 
 Times are seconds in the JSON; the Markdown shows ms or µs. No figure is
 asserted anywhere: the benchmark reports, the reader judges.
@@ -552,6 +558,82 @@ def bodies_markdown(rows: list[dict]) -> list[str]:
 
 
 # --------------------------------------------------------------------------
+# 8. The hyperelastic model on every shared case
+
+HYPERELASTIC_TARGETS = {"full_s": 20e-3, "again_s": 2e-3, "preview_s": 0.5e-3}
+
+
+def cpu_median(fn, repeats: int, warmup: int = 1) -> float:
+    """Median CPU time (``time.process_time``) of ``fn()`` over ``repeats`` runs after ``warmup``, seconds."""
+    for _ in range(warmup):
+        fn()
+    times = []
+    for _ in range(repeats):
+        t0 = time.process_time()
+        fn()
+        times.append(time.process_time() - t0)
+    return statistics.median(times)
+
+
+def shared_case_paths() -> list[Path]:
+    """Every shared case: ``tests/data/cases/*.json`` then ``v2/*.json``."""
+    folder = default_cases_dir()
+    return sorted(folder.glob("*.json")) + sorted((folder / "v2").glob("*.json"))
+
+
+def bench_hyperelastic_cases(cfg: dict, paths=None) -> list[dict]:
+    """Full solve, solve again and drag preview of the hyperelastic model per shared case, CPU-time medians, seconds.
+
+    ``full`` is ``Deformer(case, "hyperelastic").deform()`` (section, mesh,
+    pattern, reference tangent, cold solve); ``again`` the solve onto the
+    target moved by a smooth bump of 0.5 % of the thinnest body's
+    thickness T from the first result (``start=``); ``preview`` the drag
+    preview onto that target from the first result. Also the unknowns, the
+    factorisations each call makes and the preview's distance to the solve
+    again over T.
+    """
+    from sectiondeform import load_case
+    from sectiondeform.deform import Deformer
+
+    rows = []
+    reps = max(3, cfg["repeats"] // 4)
+    for path in paths or shared_case_paths():
+        case = load_case(path)
+        deformer = Deformer(case, "hyperelastic")
+        first = deformer.deform()
+        thickness = min(sec.thickness for sec in deformer.stack.sections)
+        moved = bumped(case.target, BUMP * thickness)
+        again, preview = deformer.deform(moved, start=first), deformer.preview(moved, start=first)
+        info, info_again = first.bodies[0].info, again.bodies[0].info
+        rows.append({
+            "case": path.stem, "bodies": len(case.bodies), "revolution": case.revolution is not None,
+            "unknowns": int(first.bodies[0].quality.initial.unknowns),
+            "factorisations_full": int(info.factorisations) + 1, "factorisations_again": int(info_again.factorisations),
+            "preview_error": max(float(np.abs(p.contour - w.contour).max()) for p, w in zip(preview.bodies, again.bodies))
+            / thickness,
+            "full_s": cpu_median(lambda case=case: Deformer(case, "hyperelastic").deform(), reps, 1),
+            "again_s": cpu_median(lambda d=deformer, m=moved, f=first: d.deform(m, start=f), 3 * reps, 1),
+            "preview_s": cpu_median(lambda d=deformer, m=moved, f=first: d.preview(m, start=f), 9 * reps, 2),
+        })
+    return rows
+
+
+def hyperelastic_markdown(rows: list[dict]) -> list[str]:
+    """Section 8's table: per shared case the three times against their targets."""
+    T = HYPERELASTIC_TARGETS
+    lines = [f"Targets: full ≤ {_fmt(T['full_s'])}, again ≤ {_fmt(T['again_s'])}, preview ≤ {_fmt(T['preview_s'])}; "
+             "**bold** a miss. CPU-time medians (`time.process_time`).", "",
+             "| case | bodies | kind | unknowns | factorisations (full / again) | full | again | preview | preview − again / T |",
+             "|---|---:|---|---:|---|---:|---:|---:|---:|"]
+    for r in rows:
+        cells = [(_fmt(r[k]) if r[k] <= T[k] else f"**{_fmt(r[k])}**") for k in ("full_s", "again_s", "preview_s")]
+        lines.append(f"| {r['case']} | {r['bodies']} | {'revolution' if r['revolution'] else 'plane'} | {r['unknowns']} | "
+                     f"{r['factorisations_full']} / {r['factorisations_again']} | " + " | ".join(cells)
+                     + f" | {r['preview_error']:.2g} |")
+    return lines
+
+
+# --------------------------------------------------------------------------
 # The run
 
 
@@ -620,6 +702,8 @@ def run_benchmark(cases_dir=None, quick: bool = False, profile: bool = True, log
     report["io"] = bench_io(cfg)
     log("one body and several ...")
     report["bodies"] = bench_bodies(cfg)
+    log("hyperelastic on every shared case ...")
+    report["hyperelastic"] = bench_hyperelastic_cases(cfg)
     report["targets"] = check_targets(report)
     if profile and not quick:
         report["profile"] = profile_text(ref)
@@ -771,6 +855,9 @@ def to_markdown(report: dict, changes: str = "") -> str:
         lines.append(f"Not measured ({io.get('note', 'no figures')}).")
     lines += ["", "## 7. One body and several (per model, the same calls on a problem of one body and one of two)", ""]
     lines += bodies_markdown(report["bodies"])
+    if report.get("hyperelastic"):
+        lines += ["", "## 8. The hyperelastic model on every shared case", ""]
+        lines += hyperelastic_markdown(report["hyperelastic"])
     if changes:
         lines += ["", changes.strip()]
     if report.get("profile"):

@@ -65,6 +65,12 @@ def test_quick_benchmark_writes_json_and_markdown(tmp_path, runner, capsys):
     md = (tmp_path / "benchmarks.md").read_text()
     assert md.startswith("# Benchmarks") and "| figure | measured | target |" in md
     assert "## 7. One body and several" in md and "per body /" in md
+    shared = {p.stem for p in CASES.glob("*.json")} | {p.stem for p in (CASES / "v2").glob("*.json")}
+    assert {row["case"] for row in r["hyperelastic"]} == shared  # every shared case, one body and several
+    for row in r["hyperelastic"]:
+        assert all(_positive(row[k]) for k in ("full_s", "again_s", "preview_s")) and row["unknowns"] > 0
+        assert row["factorisations_again"] >= 0 and 0 <= row["preview_error"] < 0.05
+    assert "## 8. The hyperelastic model on every shared case" in md
 
 
 def test_quick_run_without_output_goes_to_a_temporary_folder(runner, tmp_path):

@@ -104,7 +104,7 @@ def test_a_narrower_body_on_part_of_another(a, b, low, high, through):
 
 def test_a_non_positive_size_is_refused_with_one_line():
     box = _box(0.0, 0.0, 1.0, 1.0, 1)
-    with pytest.raises(MeshError, match=r"^assembly: the element sizes \[1\.0, 0\.0\] are not positive finite lengths"):
+    with pytest.raises(MeshError, match=r"^mesh: the element sizes \[1\.0, 0\.0\] are not positive finite lengths"):
         union_mesh([box, box + [0.0, 1.0]], [np.array([0, 1])] * 2, [1.0, 0.0], 1e-9)
 
 
@@ -120,7 +120,7 @@ def test_contours_touching_without_sharing_a_point_are_one_line_not_a_hang():
     low = np.array([[0, 0], [2, 0], [2, 1], [0, 1]], float)
     top = np.array([[0, 1], [1, 1], [2, 1], [2, 2], [0, 2]], float)
     t0 = time.process_time()
-    with pytest.raises(MeshError, match=r"^assembly: the mesh \(h = 0\.1\) cannot follow the contour segment .* the "
+    with pytest.raises(MeshError, match=r"^mesh: the mesh \(h = 0\.1\) cannot follow the contour segment .* the "
                                         r"contour point \([0-9.]+, 1\) of another piece lies on it"):
         union_mesh([low, top], [np.array([0, 1]), np.array([0, 2])], 0.1, 1e-9)
     assert time.process_time() - t0 < 2.0
@@ -143,7 +143,7 @@ def test_the_conforming_loop_checks_the_vertex_bound_before_each_delaunay(monkey
     monkeypatch.setattr(module, "STALL_ITERATIONS", 10**6)  # only the vertex bound stops the T-junction now
     low = np.array([[0, 0], [2, 0], [2, 1], [0, 1]], float)
     top = np.array([[0, 1], [1, 1], [2, 1], [2, 2], [0, 2]], float)
-    with pytest.raises(MeshError, match=r"^assembly: \d+ mesh vertices \(h = 0\.1, splitting .*\) needed, more than "
+    with pytest.raises(MeshError, match=r"^mesh: \d+ mesh vertices \(h = 0\.1, splitting .*\) needed, more than "
                                         r"the bound 3000"):
         module.union_mesh([low, top], [np.array([0, 1]), np.array([0, 2])], 0.1, 1e-9)
     assert sizes and max(sizes) <= MAX_FE_VERTICES

@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from .curves import Curve, Polyline
+from .curves import Curve, Polyline, _unique
 from .errors import CaseError, MeshError, SectionDeformError
 from .laws import AreaRatio, VolumeRatio
 from .pappus import signed_distance
@@ -106,7 +106,7 @@ class Stack:
         for b in reversed(self.layout.order):
             self.bodies[b] = self._build(b, element_size)
         self.fixed_parts = tuple(self._fixed_parts(b) for b in range(n))
-        self.fractions = np.unique(np.concatenate([f["support_fractions"] for f in self.fixed_parts]))
+        self.fractions = _unique(np.concatenate([f["support_fractions"] for f in self.fixed_parts]))
         for f in self.fixed_parts:
             f["support_index"] = np.searchsorted(self.fractions, f["support_fractions"])
 
@@ -280,7 +280,7 @@ class Stack:
                    for j in self.layout.foundations[b])
         kept = np.flatnonzero(body.kept >= 0)
         rs, i = taken[:, 1].astype(np.int64), taken[:, 2].astype(np.int64)
-        groups = tuple((int(r), np.flatnonzero(rs == r), i[rs == r], taken[rs == r, 3:]) for r in np.unique(rs))
+        groups = tuple((int(r), np.flatnonzero(rs == r), i[rs == r], taken[rs == r, 3:]) for r in _unique(rs))
         return {
             "support_nodes": np.flatnonzero(sup), "support_fractions": body.where[sup].copy(), "on_foundations": on,
             "kept": kept, "kept_index": body.kept[kept], "taken_groups": groups,

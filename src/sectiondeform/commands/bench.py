@@ -11,7 +11,6 @@ Example: sectiondeform bench case.json --repeat 50
 
 from __future__ import annotations
 
-import statistics
 import time
 from pathlib import Path
 
@@ -28,6 +27,8 @@ def add_args(parser) -> None:
 
 
 def _median_s(fn, repeat: int) -> float:
+    import statistics
+
     fn()  # warm-up
     times = []
     for _ in range(repeat):

@@ -21,7 +21,6 @@ from pathlib import Path
 
 from ..errors import CaseError
 from ..materials import MATERIAL_MODELS
-from ..materials.fit import draw_fit, fit_material, read_test_data
 
 
 def add_args(parser) -> None:
@@ -34,7 +33,7 @@ def add_args(parser) -> None:
 
 
 def _read(args):
-    from ..materials.fit import TestCurve
+    from ..materials.fit import TestCurve, read_test_data
 
     curves = []
     for item in args.data:
@@ -58,6 +57,7 @@ def _read(args):
 def run(args) -> int:
     from ..io import check_figure_path, check_output_path
     from ..io.json import atomic_write
+    from ..materials.fit import draw_fit, fit_material
 
     models = list(MATERIAL_MODELS) if args.model == "all" else [args.model]
     if args.output is not None:

@@ -16,7 +16,6 @@ from __future__ import annotations
 import re
 import secrets
 import threading
-import webbrowser
 from pathlib import Path
 
 from ..errors import CaseError, require
@@ -87,6 +86,8 @@ def run(args) -> int:
     url = f"http://{'127.0.0.1' if args.host in ('0.0.0.0', '::') else shown}:{port}/?token={token}"
     print(f"sectiondeform: {case.name} at {url} (Ctrl+C to stop)", flush=True)
     if not args.no_browser:
+        import webbrowser
+
         threading.Timer(0.5, webbrowser.open, (url,)).start()
     server.run(sockets=[sock])
     return 0

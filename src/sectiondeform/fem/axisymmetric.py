@@ -49,6 +49,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
 
 from ..materials.models import gradient_3d
 from .elements import QUAD_POINTS, Geometry, p2_values
@@ -167,6 +168,17 @@ class AxisymmetricNeoHooke:
             B[:, :, m, :, _I[m]] = G[:, :, :, _J[m]]
         B[:, :, 4] = (self.values[None, :, :, None] * self.normal) / self.radius[:, :, None, None]
         self.B = B.reshape(e, q, 5, 12)
+        # The same map assembled once, sparse: f = Bs x - hoop_offset at all points (one product), and
+        # the assembled position residual Bs^T (w R P) (no element loop, no scatter).
+        rows = np.broadcast_to(np.arange(e * q * 5).reshape(e, q, 5, 1), (e, q, 5, 12)).ravel()
+        cols = np.broadcast_to(xd[:, None, None, :], (e, q, 5, 12)).ravel()
+        self.Bs = sp.csr_matrix((self.B.ravel(), (rows, cols)), shape=(5 * e * q, 2 * self.n_nodes))
+        self.Bst = self.Bs.T.tocsr()
+        self.hoop_offset = float(self.origin @ self.normal) / self.radius  # (E, q)
+        prow = np.broadcast_to(np.arange(e * q).reshape(e, q, 1), (e, q, 3)).ravel()
+        pcol = np.broadcast_to(pc[:, None, :], (e, q, 3)).ravel()
+        self.Mp = sp.csr_matrix((np.broadcast_to(M[None], (e, q, 3)).ravel(), (prow, pcol)), shape=(e * q, self.n_pressures))
+        self.Mpt = self.Mp.T.tocsr()
 
     def _distance(self, points: np.ndarray) -> np.ndarray:
         return (points[..., 0] - self.origin[0]) * self.normal[0] + (points[..., 1] - self.origin[1]) * self.normal[1]
@@ -174,14 +186,15 @@ class AxisymmetricNeoHooke:
     def fields(self, z: np.ndarray, lz: float) -> AxisymmetricFields | None:
         """Kinematics of state ``z`` at path parameter ``lz``, or None if some J <= 0 or a point reaches the axis."""
         n = self.n_nodes
-        x = z[: 2 * n].reshape(n, 2)[self.cells]  # (E, 6, 2)
-        F = np.einsum("eai,eqaj->eqij", x, self.geom.grad)
+        e, q = self.radius.shape
+        f5 = (self.Bs @ z[: 2 * n]).reshape(e, q, 5)
+        F = f5[..., :4].reshape(e, q, 2, 2)
         det = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
-        hoop = self._distance(np.einsum("qa,eai->eqi", self.values, x)) / self.radius
+        hoop = f5[..., 4] - self.hoop_offset
         if not (det.min() > 0 and hoop.min() > 0):
             return None
-        p = np.einsum("eb,qb->eq", z[2 * n :][self.pressure_cells], self.geom.pvalues)
-        i1 = np.einsum("eqij,eqij->eq", F, F) + hoop * hoop
+        p = (self.Mp @ z[2 * n :]).reshape(e, q)
+        i1 = (f5[..., :4] ** 2).sum(axis=-1) + hoop * hoop
         growth = np.exp(math.log(lz) * self.ln_growth)
         return AxisymmetricFields(F, det, hoop, hoop * det, i1, p, growth)
 
@@ -231,8 +244,10 @@ class AxisymmetricNeoHooke:
         return np.concatenate((rx, rp), axis=1)
 
     def residual(self, f: AxisymmetricFields) -> np.ndarray:
-        """Assembled residual ``(2 N + n_pressures,)``."""
-        return np.bincount(self.edofs.ravel(), weights=self.element_residuals(f).ravel(), minlength=self.n_dofs)
+        """Assembled residual ``(2 N + n_pressures,)`` (the sparse transposes of the maps; :meth:`element_residuals` summed)."""
+        rx = self.Bst @ (self._stress(f) * self.wr[..., None]).ravel()
+        rp = self.Mpt @ self._pressure_residual(f).ravel()
+        return np.concatenate((rx, rp))
 
     def element_matrices(self, f: AxisymmetricFields) -> np.ndarray:
         """Element tangent matrices, ``(E, 15, 15)``, symmetric."""
@@ -243,8 +258,10 @@ class AxisymmetricNeoHooke:
         gg = gv[..., :, None] * gv[..., None, :]
         A = self._iso_tangent(f, fv, gv, it, shear) + (f.p * f.J)[..., None, None] * (gg - swap)
         wB = self.B * self.wr[..., None, None]
-        kxx = np.einsum("eqmr,eqmn,eqns->ers", wB, A, self.B, optimize=True)
-        kxp = np.einsum("eqmr,eqm,eq,qb->erb", wB, gv, f.J, self.geom.pvalues, optimize=True)
+        wBt = wB.reshape(e, q * 5, 12).transpose(0, 2, 1)  # (E, 12, 5 q)
+        kxx = np.matmul(wBt, np.matmul(A, self.B).reshape(e, q * 5, 12))
+        jgm = (gv * f.J[..., None])[..., None] * self.geom.pvalues[None, :, None, :]  # (E, q, 5, 3): J G_m M_b
+        kxp = np.matmul(wBt, jgm.reshape(e, q * 5, 3))
         kpp = -np.einsum("eqa,qb,e->eab", self._wM, self.geom.pvalues, (f.growth / self.kappa)[:, 0])
         out = np.empty((e, 15, 15))
         out[:, :12, :12] = kxx

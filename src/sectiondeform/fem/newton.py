@@ -44,6 +44,43 @@ MODIFIED_RATE = 0.3
 SWITCH_STEP = 1e-2
 
 
+class _Ordered:
+    """A SuperLU factorisation of ``K[order][:, order]`` answering for ``K``: ``solve`` permutes in and out.
+
+    SuperLU's column order (COLAMD) depends on the pattern alone, and every
+    tangent of a mesh has the same pattern: the order is computed with the
+    first factorisation and the later ones factorise the matrix already
+    permuted in that order (``permc_spec="NATURAL"``), skipping the ordering
+    (the same fill, the same pivots).
+    """
+
+    __slots__ = ("lu", "order")
+
+    def __init__(self, lu, order: np.ndarray):
+        self.lu = lu
+        self.order = order
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        out = np.empty_like(rhs)
+        out[self.order] = self.lu.solve(np.ascontiguousarray(rhs[self.order]))
+        return out
+
+
+class _Reordering:
+    """The gather from ``K_ff``'s CSC data to that of ``K_ff[order][:, order]``, and its index arrays."""
+
+    def __init__(self, kff: sp.csc_matrix, order: np.ndarray):
+        probe = sp.csc_matrix((np.arange(1, kff.nnz + 1, dtype=np.float64), kff.indices, kff.indptr), shape=kff.shape)
+        permuted = probe[order][:, order].tocsc()
+        permuted.sort_indices()
+        self.order = order
+        self.source = permuted.data.astype(np.int64) - 1
+        self.indices, self.indptr, self.shape = permuted.indices, permuted.indptr, permuted.shape
+
+    def matrix(self, kff: sp.csc_matrix) -> sp.csc_matrix:
+        return sp.csc_matrix((kff.data[self.source], self.indices, self.indptr), shape=self.shape)
+
+
 @dataclass(frozen=True, eq=False)
 class Tangent:
     """A factorised tangent and its free-fixed block, at some state.
@@ -55,9 +92,9 @@ class Tangent:
 
     Attributes
     ----------
-    lu : scipy.sparse.linalg.SuperLU
+    lu : scipy.sparse.linalg.SuperLU or _Ordered
         Factorisation of ``K_ff`` (free dofs in increasing order, position
-        dofs first, in node pairs).
+        dofs first, in node pairs): anything with ``solve``.
     kfd : scipy.sparse.csc_matrix
         ``K_fd``, free rows by fixed columns.
     n_free_x : int
@@ -217,6 +254,7 @@ class NewtonSolver:
         self.dres_dlnlz = full[free]  # d R_f / d ln lz at J = 1 (R_p = J - 1 - p / kappa, J = lz det F)
         self.assemblies = 0
         self.factorisations = 0
+        self._reordering = None  # set by the first factorisation: the column order of every later one
 
     # -- building blocks -------------------------------------------------
     def residual(self, z: np.ndarray, lz: float):
@@ -231,8 +269,16 @@ class NewtonSolver:
         """Assemble and factorise the tangent for ``fields``."""
         kff, kfd = self.pattern.matrices(self.physics.element_matrices(fields))
         self.factorisations += 1
+        reordering = self._reordering
         try:
-            lu = splu(kff, permc_spec=self.permc_spec, diag_pivot_thresh=0.01, options={"SymmetricMode": True})
+            if reordering is None:
+                lu = splu(kff, permc_spec=self.permc_spec, diag_pivot_thresh=0.01, options={"SymmetricMode": True})
+                if self.permc_spec != "NATURAL":
+                    # SuperLU factorised K Pc with Pc[i, perm_c[i]] = 1: column j of K Pc is column argsort(perm_c)[j] of K.
+                    self._reordering = _Reordering(kff, np.argsort(lu.perm_c))
+            else:
+                lu = _Ordered(splu(reordering.matrix(kff), permc_spec="NATURAL", diag_pivot_thresh=0.01,
+                                   options={"SymmetricMode": True}), reordering.order)
         except RuntimeError as exc:  # exactly singular
             raise ConvergenceError(f"hyperelastic: singular tangent ({exc}); is a part of the mesh unconstrained?") from None
         except (MemoryError, SystemError) as exc:  # SuperLU out of memory, or given non-finite entries

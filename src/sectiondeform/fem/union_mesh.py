@@ -217,10 +217,10 @@ def _blocked_message(bpts: np.ndarray, missing: np.ndarray, h: float) -> str:
         others = [j for j in near if j not in (missing[i, 0], missing[i, 1])]
         if others:
             p = bpts[others[0]]
-            return (f"assembly: the mesh (h = {h:.4g}) cannot follow the contour segment ({a[i, 0]:.6g}, {a[i, 1]:.6g})-"
+            return (f"mesh: the mesh (h = {h:.4g}) cannot follow the contour segment ({a[i, 0]:.6g}, {a[i, 1]:.6g})-"
                     f"({b[i, 0]:.6g}, {b[i, 1]:.6g}): the contour point ({p[0]:.6g}, {p[1]:.6g}) of another piece lies "
                     "on it or next to it; let touching bodies share their points there (or keep them apart)")
-    return (f"assembly: the mesh (h = {h:.4g}) cannot be made to follow {len(missing)} contour segment(s), the first "
+    return (f"mesh: the mesh (h = {h:.4g}) cannot be made to follow {len(missing)} contour segment(s), the first "
             f"({a[0, 0]:.6g}, {a[0, 1]:.6g})-({b[0, 0]:.6g}, {b[0, 1]:.6g}), however they are split; "
             "check that the bodies' contours do not cross or touch without sharing their points")
 
@@ -265,10 +265,14 @@ def union_mesh(rings, fixed, h, tol: float, holes=None) -> UnionMesh:
     [2.0, 2.0]
     """
     rings = [np.asarray(r, dtype=np.float64) for r in rings]
-    holes = [[np.asarray(r, dtype=np.float64) for r in hb] for hb in holes] if holes is not None else [[] for _ in rings]
+    # Mesh about the bodies' first point: far from the origin, small features lose their digits to Qhull and
+    # to the areas' cross products (a 0.06 mm body at 1e5 mm looped in the conforming splits, then met no area).
+    origin = rings[0][0].copy() if len(rings) and len(rings[0]) else np.zeros(2)
+    rings = [r - origin for r in rings]
+    holes = [[np.asarray(r, dtype=np.float64) - origin for r in hb] for hb in holes] if holes is not None else [[] for _ in rings]
     sizes = np.broadcast_to(np.asarray(h, dtype=np.float64), (len(rings),))
     if not (np.all(sizes > 0) and np.all(np.isfinite(sizes))):
-        raise MeshError(f"assembly: the element sizes {sizes.tolist()!r} are not positive finite lengths; check the bodies' scale")
+        raise MeshError(f"mesh: the element sizes {sizes.tolist()!r} are not positive finite lengths; check the bodies' scale")
     h = float(sizes.min())
     polys = [shapely.Polygon(r, hb) for r, hb in zip(rings, holes)]
     with np.errstate(all="ignore"):
@@ -317,7 +321,7 @@ def union_mesh(rings, fixed, h, tol: float, holes=None) -> UnionMesh:
         pts = np.concatenate((bpts, interior))
         bounded(len(pts), MAX_FE_VERTICES, f"mesh vertices (h = {h:.4g}, splitting the contour segments the "
                 "triangulation misses)", "lower options.elements_through_thickness, or simplify the bodies' small "
-                "features", MeshError, "assembly")
+                "features", MeshError, "mesh")
         tri = Delaunay(pts).simplices
         e = np.concatenate((tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]))
         missing = ~np.isin(_edge_keys(seg, len(pts)), _edge_keys(e, len(pts)))
@@ -334,7 +338,7 @@ def union_mesh(rings, fixed, h, tol: float, holes=None) -> UnionMesh:
             if m.any():
                 geo[c] = (path, s, np.sort(np.concatenate((ns, 0.5 * (ns[:-1] + ns[1:])[m]))))
     else:
-        raise MeshError(f"assembly: the mesh (h = {h:.4g}) does not conform to the bodies' contours; try a finer one")
+        raise MeshError(f"mesh: the mesh (h = {h:.4g}) does not conform to the bodies' contours; try a finer one")
     centroid = pts[tri].mean(axis=1)
     flat = np.abs(_signed_areas(pts, tri)) <= 1e-9 * h * h
     body = np.full(len(tri), -1)
@@ -351,7 +355,7 @@ def union_mesh(rings, fixed, h, tol: float, holes=None) -> UnionMesh:
             for r, o in zip(hole_ids, hole_owner) if o == b)
         got = float(np.abs(areas[body == b]).sum())
         if not math.isclose(got, want, rel_tol=1e-9):
-            raise MeshError(f"assembly: the mesh (h = {h:.4g}) does not cover body {b} exactly ({got:.9g} for {want:.9g})")
+            raise MeshError(f"mesh: the mesh (h = {h:.4g}) does not cover body {b} exactly ({got:.9g} for {want:.9g})")
     used = np.zeros(len(pts), bool)
     used[tri] = True
     if not used.all():
@@ -381,6 +385,8 @@ def union_mesh(rings, fixed, h, tol: float, holes=None) -> UnionMesh:
     body = body.astype(np.int64)
     pressure_cells, n_pressures = body_pressure_cells(cells, body, nv)
     per_body = tuple(tuple(r for r, o in zip(hole_ids, hole_owner) if o == b) for b in range(len(rings)))
+    nodes += origin
+    points = points + origin
     return UnionMesh(nodes, cells, body, nv, points, tuple(ids), tuple(chains), edge_chain, weights, float(h),
                      pressure_cells, n_pressures, per_body)
 
@@ -434,23 +440,37 @@ def body_pressure_cells(cells: np.ndarray, body: np.ndarray, n_vertices: int) ->
 
 
 def _ring_nodes(ring, geo, chain_nodes) -> np.ndarray:
-    """A ring's chain nodes in its order (each node once): its outline in the mesh."""
-    lookup = {}
-    for c, (path, _, _) in enumerate(geo):
-        for k, (u, w) in enumerate(zip(path[:-1], path[1:])):
-            lookup[(int(u), int(w))] = (c, k, 1)
-            lookup[(int(w), int(u))] = (c, k + 1, -1)
-    out = []
-    for u, w in zip(ring, np.roll(ring, -1)):
-        if u == w:
-            continue
-        c, k, sign = lookup[(int(u), int(w))]
-        path, s, ns = geo[c]
-        a, b = (s[k], s[k + 1]) if sign > 0 else (s[k], s[k - 1])
-        lo, hi = min(a, b), max(a, b)
-        pick = np.flatnonzero((ns >= lo) & (ns < hi)) if sign > 0 else np.flatnonzero((ns > lo) & (ns <= hi))[::-1]
-        out.append(chain_nodes[c][pick])
-    return np.concatenate(out)
+    """A ring's chain nodes in its order (each node once): its outline in the mesh.
+
+    Each edge ``u``-``w`` of the ring lies on one chain's segment ``k``; it
+    contributes the chain's nodes at arc lengths in ``[s_k, s_k+1)`` walked
+    forward, or in ``(s_k, s_k+1]`` walked backward. Vectorised: the directed
+    edges are looked up in one sorted array, the node runs gathered at once.
+    """
+    nv = int(max(int(np.max(path)) for path, _, _ in geo)) + 1
+    keys, first, count, step, flat = [], [], [], [], []
+    offset = 0
+    for c, (path, s, ns) in enumerate(geo):
+        path = np.asarray(path, dtype=np.int64)
+        f_lo, f_hi = np.searchsorted(ns, s[:-1], "left"), np.searchsorted(ns, s[1:], "left")
+        b_lo, b_hi = np.searchsorted(ns, s[:-1], "right"), np.searchsorted(ns, s[1:], "right")
+        keys += [path[:-1] * nv + path[1:], path[1:] * nv + path[:-1]]
+        first += [offset + f_lo, offset + b_hi - 1]  # a backward run starts at its last node
+        count += [f_hi - f_lo, b_hi - b_lo]
+        step += [np.ones(len(path) - 1, np.int64), -np.ones(len(path) - 1, np.int64)]
+        flat.append(np.asarray(chain_nodes[c], dtype=np.int64))
+        offset += len(ns)
+    keys, first, count, step = (np.concatenate(x) for x in (keys, first, count, step))
+    flat = np.concatenate(flat)
+    order = np.argsort(keys, kind="stable")
+    ring = np.asarray(ring, dtype=np.int64)
+    nxt = np.roll(ring, -1)
+    use = ring != nxt
+    pos = order[np.searchsorted(keys, ring[use] * nv + nxt[use], sorter=order)]
+    first, count, step = first[pos], count[pos], step[pos]
+    run = np.repeat(np.arange(len(pos)), count)
+    within = np.arange(int(count.sum())) - np.repeat(np.cumsum(count) - count, count)
+    return flat[first[run] + step[run] * within]
 
 
 def _midnodes(pts, tri):
@@ -470,7 +490,7 @@ def _midnodes(pts, tri):
     def edge_cell(keys):
         k = np.searchsorted(uniq, keys)
         if not (np.all(k < len(uniq)) and np.all(uniq[np.minimum(k, len(uniq) - 1)] == keys)):
-            raise MeshError("assembly: the mesh's edges do not follow the bodies' contours")
+            raise MeshError("mesh: the mesh's edges do not follow the bodies' contours")
         pos = where[k]
         return pos // 3, pos % 3
 
