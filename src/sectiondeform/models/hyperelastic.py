@@ -70,6 +70,7 @@ from ..fem.union_mesh import union_mesh
 from ..materials import NeoHookean, material_from_json
 from ..stack import SUPPORT, Stack, renamed
 from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions, Placed, Placement, Prepared
+from .hyperelastic_revolution import RevolutionPhysics
 
 __all__ = [
     "HyperelasticModel", "HyperelasticPrepared", "HyperelasticState", "HyperelasticOptions", "HyperelasticInfo",
@@ -666,6 +667,17 @@ class HyperelasticPrepared(Prepared):
         return lowers, images, placements
 
 
+class RevolutionPrepared(RevolutionPhysics, HyperelasticPrepared):
+    """Bodies of revolution meshed as one and factorised for the hyperelastic model (:mod:`.hyperelastic_revolution`).
+
+    Parameters
+    ----------
+    stack : Stack
+        Of a problem with a ``revolution`` axis.
+    options : HyperelasticOptions
+    """
+
+
 class HyperelasticModel(Model):
     """The bodies' mechanics on a coarse mesh, all bodies in one solve."""
 
@@ -675,8 +687,6 @@ class HyperelasticModel(Model):
     def prepare(self, stack: Stack, options: HyperelasticOptions | None = None) -> HyperelasticPrepared:
         options = options or HyperelasticOptions()
         if stack.problem.revolution is not None:
-            from .hyperelastic_revolution import RevolutionPrepared
-
             return RevolutionPrepared(stack, options)
         return HyperelasticPrepared(stack, options)
 

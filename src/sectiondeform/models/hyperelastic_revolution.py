@@ -34,9 +34,8 @@ from ..errors import LawError
 from ..fem.axisymmetric import AxisymmetricNeoHooke, AxisymmetricRubber
 from ..materials import NeoHookean
 from ..pappus import axis_frame, signed_distance
-from .hyperelastic import HyperelasticPrepared
 
-__all__ = ["RevolutionPrepared", "offset_to_law"]
+__all__ = ["RevolutionPhysics", "offset_to_law"]
 
 
 def _normals(ring: np.ndarray, movable: np.ndarray) -> np.ndarray:
@@ -117,14 +116,15 @@ def offset_to_law(ring: np.ndarray, movable: np.ndarray, law, wanted: float) -> 
     return ring + k * v, float(k)
 
 
-class RevolutionPrepared(HyperelasticPrepared):
-    """Bodies of revolution meshed as one and factorised for the hyperelastic model.
+class RevolutionPhysics:
+    """The axisymmetric physics of bodies of revolution, mixed into the plane problem's preparation.
 
-    Parameters
-    ----------
-    stack : Stack
-        Of a problem with a ``revolution`` axis.
-    options : HyperelasticOptions
+    :class:`~sectiondeform.models.hyperelastic.RevolutionPrepared` is
+    ``HyperelasticPrepared`` with these methods: the growths that play the
+    out-of-plane stretches, the axisymmetric physics, and the exact volume
+    law; everything else (the mesh, the solve, the checks) is the plane
+    problem's. It reads the preparation's ``problem``, ``sections``,
+    ``mesh`` and ``physics``.
 
     Notes
     -----
