@@ -7,7 +7,7 @@ markers) from scratch:
 
 and, given version-2 cases too (``tests/data/cases/v2/*.json``), the tables
 of its sections "Bodies of revolution: fast models against the reference"
-and "Assemblies" (blocks ``validation:revolution`` and
+and "Several bonded bodies" (blocks ``validation:revolution`` and
 ``validation:assemblies``); the version-1 tables are the same either way.
 Every comparison is ``sectiondeform.reference.validation.validate`` of a
 problem, one body or several:
