@@ -100,7 +100,7 @@ def _resample(ring: np.ndarray, spacing: float) -> np.ndarray:
     return np.concatenate(out)
 
 
-def rigid_parts(problem, spacing: float) -> tuple:
+def rigid_parts(problem, spacing: float, keep=None) -> tuple:
     """The problem's rigid parts meshed at their start.
 
     Parameters
@@ -108,6 +108,10 @@ def rigid_parts(problem, spacing: float) -> tuple:
     problem : Problem
     spacing : float
         Largest length of an outline face, units (about the rubber's element size).
+    keep : (k, 2) float64 ndarray, optional
+        A convex polygon each part's start is cut to (for a body of
+        revolution: the half-plane off the axis, where CalculiX's
+        axisymmetric elements have a volume).
 
     Returns
     -------
@@ -116,6 +120,11 @@ def rigid_parts(problem, spacing: float) -> tuple:
     if not problem.rigid:
         return ()
     triangle = require("triangle", "fem", "a rigid part in a solver deck")
+    clip = None
+    if keep is not None:
+        import shapely
+
+        clip = shapely.Polygon(keep)
     tol = 1e-6 * problem.size
     used, out = set(), []
     for i, part in enumerate(problem.rigid):
@@ -123,7 +132,16 @@ def rigid_parts(problem, spacing: float) -> tuple:
         if np.allclose(ring[0], ring[-1]):
             ring = ring[:-1]
         keep = np.concatenate(([True], np.hypot(*np.diff(ring, axis=0).T) > tol))
-        ring = _resample(ring[keep], spacing) - np.asarray(part.travel)
+        ring = ring[keep] - np.asarray(part.travel)
+        if clip is not None:
+            import shapely
+
+            cut = shapely.Polygon(ring).intersection(clip)
+            if cut.geom_type != "Polygon" or cut.is_empty:
+                raise CaseError(f"rigid[{i}].contour", "its start lies across the axis of revolution in pieces; give a "
+                                "part on one side of the axis")
+            ring = np.asarray(cut.exterior.coords)[:-1]
+        ring = _resample(ring, spacing)
         n = len(ring)
         seg = np.column_stack((np.arange(n), (np.arange(n) + 1) % n))
         tri = triangle.triangulate({"vertices": ring, "segments": seg}, "pYQ")

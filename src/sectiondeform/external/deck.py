@@ -394,9 +394,11 @@ def build_deck(problem, element: str | None = None, mesh_size: float = DEFAULT_M
         from .contact_deck import rigid_parts
 
         size = float(np.sqrt(2.0 * np.median(areas)))
-        rigid = rigid_parts(problem, size)
-        if axis is not None:  # a rigid element with a node on the axis has no volume: its nodes kept off it
-            rigid = tuple(dataclasses.replace(p, points=_off_axis(p.points, axis, 1e-3 * size)) for p in rigid)
+        keep = None
+        if axis is not None:  # a rigid element with a node on the axis has no volume: the parts cut off it
+            big = 1e3 * problem.size
+            keep = axis.from_rz(np.array([[1e-3 * size, -big], [big, -big], [big, big], [1e-3 * size, big]]))
+        rigid = rigid_parts(problem, size, keep)
         if contact_penalty is None:
             mu = min(b.shear_modulus for b in bodies)
             penalty = PENALTY_FACTOR * 3.0 * mu / float(np.sqrt(2.0 * areas.min()))
@@ -406,13 +408,6 @@ def build_deck(problem, element: str | None = None, mesh_size: float = DEFAULT_M
                 support_displacement=support - (mesh.points[mesh.lower_nodes] @ R.T + t),
                 unexpressed=tuple(unexpressed + _hybrid_note(el)), area_initial=float(areas.sum()),
                 area_target=float(target), axis=axis, rotation=R, translation=t, rigid=rigid, contact_penalty=penalty)
-
-
-def _off_axis(points: np.ndarray, axis: AxisFrame, gap: float) -> np.ndarray:
-    """Points of a rigid part with r at least ``gap`` (CalculiX's expanded axisymmetric elements need r > 0)."""
-    rz = axis.to_rz(points)
-    rz[:, 0] = np.maximum(rz[:, 0], gap)
-    return axis.from_rz(rz)
 
 
 def _mirror_faces(faces: np.ndarray) -> np.ndarray:

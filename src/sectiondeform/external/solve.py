@@ -211,13 +211,17 @@ def solve_calculix(problem, *, element: str | None = None, mesh_size: float = DE
     info = CalculixInfo(element_type=el.name, **{k: v for k, v in run.items() if k not in ("seconds", "dat")},
                         ccx_seconds=run["seconds"])
     bodies = tuple(_body(problem, deck, i, final, info) for i in range(len(problem.bodies)))
-    contact = {}
+    contact, warnings = {}, deck.unexpressed
     if deck.rigid:  # the parts' forces from the .dat, the contact pressures from the .frd
         from .contact_read import contact_of_parts
 
+        from .contact_read import AXISYMMETRIC_NOTE
+
         parts, support, history = contact_of_parts(deck, results, final, run["dat"])
         contact = {"rigid": parts, "support_force": support, "history": history}
+        if deck.axis is not None:
+            warnings = (*warnings, AXISYMMETRIC_NOTE)
     return Result(name=problem.name, units=problem.units, model="calculix", bodies=bodies,
-                  timings={"solve_s": time.perf_counter() - t0}, warnings=deck.unexpressed,
+                  timings={"solve_s": time.perf_counter() - t0}, warnings=tuple(warnings),
                   axis=problem.revolution.axis if problem.revolution is not None else None,
                   dialect=RESULT_V1 if problem.dialect == V1 else RESULT_V2, **contact)
