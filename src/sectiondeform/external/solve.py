@@ -213,9 +213,7 @@ def solve_calculix(problem, *, element: str | None = None, mesh_size: float = DE
     bodies = tuple(_body(problem, deck, i, final, info) for i in range(len(problem.bodies)))
     contact, warnings = {}, deck.unexpressed
     if deck.rigid:  # the parts' forces from the .dat, the contact pressures from the .frd
-        from .contact_read import contact_of_parts
-
-        from .contact_read import AXISYMMETRIC_NOTE
+        from .contact_read import AXISYMMETRIC_NOTE, contact_of_parts
 
         parts, support, history = contact_of_parts(deck, results, final, run["dat"])
         contact = {"rigid": parts, "support_force": support, "history": history}
