@@ -24,6 +24,7 @@ from conftest import CASES_DIR
 BUMPER = CASES_DIR / "v2" / "bumper-under-plate.json"
 SLEEVE = CASES_DIR / "v2" / "sleeve-on-shaft.json"
 ORING = CASES_DIR / "v2" / "o-ring-squeeze-20.json"
+ORING_K100 = CASES_DIR / "v2" / "o-ring-squeeze-20-k100.json"
 
 
 @pytest.fixture(scope="module")
@@ -50,7 +51,7 @@ def _data_reals(text: str) -> list[str]:
     return out
 
 
-@pytest.mark.parametrize("path, element, rigid_element", [(BUMPER, "CPE6", "CPE3"), (SLEEVE, "CAX6", "CAX3"),
+@pytest.mark.parametrize("path, element, rigid_element", [(BUMPER, "CPE6", "CPE3"), (SLEEVE, "CAX6", "CAX3"), (ORING_K100, "CPE6", "CPE3"),
                                                          (ORING, "CPE6", "CPE3")])
 def test_contact_deck_has_the_cards_and_20_character_reals(path, element, rigid_element):
     problem = sd.load_case(path)
