@@ -130,14 +130,10 @@ def test_a_part_starting_inside_a_body_is_refused_with_the_overlap():
     case_from_dict(d)
 
 
-def test_the_paper_model_and_friction_are_refused_in_one_line():
+def test_the_paper_model_is_refused_in_one_line():
     d = _bumper_dict()
     d["options"]["model"] = "paper"
     with pytest.raises(CaseError, match=r'^rigid: .*options.model "hyperelastic"$'):
-        sd.Deformer(case_from_dict(d))
-    d = _bumper_dict()
-    d["rigid"][0]["friction"] = 0.3
-    with pytest.raises(CaseError, match=r"^rigid\[0\].friction: 0.3: .*frictionless"):
         sd.Deformer(case_from_dict(d))
 
 

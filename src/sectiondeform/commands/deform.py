@@ -25,6 +25,9 @@ def add_args(parser) -> None:
     parser.add_argument("-o", "--output", type=Path, required=True,
                         help="result file (.json, .dxf, .svg; .vtu, .vtk, .msh, .xdmf, .inp: the final mesh)")
     parser.add_argument("--plot", type=Path, metavar="FIG", help="also draw the figure (.png, .svg or .pdf)")
+    parser.add_argument("--plot-history", type=Path, metavar="FIG",
+                        help="with rigid parts: draw the load-deflection curve, each part's force over the loading "
+                             "(.png, .svg or .pdf)")
     parser.add_argument("--no-meshes", action="store_true", help="leave the meshes out of the result JSON")
     parser.add_argument("--fields", action="store_true",
                         help="add per-element fields to the result JSON and the meshes written: principal stretches, J, "
@@ -108,18 +111,29 @@ def run(args) -> int:
     check_outputs(args)
     check_plot_field_args(args)
     check_fields_args(args)
+    if args.plot_history is not None:
+        from ..io import check_figure_path
+
+        check_figure_path(args.plot_history, "--plot-history")
     report: list[str] = []
     problem = apply_overrides(read_input_case(args.case, args, report), args)
+    if args.plot_history is not None and not problem.rigid:
+        raise CaseError("--plot-history", "the load-deflection curve needs rigid parts; the case has none")
     result = Deformer(problem, element_size=args.element_size).deform()
     write_result(args.output, result, **result_options(args, problem))
     meshes = write_meshes(args, result)
     if args.plot:
         save_plot(args, result)
+    if args.plot_history is not None:
+        from ..plot import draw_load_deflection, write_figure
+
+        write_figure(draw_load_deflection(result), args.plot_history)
     for line in report:
         print(f"  {line}")
     print(summary(result, warnings=False))
     for line in contact_lines(result):
         print(f"  {line}")
-    print(f"  wrote {', '.join(str(p) for p in [args.output, *meshes, *([args.plot] if args.plot else [])])}")
+    figures = [p for p in (args.plot, args.plot_history) if p is not None]
+    print(f"  wrote {', '.join(str(p) for p in [args.output, *meshes, *figures])}")
     print_warnings(result.warnings)
     return 0

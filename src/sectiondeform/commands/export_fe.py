@@ -37,6 +37,27 @@ def add_fe_args(parser) -> None:
     parser.add_argument("--area-ratio", type=float, metavar="R", help="override the law: final area = R x initial area")
 
 
+def add_contact_penalty_arg(parser) -> None:
+    """``--contact-penalty`` (shared with solve-fe)."""
+    parser.add_argument("--contact-penalty", default=None, metavar="K",
+                        help="with rigid parts: the slope of the linear pressure-overclosure law (moduli per unit "
+                             "length), or 'hard'; default 50 x 3 mu / h (h the smallest element size)")
+
+
+def contact_penalty(args):
+    """The ``--contact-penalty`` value: None, ``"hard"`` or a number > 0."""
+    value = getattr(args, "contact_penalty", None)
+    if value is None or str(value).lower() == "hard":
+        return None if value is None else "hard"
+    try:
+        k = float(value)
+    except ValueError:
+        k = float("nan")
+    if not k > 0 or k == float("inf"):
+        raise CaseError("--contact-penalty", f"must be a finite number > 0 or 'hard', got {value!r}")
+    return k
+
+
 def read_fe_case(path: Path, args):
     """The problem of a command line (any case format, either version), with ``--area-ratio`` applied."""
     return apply_overrides(read_case(path), args)
@@ -46,6 +67,7 @@ def add_args(parser) -> None:
     parser.add_argument("case", type=Path, help="case file")
     parser.add_argument("-o", "--output", type=Path, required=True, metavar="DECK", help="the deck to write (.inp)")
     add_fe_args(parser)
+    add_contact_penalty_arg(parser)
 
 
 def run(args) -> int:
@@ -56,12 +78,13 @@ def run(args) -> int:
     if not args.output.parent.is_dir():
         raise CaseError("--output", f"the folder {str(args.output.parent)!r} does not exist")
     case = read_fe_case(args.case, args)
-    deck = build_deck(case, args.element, args.mesh_size)
+    deck = build_deck(case, args.element, args.mesh_size, contact_penalty(args))
     text = deck_text(deck)
     atomic_write(args.output, lambda tmp: tmp.write_text(text, encoding="ascii"))
     for line in deck.unexpressed:
         eprint(f"sectiondeform export-fe: warning: {line}")
     m = deck.mesh
     print(f"wrote {args.output}: {len(m.points)} nodes, {len(m.cells)} {deck.element.name} elements in "
-          f"{len(deck.bodies)} element set{'s' if len(deck.bodies) > 1 else ''}, {len(m.lower_nodes)} support nodes")
+          f"{len(deck.bodies)} element set{'s' if len(deck.bodies) > 1 else ''}, {len(m.lower_nodes)} support nodes"
+          + "".join(f", rigid part {p.label!r} ({len(p.triangles)} CPE3/CAX3 elements)" for p in deck.rigid))
     return 0

@@ -20,7 +20,7 @@ from pathlib import Path
 from ..errors import CaseError
 from ..io.json import atomic_write
 from ._common import eprint
-from .export_fe import add_fe_args, read_fe_case
+from .export_fe import add_contact_penalty_arg, add_fe_args, contact_penalty, read_fe_case
 
 
 def add_args(parser) -> None:
@@ -31,6 +31,7 @@ def add_args(parser) -> None:
     parser.add_argument("--keep", type=Path, metavar="DIR", help="copy the solver's files (.inp, .frd, .sta, .dat) here")
     parser.add_argument("--timeout", type=float, metavar="S", help="stop ccx after S seconds (a failed run)")
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress on stderr")
+    add_contact_penalty_arg(parser)
     add_fe_args(parser)
 
 
@@ -49,7 +50,8 @@ def run(args) -> int:
         check_figure_path(args.plot)
     problem = read_fe_case(args.case, args)
     result = solve_calculix(problem, element=args.element, mesh_size=args.mesh_size,
-                            progress=None if args.quiet else eprint, keep=args.keep, timeout=args.timeout)
+                            progress=None if args.quiet else eprint, keep=args.keep, timeout=args.timeout,
+                            contact_penalty=contact_penalty(args))
     for line in result.warnings:
         eprint(f"sectiondeform solve-fe: warning: {line}")
     if args.output is not None:
@@ -67,6 +69,10 @@ def run(args) -> int:
         if b.volume_initial is not None:
             text += f", volume {b.volume_initial:.6g} -> {b.volume_final:.6g} {result.units}³"
         print(text + f"  (relative error to the law {b.relative_error:+.2e})")
+    from .deform import contact_lines
+
+    for line in contact_lines(result):
+        print(f"  {line}")
     print(f"  {info.increments} increments, {info.iterations} iterations, {info.cutbacks} cut-backs, "
           f"{result.timings['solve_s']:.1f} s")
     written = [str(p) for p in (args.output, args.plot) if p is not None]

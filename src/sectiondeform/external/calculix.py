@@ -77,7 +77,7 @@ def run_ccx(deck: str, job: str = "deck", progress=None, keep: Path | None = Non
     results : FrdResults
     info : dict
         ``seconds`` (wall time of ccx), ``increments``, ``iterations``,
-        ``cutbacks`` (from the ``.sta`` file).
+        ``cutbacks`` (from the ``.sta`` file), ``dat`` (the ``.dat`` text: printed forces).
 
     Raises
     ------
@@ -117,7 +117,9 @@ def run_ccx(deck: str, job: str = "deck", progress=None, keep: Path | None = Non
         if failed or not frd.exists() or "Job finished" not in "\n".join(lines):
             raise SolverFailedError(f"ccx failed (exit {code}): {_last_error(lines)}")
         results = read_frd(frd)
-        info = {"seconds": seconds, **_status(folder / f"{job}.sta")}
+        dat = folder / f"{job}.dat"
+        info = {"seconds": seconds, **_status(folder / f"{job}.sta"),
+                "dat": dat.read_text(encoding="ascii", errors="replace") if dat.exists() else ""}
     return results, info
 
 

@@ -40,6 +40,7 @@ from ..errors import CaseError
 from ..materials.models import material_from_json
 from ..problem import V1
 from .axis import AxisFrame, axis_frame, reverse_orientation
+from .contact_deck import PENALTY_FACTOR
 from .inp_number import inp_real
 from .material_cards import hyperelastic_card, material_summary
 from .mesh import FeMesh, element_areas
@@ -183,7 +184,11 @@ class Deck:
     translation : (2,) float64 ndarray
         The rigid placement of the stress-free body written in the deck:
         node X is written at ``rotation @ X + translation`` (see
-        :func:`rigid_fit`); the identity by default.
+        :func:`rigid_fit`); the identity by default (and always with rigid parts).
+    rigid : tuple of RigidPart
+        The rigid parts, meshed at their start (:mod:`.contact_deck`).
+    contact_penalty : float or None
+        The slope K of the linear pressure–overclosure law (moduli per unit length); None for hard contact.
     """
 
     name: str
@@ -198,6 +203,8 @@ class Deck:
     axis: AxisFrame | None = None
     rotation: np.ndarray = dataclasses.field(default_factory=lambda: np.eye(2))
     translation: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(2))
+    rigid: tuple = ()
+    contact_penalty: float | None = None
 
     @property
     def placed_points(self) -> np.ndarray:
@@ -217,8 +224,11 @@ class Deck:
         touching = np.isin(m.cells, m.lower_nodes).any(axis=1)
         size = float(np.sqrt(2.0 * element_areas(m.points, m.cells[touching], m.corners).min()))
         motion = float(np.hypot(*self.support_displacement.T).max()) if len(self.support_displacement) else 0.0
+        motion = max([motion] + [float(np.hypot(*p.travel)) for p in self.rigid])
         cap = 1.0 if motion == 0 else 0.25 * size / motion
         first, largest = min(INITIAL_INCREMENT, cap), MAX_INCREMENT
+        if self.rigid:  # contact: no increment moves a part by more than half an element
+            largest = min(largest, max(first, 0.5 * size / motion if motion > 0 else largest))
         return first, min(MIN_INCREMENT, 1e-3 * first), largest
 
 
@@ -329,7 +339,8 @@ def _bodies(problem, body_of: np.ndarray, areas: np.ndarray, axisymmetric: bool)
     return tuple(bodies), unexpressed, target
 
 
-def build_deck(problem, element: str | None = None, mesh_size: float = DEFAULT_MESH_SIZE) -> Deck:
+def build_deck(problem, element: str | None = None, mesh_size: float = DEFAULT_MESH_SIZE,
+               contact_penalty=None) -> Deck:
     """The deck of a problem: one conforming mesh, one element set, section and material per body.
 
     Shared pieces are bonded (the bodies share their nodes there); the
@@ -348,6 +359,10 @@ def build_deck(problem, element: str | None = None, mesh_size: float = DEFAULT_M
         :func:`default_element`.
     mesh_size : float
         Triangle size as a fraction of each body's mesh scale (mean thickness).
+    contact_penalty : float or "hard", optional
+        With rigid parts: the slope K of the linear pressure–overclosure law
+        (moduli per unit length), or ``"hard"``; by default
+        ``PENALTY_FACTOR × 3 μ / h`` (:mod:`.contact_deck`).
 
     Returns
     -------
@@ -369,12 +384,35 @@ def build_deck(problem, element: str | None = None, mesh_size: float = DEFAULT_M
     support = np.asarray(problem.target.at_fractions(mesh.lower_fractions), dtype=np.float64)
     areas = element_areas(mesh.points, mesh.cells, mesh.corners)
     axis = axis_frame(problem.revolution.axis, mesh.points) if axisymmetric else None
-    R, t = rigid_fit(mesh.points[mesh.lower_nodes], support, axis)
+    if problem.rigid:  # the parts start where the case puts them: no rigid placement first
+        R, t = np.eye(2), np.zeros(2)
+    else:
+        R, t = rigid_fit(mesh.points[mesh.lower_nodes], support, axis)
     bodies, unexpressed, target = _bodies(problem, body_of[order], areas, axisymmetric)
+    rigid, penalty = (), None
+    if problem.rigid:
+        from .contact_deck import rigid_parts
+
+        size = float(np.sqrt(2.0 * np.median(areas)))
+        keep = None
+        if axis is not None:  # a rigid element with a node on the axis has no volume: the parts cut off it
+            big = 1e3 * problem.size
+            keep = axis.from_rz(np.array([[1e-3 * size, -big], [big, -big], [big, big], [1e-3 * size, big]]))
+        rigid = rigid_parts(problem, size, keep)
+        if contact_penalty is None:
+            mu = min(b.shear_modulus for b in bodies)
+            penalty = PENALTY_FACTOR * 3.0 * mu / float(np.sqrt(2.0 * areas.min()))
+        elif contact_penalty != "hard":
+            penalty = float(contact_penalty)
     return Deck(name=problem.name, units=problem.units, mesh=mesh, element=el, bodies=bodies,
                 support_displacement=support - (mesh.points[mesh.lower_nodes] @ R.T + t),
                 unexpressed=tuple(unexpressed + _hybrid_note(el)), area_initial=float(areas.sum()),
-                area_target=float(target), axis=axis, rotation=R, translation=t)
+                area_target=float(target), axis=axis, rotation=R, translation=t, rigid=rigid, contact_penalty=penalty)
+
+
+def _mirror_faces(faces: np.ndarray) -> np.ndarray:
+    """The faces of triangles whose corners 2 and 3 were swapped: S1 (1-2) becomes S3 (1-3), S2 stays."""
+    return np.column_stack((faces[:, 0], np.array([2, 1, 0])[faces[:, 1]]))
 
 
 def _rows(first: int, table: np.ndarray) -> list[str]:
@@ -439,8 +477,33 @@ def deck_text(deck: Deck) -> str:
         if not el.axisymmetric:
             out.append("1.0")  # unit thickness: plane strain per unit length
         out += [f"*MATERIAL, NAME=RUBBER_{body.name}", *hyperelastic_card(body.material)]
+    moves = []
+    if deck.rigid:
+        from .contact_deck import contact_cards, free_faces
+
+        if deck.axis is not None:
+            axis = deck.axis
+
+            def to_deck(p):
+                return axis.to_rz(p)
+
+            def vec(v):
+                return axis.to_rz(v + np.asarray(axis.origin))
+        else:
+            def to_deck(p):
+                return p
+
+            def vec(v):
+                return v
+        rigid = [p if deck.axis is None or not deck.axis.mirrored else
+                 dataclasses.replace(p, triangles=p.triangles[:, [0, 2, 1]], faces=_mirror_faces(p.faces))
+                 for p in deck.rigid]
+        cards, moves = contact_cards(rigid, free_faces(cells, m.corners, m.lower_nodes), len(m.points) + 1,
+                                     len(m.cells) + 1, "CAX3" if el.axisymmetric else "CPE3", to_deck, vec,
+                                     deck.contact_penalty, not el.axisymmetric)
+        out += cards
     out += [
-        "*STEP, NLGEOM, INC=1000",
+        f"*STEP, NLGEOM, INC={10000 if deck.rigid else 1000}",
         "*STATIC",
         "{:.6g}, 1.0, {:.6g}, {:.6g}".format(*deck.increments),
         "*BOUNDARY",
@@ -449,5 +512,12 @@ def deck_text(deck: Deck) -> str:
     for node, (ux, uy) in zip(nodes.tolist(), u.tolist()):
         out.append(f"{node}, 1, 1, {inp_real(ux)}")
         out.append(f"{node}, 2, 2, {inp_real(uy)}")
-    out += ["*NODE FILE, FREQUENCY=1000", "U", "*EL FILE, FREQUENCY=1000", "S", "*END STEP"]
+    out += moves
+    if deck.rigid:  # every increment (one frequency for all output in CalculiX): the load-deflection curve
+        for part in deck.rigid:  # the part's nodes' reactions (the reference node's, through MPCs, are not computed)
+            out += [f"*NODE PRINT, NSET={part.name}_NODES, TOTALS=ONLY, FREQUENCY=1", "RF"]
+        out += ["*NODE PRINT, NSET=SUPPORT, TOTALS=ONLY", "RF", "*NODE FILE", "U", "*CONTACT FILE", "CDIS, CSTR",
+                "*END STEP"]
+    else:
+        out += ["*NODE FILE, FREQUENCY=1000", "U", "*EL FILE, FREQUENCY=1000", "S", "*END STEP"]
     return "\n".join(out) + "\n"

@@ -111,6 +111,9 @@ def _displacements(deck: Deck, results) -> np.ndarray:
     """The deformed nodes of the deck's mesh in the case's plane, ``(N, 2)``."""
     m = deck.mesh
     _, ids, disp = results.last("DISP")
+    if deck.rigid:  # the rigid parts' nodes follow the bodies' in the deck
+        keep = ids <= len(m.points)
+        ids, disp = ids[keep], disp[keep]
     if ids.min() < 1 or ids.max() > len(m.points):
         raise SolverFailedError("ccx returned displacements of nodes the deck does not have")
     u = np.zeros((len(m.points), 2))
@@ -156,7 +159,7 @@ def _body(problem, deck: Deck, i: int, final: np.ndarray, info: CalculixInfo) ->
 
 
 def solve_calculix(problem, *, element: str | None = None, mesh_size: float = DEFAULT_MESH_SIZE,
-                   progress=None, keep=None, timeout=None) -> Result:
+                   progress=None, keep=None, timeout=None, contact_penalty=None) -> Result:
     """Solve a problem with CalculiX.
 
     Parameters
@@ -173,12 +176,16 @@ def solve_calculix(problem, *, element: str | None = None, mesh_size: float = DE
         Folder to copy the ccx job files into.
     timeout : float, optional
         Seconds after which ccx is stopped (:class:`SolverFailedError`).
+    contact_penalty : float or "hard", optional
+        With rigid parts: the contact's penalty slope (see :func:`~.deck.build_deck`).
 
     Returns
     -------
     Result
         Model ``"calculix"``, one body per body of the problem (with volumes
-        for bodies of revolution), in the problem's dialect.
+        for bodies of revolution), in the problem's dialect; with rigid
+        parts, their forces and contact (``rigid``), the support's force and
+        the forces at every increment (``history``).
 
     Raises
     ------
@@ -188,7 +195,7 @@ def solve_calculix(problem, *, element: str | None = None, mesh_size: float = DE
         For a bad element or mesh size.
     """
     t0 = time.perf_counter()
-    deck = build_deck(problem, element, mesh_size)
+    deck = build_deck(problem, element, mesh_size, contact_penalty)
     el, m = deck.element, deck.mesh
     if not el.calculix:
         raise SolverFailedError(f"CalculiX 2.20 has no hybrid elements such as {el.name}; use {el.name[:3]}6 or "
@@ -201,10 +208,18 @@ def solve_calculix(problem, *, element: str | None = None, mesh_size: float = DE
     inverted = int((element_areas(final, m.cells, m.corners) <= 0).sum())
     if inverted:
         raise SolverFailedError(f"ccx's deformed mesh has {inverted} inverted elements")
-    info = CalculixInfo(element_type=el.name, **{k: v for k, v in run.items() if k != "seconds"},
+    info = CalculixInfo(element_type=el.name, **{k: v for k, v in run.items() if k not in ("seconds", "dat")},
                         ccx_seconds=run["seconds"])
     bodies = tuple(_body(problem, deck, i, final, info) for i in range(len(problem.bodies)))
+    contact, warnings = {}, deck.unexpressed
+    if deck.rigid:  # the parts' forces from the .dat, the contact pressures from the .frd
+        from .contact_read import AXISYMMETRIC_NOTE, contact_of_parts
+
+        parts, support, history = contact_of_parts(deck, results, final, run["dat"])
+        contact = {"rigid": parts, "support_force": support, "history": history}
+        if deck.axis is not None:
+            warnings = (*warnings, AXISYMMETRIC_NOTE)
     return Result(name=problem.name, units=problem.units, model="calculix", bodies=bodies,
-                  timings={"solve_s": time.perf_counter() - t0}, warnings=deck.unexpressed,
+                  timings={"solve_s": time.perf_counter() - t0}, warnings=tuple(warnings),
                   axis=problem.revolution.axis if problem.revolution is not None else None,
-                  dialect=RESULT_V1 if problem.dialect == V1 else RESULT_V2)
+                  dialect=RESULT_V1 if problem.dialect == V1 else RESULT_V2, **contact)

@@ -23,6 +23,19 @@ multiplier unknowns and changes the sparse pattern with the active set):
 * an edge's three nodes belong to one cell, so the contact tangent adds to
   that cell's element matrix: the sparse pattern is the one without contact.
 
+Coulomb friction (a part's ``friction`` μ_f > 0) is a regularised
+tangential penalty with a return mapping at the same Gauss points: each
+point has an anchor, the place along the part's outline (arc length ``s_a``)
+where it sticks; the trial tangential force per reference length is
+``q = −ε_t (s − s_a)`` (``ε_t`` = :data:`TANGENT_PENALTY` ε, ``s`` the
+point's closest place on the outline), kept if ``|q| ≤ μ_f p`` (stick),
+else ``q = −μ_f p sign(s − s_a)`` (slip). The force on the body is
+``p n + q τ`` (``τ`` the outline's tangent). The tangent gains
+``ε_t τ τᵀ`` in stick and ``−μ_f sign ε τ nᵀ`` in slip (not symmetric; the
+pattern is the same). The anchors are history: :meth:`ContactPhysics.commit`
+moves them after each converged load step (``s_a ← s + q / ε_t``). With
+μ_f = 0 none of this is computed: the frictionless result, exactly.
+
 For a body of revolution every integral is per radian, weighted by the
 initial distance from the axis (as :mod:`~sectiondeform.fem.axisymmetric`);
 the forces reported are the whole ring's, 2π times.
@@ -37,7 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = ["Boundary", "Obstacle", "ContactPhysics", "PartContact", "free_boundary", "contact_figures",
-           "GAUSS", "PENALTY", "PENETRATION_FRACTION"]
+           "GAUSS", "PENALTY", "PENETRATION_FRACTION", "TANGENT_PENALTY"]
 
 GAUSS = 4
 """Gauss points per boundary edge."""
@@ -49,6 +62,8 @@ MAX_UPDATES = 8
 """At most this many augmented-Lagrangian updates per solve."""
 SMOOTHING = 1e-3
 """The ramp ``max(0, u)`` is rounded over ``|u| < SMOOTHING μ`` (a quadratic there), so Newton does not cycle on a point at the contact's edge."""
+TANGENT_PENALTY = 1.0
+"""The tangential (stick) penalty in units of the normal penalty ε."""
 SMOOTH_DEG = 15.0
 """At a vertex of a part's outline turning by less than this, the normal turns continuously (a polygon drawn for a curve)."""
 
@@ -173,9 +188,12 @@ class Obstacle:
         The closed outline at the part's end position (first point repeated or not), units.
     travel : (2,) float64 array_like
         The part starts at ``ring - travel``.
+    friction : float
+        Coulomb's coefficient μ_f >= 0 between the part and the bodies.
     """
 
-    def __init__(self, ring: np.ndarray, travel):
+    def __init__(self, ring: np.ndarray, travel, friction: float = 0.0):
+        self.friction = float(friction)
         ring = np.asarray(ring, dtype=np.float64)
         if np.allclose(ring[0], ring[-1]):
             ring = ring[:-1]
@@ -190,6 +208,7 @@ class Obstacle:
         length = np.sqrt(self.len2)
         self.out = np.column_stack((self.d[:, 1], -self.d[:, 0])) / length[:, None]  # outward (counter-clockwise ring)
         self.s0 = np.concatenate(([0.0], np.cumsum(length)[:-1]))
+        self.perimeter = float(length.sum())
         prev = np.roll(self.out, 1, axis=0)  # the segment ending at each vertex
         mean = prev + self.out
         turn = np.degrees(np.arccos(np.clip(np.einsum("ki,ki->k", prev, self.out), -1.0, 1.0)))
@@ -281,18 +300,23 @@ class ContactPhysics:
     obstacles : list of Obstacle
     lam : (K, P) float64 ndarray, optional
         Multipliers per part and boundary point (pressure per reference length); zeros by default.
+    anchor : (K, P) float64 ndarray, optional
+        Friction's anchors: where along each part's outline (arc length,
+        units) each point sticks; NaN where none is set (the point's own
+        place then: no tangential force). NaN by default.
     """
 
-    def __init__(self, physics, boundary: Boundary, obstacles, lam=None):
+    def __init__(self, physics, boundary: Boundary, obstacles, lam=None, anchor=None):
         object.__setattr__(self, "_inner", physics)
         object.__setattr__(self, "boundary", boundary)
         object.__setattr__(self, "obstacles", list(obstacles))
         object.__setattr__(self, "t", 1.0)
         shape = (len(obstacles), len(boundary.weight))
         object.__setattr__(self, "lam", np.zeros(shape) if lam is None else np.array(lam, dtype=np.float64))
+        object.__setattr__(self, "anchor", np.full(shape, np.nan) if anchor is None else np.array(anchor, dtype=np.float64))
         object.__setattr__(self, "_cache", [])
 
-    _own = ("_inner", "boundary", "obstacles", "t", "lam", "_cache")
+    _own = ("_inner", "boundary", "obstacles", "t", "lam", "anchor", "_cache")
 
     def __getattr__(self, name):
         return getattr(self._inner, name)
@@ -304,7 +328,7 @@ class ContactPhysics:
             setattr(self._inner, name, value)
 
     def __copy__(self):
-        new = ContactPhysics(copy.copy(self._inner), self.boundary, self.obstacles, self.lam)
+        new = ContactPhysics(copy.copy(self._inner), self.boundary, self.obstacles, self.lam, self.anchor)
         object.__setattr__(new, "t", self.t)
         return new
 
@@ -345,12 +369,37 @@ class ContactPhysics:
             out.append((idx[on], p[on], n[on], g[on], s[on], slope[on]))
         return out
 
+    def friction(self, k: int, idx: np.ndarray, p: np.ndarray, s: np.ndarray):
+        """Part ``k``'s tangential force per reference length at its contact points, and which of them slip.
+
+        Returns
+        -------
+        q : (m,) float64 ndarray
+            Along the outline's tangent ``τ = (−n_y, n_x)``, on the body.
+        slip : (m,) bool ndarray
+        sign : (m,) float64 ndarray
+            The sign of the slip ``s − s_a``.
+        """
+        obs = self.obstacles[k]
+        anchor = self.anchor[k, idx]
+        d = np.where(np.isnan(anchor), 0.0, s - anchor)
+        d = d - obs.perimeter * np.round(d / obs.perimeter)  # the shorter way round a closed outline
+        trial = -TANGENT_PENALTY * self.boundary.penalty[idx] * d
+        limit = obs.friction * p
+        slip = np.abs(trial) > limit
+        sign = np.sign(d)
+        return np.where(slip, -limit * sign, trial), slip, sign
+
     def contact_residual(self, x: np.ndarray) -> np.ndarray:
         """The contact terms of the position residual, ``(2 N,)``."""
         b = self.boundary
         r = np.zeros((self._inner.n_nodes, 2))
-        for idx, p, n, _, _, _ in self.evaluate(x):
-            force = -(p * b.weight[idx])[:, None, None] * b.shape[idx][:, :, None] * n[:, None, :]  # (m, 3, 2)
+        for k, (idx, p, n, _, s, _) in enumerate(self.evaluate(x)):
+            traction = p[:, None] * n
+            if self.obstacles[k].friction > 0 and len(idx):
+                q, _, _ = self.friction(k, idx, p, s)
+                traction = traction + q[:, None] * np.column_stack((-n[:, 1], n[:, 0]))
+            force = -b.weight[idx][:, None, None] * b.shape[idx][:, :, None] * traction[:, None, :]  # (m, 3, 2)
             np.add.at(r, b.nodes[idx], force)
         return r.ravel()
 
@@ -363,11 +412,17 @@ class ContactPhysics:
     def element_matrices(self, f) -> np.ndarray:
         ke = self._inner.element_matrices(f)
         b = self.boundary
-        for idx, _, n, _, _, slope in self.evaluate(self._x(f)):
+        for k, (idx, p, n, _, s, slope) in enumerate(self.evaluate(self._x(f))):
             if not len(idx):
                 continue
-            c = (slope * b.penalty[idx] * b.weight[idx])[:, None, None, None, None]
-            nn = n[:, :, None] * n[:, None, :]  # (m, 2, 2)
+            c = (b.penalty[idx] * b.weight[idx])[:, None, None, None, None]
+            nn = slope[:, None, None] * n[:, :, None] * n[:, None, :]  # (m, 2, 2)
+            if self.obstacles[k].friction > 0:
+                _, slip, sign = self.friction(k, idx, p, s)
+                tau = np.column_stack((-n[:, 1], n[:, 0]))
+                stick = TANGENT_PENALTY * tau[:, :, None] * tau[:, None, :]
+                sliding = -(self.obstacles[k].friction * sign * slope)[:, None, None] * tau[:, :, None] * n[:, None, :]
+                nn = nn + np.where(slip[:, None, None], sliding, stick)
             block = c * b.shape[idx][:, :, None, None, None] * b.shape[idx][:, None, :, None, None] * nn[:, None, None]
             # block[m, a, c, i, j] -> ke[cell, 2 local_a + i, 2 local_c + j]
             rows = 2 * b.local[idx][:, :, None, None, None] + np.arange(2)[None, None, None, :, None]
@@ -375,6 +430,29 @@ class ContactPhysics:
             cells = np.broadcast_to(b.cell[idx][:, None, None, None, None], block.shape)
             np.add.at(ke, (cells, np.broadcast_to(rows, block.shape), np.broadcast_to(cols, block.shape)), block)
         return ke
+
+    def commit(self, x: np.ndarray) -> None:
+        """Move the friction anchors to the converged state ``x`` (the return mapping's history).
+
+        A point in contact keeps its anchor in stick and drags it in slip
+        (``s_a ← s + q / ε_t``); a point not in contact is anchored where it is.
+        """
+        b = self.boundary
+        if not any(obs.friction > 0 for obs in self.obstacles):
+            return
+        xq = np.einsum("pa,pai->pi", b.shape, x[b.nodes])
+        anchor = np.full_like(self.anchor, np.nan)
+        contact = self.evaluate(x)
+        for k, obs in enumerate(self.obstacles):
+            if obs.friction <= 0:
+                continue
+            near, _, _, s_all = obs.query(xq, obs.at(self.t), 2.0 * float(b.size.max()))
+            anchor[k, near] = s_all
+            idx, p, _, _, s, _ = contact[k]
+            if len(idx):
+                q, _, _ = self.friction(k, idx, p, s)
+                anchor[k, idx] = (s + q / (TANGENT_PENALTY * b.penalty[idx])) % obs.perimeter
+        object.__setattr__(self, "anchor", anchor)
 
     def update(self, x: np.ndarray) -> float:
         """Uzawa's update ``λ ← max(0, λ + ε g)`` at ``x``; the largest penetration relative to the element size before it."""
@@ -456,9 +534,13 @@ def contact_figures(physics: ContactPhysics, x: np.ndarray, names, ring: float =
     """
     b = physics.boundary
     out = []
-    for name, obs, (idx, p, n, g, s, _) in zip(names, physics.obstacles, physics.evaluate(x)):
+    for k, (name, obs, (idx, p, n, g, s, _)) in enumerate(zip(names, physics.obstacles, physics.evaluate(x))):
         w = b.weight[idx]
-        force = -ring * (p * w) @ n if len(idx) else np.zeros(2)
+        traction = p[:, None] * n
+        if obs.friction > 0 and len(idx):
+            q, _, _ = physics.friction(k, idx, p, s)
+            traction = traction + q[:, None] * np.column_stack((-n[:, 1], n[:, 0]))
+        force = -ring * w @ traction if len(idx) else np.zeros(2)
         xe = x[b.nodes[idx]]
         xq = np.einsum("pa,pai->pi", b.shape[idx], xe)
         tang = np.einsum("pa,pai->pi", b.dshape[idx], xe)

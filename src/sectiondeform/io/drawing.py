@@ -51,7 +51,7 @@ from .outline import (
     unused_pieces,
 )
 from .pieces import Drawing
-from .stacking import bodies_from_drawing, check_options, revolution_from_drawing, stored_bodies, unused_body_pieces
+from .stacking import bodies_from_drawing, check_options, revolution_from_drawing, rigid_from_drawing, stored_bodies, unused_body_pieces
 from .units import mm_per_unit
 
 __all__ = [
@@ -151,7 +151,8 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
                               units=drawing.units, options=case_options)
     else:
         case = Problem(support=support, target=target, bodies=_bodies(found, meta, o, revolution), name=name,
-                       units=drawing.units, options=case_options, revolution=revolution, dialect=V2)
+                       units=drawing.units, options=case_options, revolution=revolution, dialect=V2,
+                       rigid=rigid_from_drawing(pieces, ctx, drawing, meta, report))
         say(report, f"bodies: {len(found)} ({', '.join(b.name for b in case.bodies)}), resting order "
                     f"{' < '.join(case.bodies[k].name for k in case.layout.order)}")
     return convert_units(case, o.units, report) if o.units else case

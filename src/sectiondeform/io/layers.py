@@ -14,10 +14,12 @@ curve)                                                        ``DEFORMED`` (SVG 
                   ``BODY-<name>-LOWER``, ``BODY-<name>-UPPER``  ``MESH-FINAL-<name>``, ``INITIAL-<name>-LOWER``,
                   (and ``AXIS`` for a body of revolution)     ``-UPPER``, ``DEFORMED-<name>-LOWER``, ``-UPPER``;
                                                               ``SUPPORT`` and ``TARGET`` when the case is given
+``/2`` with       ``RIGID-<name>``: each rigid part's         ``RIGID-<name>``: each rigid part's outline at
+rigid parts       contour (where it ends up)                  its end position
 ================  ==========================================  ==============================================
 
 The case data (:func:`case_meta`: name, units, options, laws, materials,
-start points) is stored as JSON in the DXF header property or SVG root
+start points, the rigid parts' travel and friction) is stored as JSON in the DXF header property or SVG root
 attribute ``sectiondeform``, so case -> drawing -> case gives the same case.
 """
 
@@ -36,10 +38,11 @@ from ..result import RESULT_V1
 
 __all__ = [
     "Layer", "case_layers", "result_layers", "case_meta", "read_meta", "check_layer_names", "check_case",
-    "is_bodies_drawing", "tolerance", "SUPPORT", "TARGET", "AXIS", "BODY", "ROLE_SUFFIXES", "ONE_BODY_LAYERS",
+    "is_bodies_drawing", "tolerance", "SUPPORT", "TARGET", "AXIS", "BODY", "RIGID", "ROLE_SUFFIXES", "ONE_BODY_LAYERS",
 ]
 
-SUPPORT, TARGET, AXIS, BODY = "SUPPORT", "TARGET", "AXIS", "BODY-"
+SUPPORT, TARGET, AXIS, BODY, RIGID = "SUPPORT", "TARGET", "AXIS", "BODY-", "RIGID-"
+DARK = (250, "#333333")
 ROLE_SUFFIXES = ("-LOWER", "-UPPER")
 ONE_BODY_LAYERS = ("LOWER", "UPPER", "CONTOUR")
 DXF_COLORS = (1, 3, 4, 6, 2, 30, 140, 200)
@@ -105,6 +108,7 @@ def case_layers(problem: Problem) -> list[Layer]:
                 for s, c in zip(ROLE_SUFFIXES, (b.lower, b.upper))]
     if problem.revolution is not None:
         out.append(Layer(AXIS, AXIS, 9, "#999999", "curve", Polyline(np.array(problem.revolution.axis, dtype=np.float64))))
+    out += [Layer(f"{RIGID}{r.name}", f"{RIGID}{r.name}", *DARK, "curve", r.contour) for r in problem.rigid]
     return out
 
 
@@ -137,6 +141,8 @@ def result_layers(result, case: Problem | None = None) -> list[Layer]:
             Layer(f"DEFORMED-{b.name}-LOWER", f"DEFORMED-{b.name}-LOWER", *style, "open", b.lower, splines=(b.lower,)),
             Layer(f"DEFORMED-{b.name}-UPPER", f"DEFORMED-{b.name}-UPPER", *style, "open", b.upper, splines=(b.upper,)),
         ]
+    out += [Layer(f"{RIGID}{p.name}", f"{RIGID}{p.name}", *DARK, "closed", np.asarray(p.outline))
+            for p in result.rigid if p.outline is not None]
     return out
 
 
@@ -189,6 +195,8 @@ def case_meta(problem: Problem) -> dict:
         if b.material != "{}":
             entry["material"] = b.material_data
         meta["bodies"].append(entry)
+    if problem.rigid:
+        meta["rigid"] = [{"name": r.name, "travel": list(r.travel), "friction": r.friction} for r in problem.rigid]
     return meta
 
 

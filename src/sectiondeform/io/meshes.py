@@ -20,7 +20,10 @@ hyperelastic model also ``von_mises_stress`` and ``pressure`` (−tr σ / 3,
 positive in compression), in units of the shear modulus for the paper's
 one body, in the unit of each body's material otherwise, per element as
 cell data and recovered at the nodes as point data of the same names
-(:func:`body_point_data`). Abaqus INP carries the mesh only.
+(:func:`body_point_data`). A result with rigid parts also has the point
+data ``contact_pressure`` on the final mesh: the pressure at the bodies'
+boundary nodes in contact, 0 elsewhere (:func:`contact_point_data`).
+Abaqus INP carries the mesh only.
 
 The bodies of a ``section-result/2`` result are tagged: cell data
 ``body`` = the body's tag (its index in the case's ``bodies`` plus 1),
@@ -42,7 +45,8 @@ from ..errors import CaseError, require
 from ..result import RESULT_V1
 from .files import atomic_write
 
-__all__ = ["write_mesh", "write_result", "to_meshio", "split_components", "body_point_data", "FORMATS"]
+__all__ = ["write_mesh", "write_result", "to_meshio", "split_components", "body_point_data", "contact_point_data",
+           "FORMATS"]
 
 FORMATS = {".vtu": "vtu", ".vtk": "vtk", ".msh": "gmsh", ".xdmf": "xdmf", ".inp": "abaqus"}
 
@@ -227,6 +231,8 @@ def write_mesh(path, result, which: str = "final", fields: bool = False) -> None
     fmt = FORMATS[ext]
     cells = body_cell_data(result, fmt) if fields and fmt != "abaqus" else None
     points = body_point_data(result) if fields and fmt != "abaqus" else None
+    if result.rigid and which == "final" and fmt != "abaqus":  # rigid parts: the contact pressure on the boundary
+        points = {**(points or {}), "contact_pressure": contact_point_data(result)}
     mesh = _for_format(to_meshio(result, which, data=fmt != "abaqus", point_data=points, cell_data=cells),
                        result, which, fmt, meshio)
 
@@ -273,6 +279,45 @@ def body_point_data(result) -> dict:
     nodal = [m.nodal if m is not None else {} for m in result_mechanics(result)]
     names = [k for k in nodal[0] if all(k in n for n in nodal)] if nodal else []
     return {k: np.concatenate([n[k] for n in nodal]) for k in names}
+
+
+def contact_point_data(result) -> np.ndarray:
+    """The contact pressure at the bodies' final boundary nodes, ``(N,)``, the bodies' nodes in order; 0 off contact.
+
+    A boundary node (of an edge of one element) is in contact with a part
+    when it lies on the part's outline (within twice the penetration left,
+    or 10⁻⁴ of the body's size), and takes the pressure of the nearest
+    point where the part's pressure is known (its Gauss points,
+    :attr:`~sectiondeform.fem.contact.PartContact.pressure`). Units of the moduli.
+    """
+    import shapely
+    from scipy.spatial import cKDTree
+
+    out = []
+    parts = [(np.asarray(p.pressure, dtype=np.float64).reshape(-1, 3), shapely.LinearRing(p.outline),
+              2.0 * p.penetration_max) for p in result.rigid if len(p.pressure) and p.outline is not None]
+    for body in result.bodies:
+        mesh = body.final_mesh
+        values = np.zeros(len(mesh.points))
+        corners = 3 if mesh.kind.startswith("triangle") else 4
+        cells = np.asarray(mesh.cells)
+        c = cells[:, :corners]
+        edges = np.sort(np.stack((c, np.roll(c, -1, axis=1)), axis=2).reshape(-1, 2), axis=1)
+        _, inverse, counts = np.unique(edges, axis=0, return_inverse=True, return_counts=True)
+        free = counts[inverse.ravel()] == 1
+        on = np.zeros(len(mesh.points), bool)
+        on[edges[free].ravel()] = True
+        if cells.shape[1] == 2 * corners:  # mid-edge nodes of the free edges
+            on[cells[:, corners:].reshape(-1)[free]] = True
+        nodes = np.flatnonzero(on)
+        xy = np.asarray(mesh.points)[nodes]
+        for q, ring, pen in parts:
+            tol = max(pen, 1e-4 * np.sqrt(abs(body.area_final)))
+            near = shapely.distance(shapely.points(xy), ring) <= tol
+            _, j = cKDTree(q[:, :2]).query(xy[near])
+            values[nodes[near]] = np.maximum(values[nodes[near]], q[j, 2])
+        out.append(values)
+    return np.concatenate(out)
 
 
 def write_result(path, result, fields: bool = False) -> None:

@@ -55,7 +55,7 @@ from ..layout import CONTACT_FRACTION
 from ..problem import Revolution
 from .case import revolution_from_json
 from .chaining import fmt_point
-from .layers import AXIS, BODY, ONE_BODY_LAYERS, ROLE_SUFFIXES, SUPPORT
+from .layers import AXIS, BODY, ONE_BODY_LAYERS, RIGID, ROLE_SUFFIXES, SUPPORT
 from .outline import Context, curves_from_layers, say
 from .pieces import merge_runs
 
@@ -322,7 +322,35 @@ def unused_body_pieces(pieces, ctx: Context) -> list:
     used = {SUPPORT, AXIS}
     if ctx.has(pieces, "target") and ctx.options.target_arc is None:
         used.add(ctx.roles["target"].upper())
-    return [p for p in pieces if not any(t in used or (t.startswith(BODY) and len(t) > len(BODY)) for t in p.tags)]
+    return [p for p in pieces if not any(t in used or (t.startswith(BODY) and len(t) > len(BODY))
+                                         or (t.startswith(RIGID) and len(t) > len(RIGID)) for t in p.tags)]
+
+
+def rigid_from_drawing(pieces, ctx: Context, drawing, meta: dict, report=None) -> tuple:
+    """The rigid parts of a drawing: each ``RIGID-<name>`` layer chained into a closed contour.
+
+    The travel and friction are the stored case data's (``meta["rigid"]``,
+    by name), else none and 0.
+
+    Returns
+    -------
+    tuple of Rigid
+        In the stored order, then the drawing's.
+    """
+    from ..problem import Rigid
+
+    stored = {r["name"].upper(): r for r in meta.get("rigid") or [] if isinstance(r, dict) and isinstance(r.get("name"), str)}
+    tags = [t for p in pieces for t in p.tags if t.startswith(RIGID) and len(t) > len(RIGID)]
+    order = [n for n in stored if f"{RIGID}{n}" in tags] + sorted(dict.fromkeys(t[len(RIGID):] for t in tags
+                                                                          if t[len(RIGID):] not in stored))
+    out = []
+    for n in order:
+        where = f"{ctx.what} {drawing.labels.get(RIGID + n, RIGID + n)}"
+        contour = ctx.chain([p for p in pieces if RIGID + n in p.tags], where, True, report)
+        data = stored.get(n, {})
+        out.append(Rigid(data.get("name", drawing.labels.get(RIGID + n, RIGID + n)[len(RIGID):]), contour,
+                         tuple(data.get("travel", (0.0, 0.0))), data.get("friction", 0.0)))
+    return tuple(out)
 
 
 def _spelled(n: str, found: dict, known: dict, labels: dict) -> str:

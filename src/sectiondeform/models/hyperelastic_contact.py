@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import CaseError, ConvergenceError
+from ..errors import ConvergenceError
 from ..fem.contact import (
     MAX_UPDATES,
     PENETRATION_FRACTION,
@@ -87,6 +87,8 @@ class ContactState:
         The force the bodies exert on the support (per unit length, or the whole ring's).
     history : tuple of HistoryStep
     warnings : tuple of str
+    anchor : (K, P) float64 ndarray or None
+        Friction's anchors (a warm start carries them too).
     """
 
     lam: np.ndarray
@@ -94,6 +96,7 @@ class ContactState:
     support_force: tuple
     history: tuple
     warnings: tuple = ()
+    anchor: np.ndarray = None
 
 
 class Contact:
@@ -104,18 +107,10 @@ class Contact:
     prepared : HyperelasticPrepared
         Its mesh, sizes, materials, support nodes and physics.
 
-    Raises
-    ------
-    CaseError
-        For a part with friction (Coulomb friction is not implemented yet).
     """
 
     def __init__(self, prepared):
         problem = prepared.problem
-        for i, part in enumerate(problem.rigid):
-            if part.friction > 0:
-                raise CaseError(f"rigid[{i}].friction", f"{part.friction:g}: the hyperelastic model has frictionless "
-                                "contact only so far; give 0")
         mesh = prepared.mesh
         physics = prepared.physics
         self.plane = prepared.plane
@@ -124,16 +119,16 @@ class Contact:
         mu = np.array([m.shear_modulus for m in prepared.materials], dtype=np.float64)
         self.boundary = free_boundary(mesh.nodes, mesh.cells, mesh.body, prepared.fixed_ids, mu, prepared.sizes, self.radius)
         tol = 1e-6 * problem.size
-        self.obstacles = [Obstacle(part.contour.discretise(tol)[0], part.travel) for part in problem.rigid]
+        self.obstacles = [Obstacle(part.contour.discretise(tol)[0], part.travel, part.friction) for part in problem.rigid]
         self.names = tuple(part.name for part in problem.rigid)
         self.labels = tuple(f"rigid[{i}] {part.name!r}" for i, part in enumerate(problem.rigid))
         self.ring = ring_factor(self.plane)
         travel = max(float(np.hypot(*part.travel)) for part in problem.rigid)
         self.steps = int(np.clip(math.ceil(travel / (STEP_FRACTION * float(prepared.sizes.min()))), MIN_STEPS, MAX_STEPS))
 
-    def physics(self, physics, lam=None) -> ContactPhysics:
-        """``physics`` with the contact terms, multipliers ``lam`` (zeros by default), the parts at their end."""
-        return ContactPhysics(physics, self.boundary, self.obstacles, lam)
+    def physics(self, physics, lam=None, anchor=None) -> ContactPhysics:
+        """``physics`` with the contact terms, multipliers ``lam`` (zeros by default) and friction anchors, the parts at their end."""
+        return ContactPhysics(physics, self.boundary, self.obstacles, lam, anchor)
 
     def _forces(self, cphys: ContactPhysics, solver, state) -> tuple[list, tuple]:
         """Each part's contact and the support's force at ``state``."""
@@ -177,7 +172,7 @@ class Contact:
         ConvergenceError
             Naming the load step and the part when the loading cannot go on.
         """
-        cphys = self.physics(physics, warm.lam if warm is not None else None)
+        cphys = self.physics(physics, warm.lam if warm is not None else None, warm.anchor if warm is not None else None)
         given, solver = solver, copy.copy(solver)
         solver.physics = cphys
         fixed = solver.pattern.fixed
@@ -196,6 +191,7 @@ class Contact:
 
         if warm is None:
             cphys.t = 0.0
+            cphys.commit(cphys.positions(state.z))
             history.append(self._step(0.0, *self._forces(cphys, solver, state)))
             t, dt0 = 0.0, 1.0 / self.steps
             dt = dt0
@@ -210,6 +206,7 @@ class Contact:
                         raise self._refusal(cphys, state, t, t1, len(history), exc) from None
                     continue
                 t = t1
+                cphys.commit(cphys.positions(state.z))
                 history.append(self._step(t, *self._forces(cphys, solver, state)))
                 dt = min(dt0, 2.0 * dt)
         else:
@@ -221,6 +218,7 @@ class Contact:
                 break
             cphys.update(x)
             state = run(1.0, state)
+            cphys.commit(cphys.positions(state.z))
         x = cphys.positions(state.z)
         parts, support = self._forces(cphys, solver, state)
         if warm is None:
@@ -238,7 +236,7 @@ class Contact:
         cphys.update(x)  # the multipliers of this state, for the next warm start
         given.assemblies, given.factorisations = solver.assemblies, solver.factorisations  # the work counted as without contact
         out = type(state)(state.z, state.lz, state.tangent, tuple(totals), None)
-        return out, ContactState(cphys.lam, tuple(parts), support, tuple(history), tuple(warnings))
+        return out, ContactState(cphys.lam, tuple(parts), support, tuple(history), tuple(warnings), cphys.anchor)
 
     def _refusal(self, cphys, state, t, t1, step, exc) -> ConvergenceError:
         """The loading cannot go on: name the step and the part that would penetrate most."""

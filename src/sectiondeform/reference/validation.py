@@ -25,6 +25,7 @@ reference's a single run.
 
 from __future__ import annotations
 
+import math
 import statistics
 import time
 from dataclasses import dataclass
@@ -291,6 +292,29 @@ class Validation:
         return self.fast.model
 
     @property
+    def contacts(self) -> tuple:
+        """Per rigid part both sides have, ``{"name", "force_fast", "force_reference", "force_error", "length_fast",
+        "length_reference", "length_error", "pressure_max_fast", "pressure_max_reference"}``.
+
+        ``force_error`` is the distance between the two forces over the
+        reference's magnitude; ``length_error`` the contact lengths' relative
+        difference (the reference's length as the unit).
+        """
+        ref = {p.name: p for p in getattr(self.reference.solution, "rigid", ()) or ()}
+        out = []
+        for p in getattr(self.fast, "rigid", ()) or ():
+            q = ref.get(p.name)
+            if q is None:
+                continue
+            size = float(np.hypot(*q.force))
+            out.append({"name": p.name, "force_fast": list(p.force), "force_reference": list(q.force),
+                        "force_error": float(np.hypot(*np.subtract(p.force, q.force))) / size if size > 0 else math.nan,
+                        "length_fast": p.length, "length_reference": q.length,
+                        "length_error": (p.length - q.length) / q.length if q.length > 0 else math.nan,
+                        "pressure_max_fast": p.pressure_max, "pressure_max_reference": q.pressure_max})
+        return tuple(out)
+
+    @property
     def revolution(self) -> bool:
         """True for bodies of revolution (the laws and figures are volumes)."""
         return self.problem.revolution is not None
@@ -316,6 +340,8 @@ class Validation:
                "bodies": [self._body_json(i) for i in range(len(self.bodies))], "speed_ratio": self.speed_ratio}
         if self.revolution:
             out["revolution"] = {"axis": [list(map(float, p)) for p in self.problem.revolution.axis]}
+        if self.contacts:
+            out["rigid"] = list(self.contacts)
         return out
 
     def _body_json(self, i: int) -> dict:
@@ -395,6 +421,16 @@ class Validation:
                     f"    at {sd.samples} common nodes: von Mises L2 {sd.von_mises_l2:.1%}, max "
                     f"{sd.von_mises_max:.1%}; pressure L2 {sd.pressure_l2:.1%}, max {sd.pressure_max:.1%}",
                 ]
+        per = "ring" if self.revolution else f"per {u}"
+        for c in self.contacts:
+            out += [
+                f"  rigid {c['name']!r}: force [{c['force_fast'][0]:.5g}, {c['force_fast'][1]:.5g}] fast, "
+                f"[{c['force_reference'][0]:.5g}, {c['force_reference'][1]:.5g}] reference ({per}), "
+                f"{c['force_error']:.2%} apart",
+                f"    contact length {c['length_fast']:.4g} fast, {c['length_reference']:.4g} reference {u} "
+                f"({c['length_error']:+.1%}); peak pressure {c['pressure_max_fast']:.4g} fast, "
+                f"{c['pressure_max_reference']:.4g} reference",
+            ]
         return out + [
             f"  time fast        {1e3 * self.fast_seconds:12.2f} ms",
             f"  time reference   {1e3 * self.reference_seconds:12.0f} ms   ({self.reference.note})  "
@@ -472,6 +508,9 @@ def validate(
     MissingExtraError
         Without the extra ``[fem]``.
     """
+    if reference is None and problem.rigid:
+        raise CaseError("rigid", "the project's finite-element reference has no contact with rigid parts yet; "
+                        "validate against CalculiX (--reference calculix)")
     if reference is None:
         require("skfem", "fem", "the finite-element reference")
         require("triangle", "fem", "the finite-element reference")

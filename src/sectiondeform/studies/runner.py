@@ -7,6 +7,7 @@ land on the same worker prepare it once.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 import socket
@@ -59,12 +60,38 @@ def _section(row: Row):
         _SECTIONS.move_to_end(key)
     else:
         try:
-            _SECTIONS[key] = Deformer(load_case(row.case_path), model=row.model, element_size=row.element_size)
+            _SECTIONS[key] = Deformer(_with_rigid(load_case(row.case_path), row), model=row.model,
+                                      element_size=row.element_size)
         except Exception as exc:  # noqa: BLE001 - a section that cannot be prepared fails each of its rows, not the study
             _SECTIONS[key] = exc
         while len(_SECTIONS) > CACHE_SIZE:
             _SECTIONS.popitem(last=False)
     return _SECTIONS[key]
+
+
+def _with_rigid(problem, row: Row):
+    """The problem with every rigid part's travel scaled from the same start and its friction set, as the row asks."""
+    if row.travel_scale is None and row.friction is None:
+        return problem
+    parts = []
+    for part in problem.rigid:
+        contour, travel = part.contour, part.travel
+        if row.travel_scale is not None:
+            shift = (row.travel_scale - 1.0) * np.asarray(part.travel)
+            contour, travel = contour.transformed(np.eye(2), shift), tuple(row.travel_scale * np.asarray(part.travel))
+        parts.append(dataclasses.replace(part, contour=contour, travel=travel,
+                                         friction=part.friction if row.friction is None else row.friction))
+    return problem.replace(rigid=tuple(parts))
+
+
+def _contact(result) -> str | None:
+    """Per rigid part (and the support) its force, contact length and peak pressure, as JSON text; None without parts."""
+    if not result.rigid:
+        return None
+    out = {p.name: {"force_x": p.force[0], "force_y": p.force[1], "contact_length": p.length,
+                    "pressure_max": p.pressure_max} for p in result.rigid}
+    out["support"] = {"force_x": result.support_force[0], "force_y": result.support_force[1]}
+    return json.dumps(out)
 
 
 def _file(path: str, kind: str):
@@ -130,7 +157,9 @@ def run_row(row: Row, deformer, save: str = "none", outdir: str | None = None) -
         The row's inputs, ``ok``, ``error_type`` and ``error`` (one line),
         areas (units², summed over the bodies), ``relative_error`` of the
         law (the worst body's), ``jacobian_min`` (the smallest),
-        ``quality`` and ``info`` (JSON text), ``hausdorff`` (units),
+        ``quality`` and ``info`` (JSON text), ``rigid`` (JSON text: per rigid
+        part ``force_x``, ``force_y``, ``contact_length``, ``pressure_max``,
+        and the support's force), ``hausdorff`` (units),
         ``prepare_s``, ``place_s``, ``row_s`` (seconds) and ``worker``.
     """
     t0 = time.perf_counter()
@@ -144,7 +173,7 @@ def run_row(row: Row, deformer, save: str = "none", outdir: str | None = None) -
         if any(v is not None for v in amounts.values()):
             base = transformed_target(base if base is not None else deformer.problem.target, **amounts)
         result = deformer.deform(base, None if row.area_ratio is None else AreaRatio(row.area_ratio))
-        rec.update(ok=True, **_figures(result), warnings="; ".join(result.warnings) or None,
+        rec.update(ok=True, **_figures(result), rigid=_contact(result), warnings="; ".join(result.warnings) or None,
                    place_s=result.timings.get("place_s"))
         if row.reference_path is not None:
             rec["hausdorff"] = _hausdorff(result, _file(row.reference_path, "reference"))

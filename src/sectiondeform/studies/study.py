@@ -27,9 +27,10 @@ from .targets import TRANSFORMS
 __all__ = ["AXES", "STUDY_FORMAT", "Row", "Study", "StudyError", "load_study", "study_from_dict"]
 
 STUDY_FORMAT = "section-study/1"
-NUMBER_AXES = ("area_ratio", "element_size", *TRANSFORMS)
+RIGID_AXES = ("travel_scale", "friction")
+NUMBER_AXES = ("area_ratio", "element_size", *TRANSFORMS, *RIGID_AXES)
 AXES = ("model", "targets", *NUMBER_AXES)
-POSITIVE = ("area_ratio", "element_size", "stretch", "scale")
+POSITIVE = ("area_ratio", "element_size", "stretch", "scale", "travel_scale")
 CSV_COLUMNS = ("case", "model", "target_file", "reference", *NUMBER_AXES)
 CSV_ALIASES = {"bend": "bend_radius", "rotate": "rotate_deg", "target": "target_file"}
 
@@ -55,6 +56,11 @@ class Row:
         The law of a one-body case; None keeps the case's laws.
     bend_radius, crown, stretch, scale, rotate_deg, translate_x, translate_y : float or None
         Target transformations (see :mod:`sectiondeform.studies.targets`); None: not applied.
+    travel_scale : float or None
+        Every rigid part's travel times this, from the same start (its end
+        moves: a squeeze, an interference); None: the case's.
+    friction : float or None
+        Every rigid part's Coulomb coefficient; None: the case's.
     target_file : str or None
         A target curve file (as the study names it) replacing the case's target.
     reference : str or None
@@ -76,6 +82,8 @@ class Row:
     rotate_deg: float | None = None
     translate_x: float | None = None
     translate_y: float | None = None
+    travel_scale: float | None = None
+    friction: float | None = None
     target_file: str | None = None
     target_path: str | None = None
     reference: str | None = None
@@ -84,8 +92,8 @@ class Row:
 
     @property
     def section_key(self) -> tuple:
-        """Rows with the same key share one prepared section: (case file, model, element size)."""
-        return (self.case_path, self.model, self.element_size)
+        """Rows with the same key share one prepared section: (case file, model, element size, rigid parts' changes)."""
+        return (self.case_path, self.model, self.element_size, self.travel_scale, self.friction)
 
     def inputs(self) -> dict:
         """The row's inputs as the table records them."""
@@ -130,6 +138,8 @@ def _number(value, field: str, name: str | None = None) -> float | None:
     name = name or field.rsplit(".", 1)[-1].split("[")[0]
     if name in POSITIVE and not value > 0:
         raise StudyError(field, f"must be > 0, got {value!r}")
+    if name == "friction" and value < 0:
+        raise StudyError(field, f"a Coulomb coefficient is >= 0, got {value!r}")
     if name == "bend_radius" and value == 0:
         raise StudyError(field, "must be non-zero (null for an unbent target)")
     return float(value)
@@ -243,6 +253,10 @@ def _case_rows(entry, field: str, defaults: dict, base: Path, reference: str | N
         raise StudyError(f"{field}.reference", f"expected a result file name, got {ref!r}")
     _check_law_axis(case, axes, "vary.area_ratio" if "area_ratio" in defaults and "area_ratio" not in vary
                     else f"{field}.vary.area_ratio")
+    for key in RIGID_AXES:  # a case without rigid parts has no travel or friction to vary
+        if not case.rigid and any(v is not None for v in axes.get(key, ())):
+            raise StudyError(f"vary.{key}" if key in defaults and key not in vary else f"{field}.vary.{key}",
+                             f"case {name!r} has no rigid parts; vary {key} only over cases with rigid parts")
     names = list(axes)
     _bounded_rows(math.prod(len(axes[k]) for k in names) + already, field)
     rows = []

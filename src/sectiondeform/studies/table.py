@@ -30,7 +30,7 @@ SCHEMA = pa.schema(
     + [(k, _F) for k in NUMBER_AXES]
     + [("target_file", _S), ("reference", _S), ("ok", pa.bool_()), ("error_type", _S), ("error", _S),
        ("area_initial", _F), ("area_target", _F), ("area_final", _F), ("relative_error", _F),
-       ("jacobian_min", _F), ("hausdorff", _F), ("quality", _S), ("info", _S), ("warnings", _S),
+       ("jacobian_min", _F), ("hausdorff", _F), ("quality", _S), ("info", _S), ("rigid", _S), ("warnings", _S),
        ("prepare_s", _F), ("place_s", _F), ("row_s", _F), ("worker", _S)]
 )
 
