@@ -107,8 +107,20 @@ def chord_offset(result) -> float:
     for body in result.bodies:
         ring = body.initial_contour
         x, y = ring[:, 0] - ring[0, 0], ring[:, 1] - ring[0, 1]
-        polygon = 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y)))
-        exact = body.area_target if body.area_target is not None else polygon
+        cross = x * np.roll(y, -1) - np.roll(x, -1) * y
+        polygon = 0.5 * abs(float(cross.sum()))
         upper = np.hypot(*np.diff(body.initial_upper, axis=0).T).sum()
+        if body.area_target is None and body.volume_initial is not None and result.axis is not None:
+            # A volume law: the volume the chords miss, over the area an upper offset sweeps about the axis
+            # (2 pi r per unit area, r the upper points' least distance to the axis).
+            p0, p1 = (np.asarray(p, dtype=float) for p in result.axis)
+            u = (p1 - p0) / np.hypot(*(p1 - p0))
+            r = (ring - p0) @ np.array([u[1], -u[0]])
+            moment = abs(float((cross * (r + np.roll(r, -1))).sum()) / 6.0)  # first moment about the axis
+            upper_r = np.abs((body.initial_upper - p0) @ np.array([u[1], -u[0]])).min()
+            polygon_volume = 2.0 * np.pi * moment
+            out = max(out, 3.0 * abs(body.volume_initial - polygon_volume) / (2.0 * np.pi * upper_r * upper))
+            continue
+        exact = body.area_target if body.area_target is not None else polygon
         out = max(out, 3.0 * abs(exact - polygon) / upper)
     return out

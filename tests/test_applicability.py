@@ -8,8 +8,9 @@ import pytest
 import shapely
 
 import sectiondeform as sd
-from sectiondeform.applicability import BEND_LIMIT, OVERHANG_LIMIT
+from sectiondeform.applicability import BEND_LIMIT, HEIGHT_SCALE_LIMITS, OVERHANG_LIMIT
 from sectiondeform.compare import hausdorff_distance, section_height
+from sectiondeform.errors import MeshError
 
 from conftest import box_case, data_case_path
 
@@ -40,18 +41,31 @@ def test_overhang_warns_with_its_ratio_and_names_the_hyperelastic_model():
     assert 'options.model "hyperelastic"' in w
 
 
-@pytest.mark.parametrize("radius", [40.0, -40.0])
-def test_a_thick_section_on_a_bent_target_warns_with_height_over_radius(radius):
-    # A box 60 x 20 on a straight base, bent onto an arc of radius 40 (towards or away from the section).
-    width, height = 60.0, 20.0
+def _bent_box(radius, width=60.0, height=20.0):
+    """A box ``width`` x ``height`` on a straight base, bent onto an arc of ``radius`` (> 0: towards the section)."""
     half = math.degrees(0.5 * width / abs(radius))
     centre, start, end = ([30.0, radius], -90.0 - half, -90.0 + half) if radius > 0 else ([30.0, radius], 90.0 + half, 90.0 - half)
     target = {"arc": {"center": centre, "radius": abs(radius), "start_deg": start, "end_deg": end}}
-    r = sd.deform(sd.case_from_dict(box_case(width=width, height=height, target=target)))
+    return sd.case_from_dict(box_case(width=width, height=height, target=target))
+
+
+def test_a_thick_section_on_a_bent_target_warns_with_height_over_radius():
+    # Bent away from the section: the layers open out, the paper model places them and warns.
+    radius, height = -40.0, 20.0
+    r = sd.deform(_bent_box(radius, height=height))
     (w,) = _warnings(r, "applicability")
     bend = _number(r"bends the base by ([\d.]+) rad", w)
     assert bend == pytest.approx(height / abs(radius), rel=0.03)
     assert bend > BEND_LIMIT and 'options.model "hyperelastic"' in w
+
+
+def test_a_thick_section_bent_towards_itself_is_refused_naming_the_hyperelastic_model():
+    # Bent towards the section by the same height over radius: the top layer, at radius 40 - 20, is
+    # half as long as the base, so an element's aspect changes beyond ASPECT_LIMIT: refused, not a warning.
+    with pytest.raises(MeshError, match=r"aspect ratio changes [\d.]+-fold .*beyond what the paper model can mean; "
+                                        r"refused: .*hyperelastic") as info:
+        sd.deform(_bent_box(40.0))
+    assert "\n" not in str(info.value)
 
 
 def test_a_gentle_bend_does_not_warn():
@@ -61,18 +75,29 @@ def test_a_gentle_bend_does_not_warn():
 
 
 def test_a_short_target_under_a_long_lower_curve_warns_with_the_figures():
-    # Straight lower curve 90 long onto a straight target 10 long: columns stay upright, the
-    # widths shrink 9-fold, so the heights grow k = 9 r (area k / 9 x A0 = r A0).
+    # Straight lower curve 90 long onto a straight target 0.45 x as long: columns stay upright, the
+    # widths shrink by s = 0.45, so the heights grow k = r / s (area k s A0 = r A0) and an element's
+    # aspect changes k / s = r / s² = 3.46-fold, within ASPECT_LIMIT: warnings with the figures.
     case = sd.load_case(data_case_path("grooved-tread"))
-    r = sd.Deformer(case).deform(np.array([[40.0, 0.0], [50.0, 0.0]]))
-    ratio = case.law.area_ratio(r.area_initial)
-    k = _number(r"height scale k = ([\d.]+)", " ".join(r.warnings))
-    assert k == pytest.approx(9.0 * ratio, rel=1e-3)
+    s, ratio = 0.45, 0.7
+    r = sd.Deformer(case).deform(np.array([[45.0 - 45.0 * s, 0.0], [45.0 + 45.0 * s, 0.0]]), law=sd.AreaRatio(ratio))
+    assert r.info.height_scale == pytest.approx(ratio / s, rel=1e-9)
     text = " ".join(_warnings(r, "result"))
+    assert _number(r"k = ([\d.]+)", text) == pytest.approx(ratio / s, abs=0.005)  # shown to 3 digits
     lo = _number(r"stretched by ([\d.]+) to", text)
     hi = _number(r"stretched by [\d.]+ to ([\d.]+)", text)
-    assert lo == pytest.approx(1.0 / 9.0, rel=1e-2) and hi == pytest.approx(1.0 / 9.0, rel=1e-2)
-    assert _number(r"aspect ratio changes ([\d.]+)-fold", text) == pytest.approx(81.0 * ratio, rel=1e-2)
+    assert lo == pytest.approx(s, rel=1e-2) and hi == pytest.approx(s, rel=1e-2)
+
+
+def test_a_much_shorter_target_is_refused_with_its_height_scale():
+    # Onto a target 9 times shorter: k = 9 r = 8.1, beyond HEIGHT_SCALE_LIMITS: refused with the figure.
+    case = sd.load_case(data_case_path("grooved-tread"))
+    with pytest.raises(MeshError) as info:
+        sd.Deformer(case).deform(np.array([[40.0, 0.0], [50.0, 0.0]]))
+    message = str(info.value)
+    assert "\n" not in message and 'options.model "hyperelastic"' in message
+    assert _number(r"height scale k = ([\d.]+)", message) == pytest.approx(9.0 * case.law.ratio, rel=1e-2)
+    assert _number(r"height scale k = ([\d.]+)", message) > HEIGHT_SCALE_LIMITS[1]
 
 
 def test_section_height_matches_shapely():

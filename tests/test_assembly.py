@@ -72,7 +72,9 @@ def test_two_layer_strip_meets_each_law_and_stays_bonded(strip):
     assert np.abs(r - arc.radius).max() <= 1e-9 * size
 
 
-@pytest.mark.parametrize("ratios", [(0.7, 1.3), (1.2, 0.6), (1.0, 1.0), (0.5, 0.5)])
+# Both halved would squeeze the backing's layers to k = 0.498, outside the paper model's [0.5, 2]: refused
+# (test_applicability_refusal); 0.55 is the strongest common shrink within the model's meaning.
+@pytest.mark.parametrize("ratios", [(0.7, 1.3), (1.2, 0.6), (1.0, 1.0), (0.55, 0.55)])
 def test_per_body_laws_hold_to_1e9_for_any_ratios(strip, ratios):
     result = Deformer(with_ratios(strip, *ratios)).deform()
     for body, r in zip(result.bodies, ratios):

@@ -46,13 +46,21 @@ def test_newton_stops_at_its_budget_with_one_line_naming_it(monkeypatch):
     assert "\n" not in message and "bound of 2 iterations" in message and "elements_through_thickness" in message
 
 
-def test_a_mesh_that_keeps_splitting_to_conform_is_refused_at_the_vertex_bound():
+def test_a_mesh_that_keeps_splitting_to_conform_is_refused_at_the_vertex_bound(monkeypatch):
+    """The union mesher gives up when splitting stops helping; without that stop, the vertex bound refuses it."""
+    from sectiondeform.fem import union_mesh
+
     case = sd.load_case(FOUND / "hang-fem-mesh-coarse-mesh-246.json")
     with pytest.raises(MeshError) as err:
         sd.deform(case)
     message = str(err.value)
-    assert "\n" not in message and "conforming" in message
-    count = int(message.split("section: ")[1].split()[0])
+    assert "\n" not in message and "cannot be made to follow" in message and "however they are split" in message
+    monkeypatch.setattr(union_mesh, "STALL_ITERATIONS", 10**6)  # only the vertex bound stops the splitting now
+    with pytest.raises(MeshError) as err:
+        sd.deform(case)
+    message = str(err.value)
+    assert "\n" not in message and "splitting the contour segments" in message
+    count = int(message.split("assembly: ")[1].split()[0])
     assert count > MAX_FE_VERTICES
 
 
@@ -72,7 +80,8 @@ def test_upper_on_curve_is_a_chordal_check():
         pts = up.copy()
         pts[i] = pts[i] + by * inward
         true = float(shapely.distance(shapely.Point(pts[i]), shapely.LineString(fine)))
-        return dataclasses.replace(result, initial_upper=pts), true
+        body = dataclasses.replace(result.bodies[0], initial_upper=pts)
+        return dataclasses.replace(result, bodies=(body,)), true
 
     # 3 chordal errors: under the old slack of one step of a 4097-point sampling (0.042 here).
     far, true_far = moved(3.0 * nominal)

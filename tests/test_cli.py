@@ -23,8 +23,14 @@ def test_deform_writes_the_result_format(path, tmp_path, capsys):
     assert r["format"] == "section-result/1"
     assert set(r["area"]) == {"initial", "target", "final", "relative_error"}
     assert abs(r["area"]["relative_error"]) <= 1e-9
-    assert len(r["contour"]) == len(r["lower"]) + len(r["upper"]) - 2
-    assert r["contour"][0] == r["lower"][0] and r["upper"][0] == r["lower"][-1]
+    # The contour is the lower points, then the upper side back to the start, densified between the
+    # images of the characteristic points ("upper"), which it passes through in order.
+    contour, lower, upper = r["contour"], r["lower"], r["upper"]
+    assert len(contour) >= len(lower) + len(upper) - 2
+    assert contour[:len(lower)] == lower and upper[0] == lower[-1] and upper[-1] == lower[0]
+    back = contour[len(lower) - 1:] + contour[:1]
+    at = [back.index(p) for p in upper]
+    assert at[0] == 0 and at[-1] == len(back) - 1 and at == sorted(set(at))
     mesh = r["meshes"]["final"]
     assert len(mesh["cells"]) == mesh["layers"] * mesh["columns"]
     assert "relative error" in capsys.readouterr().out

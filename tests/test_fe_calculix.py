@@ -70,12 +70,16 @@ def test_solve_fe_cli_writes_a_section_result(ccx, tmp_path, capsys):
 
 def test_validate_against_calculix_writes_the_report_and_the_figure(ccx, tmp_path, capsys):
     report, fig = tmp_path / "v.json", tmp_path / "v.png"
-    args = ["validate", str(DATA / "square.json"), "--reference", "calculix", "--mesh-size", "0.5", "-q"]
+    # The square bent by its target changes its layers' aspect 6.6-fold, which the paper model refuses:
+    # the case's fast model is the hyperelastic one.
+    square = tmp_path / "square.json"
+    square.write_text(json.dumps({**json.loads((DATA / "square.json").read_text()), "options": {"model": "hyperelastic"}}))
+    args = ["validate", str(square), "--reference", "calculix", "--mesh-size", "0.5", "-q"]
     assert main([*args, "-o", str(report), "--plot", str(fig)]) == 0
     out = capsys.readouterr().out
     assert "Hausdorff" in out and "of the height" in out and "wrote" in out
     r = json.loads(report.read_text())
-    case = sd.load_case(DATA / "square.json")
+    case = sd.load_case(square)
     section = sd.build_section(case)
     height = float(np.max(section.upper[:, 1]) - np.min(section.lower[:, 1]))
     assert r["height"] == pytest.approx(height)

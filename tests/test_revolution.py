@@ -232,8 +232,11 @@ def test_the_physical_root_is_taken_when_the_body_grows_towards_the_axis():
     lower = [(w, radius), (0.0, radius)]  # drawn right to left: the body lies below, towards the axis
     upper = [(0.0, radius), (0.0, radius - h), (w, radius - h), (w, radius)]
     v0 = 2 * math.pi * w * h * (radius - h / 2)
-    body = deform(case_from_dict(one_body(lower, upper, {"volume_ratio": 2.5}))).bodies[0]
-    kh = radius - math.sqrt(radius**2 - 2 * 2.5 * v0 / (2 * math.pi * w))  # the smaller root of the quadratic
+    # 1.7: the smaller root k = 1.89 is within the paper model's height scale [0.5, 2] (2.5 gives k = 3.42, refused);
+    # the other root, 8.11, lies beyond the axis.
+    body = deform(case_from_dict(one_body(lower, upper, {"volume_ratio": 1.7}))).bodies[0]
+    kh = radius - math.sqrt(radius**2 - 2 * 1.7 * v0 / (2 * math.pi * w))  # the smaller root of the quadratic
+    assert body.info.height_scale == pytest.approx(kh / h, rel=1e-9)
     assert body.upper[1:3, 1] == pytest.approx(radius - kh, abs=1e-9)
     assert (body.contour[:, 1] >= 0).all()
     with pytest.raises(LawError, match=r"^bodies\[0\] 'ring': law: no height scale gives the volume"):
@@ -271,7 +274,7 @@ def test_bodies_on_both_sides_of_the_axis_or_crossed_by_it_are_refused():
 def test_a_target_that_brings_the_body_across_the_axis_is_refused():
     lower, upper = rectangle(0.0, 4.0, 1.0, 2.0)
     target = [(0.0, -1.0), (4.0, -1.0)]  # the support moved to the other side of the axis
-    with pytest.raises(GeometryError, match=r"^bodies\[0\] 'ring': the deformed body crosses the revolution axis"):
+    with pytest.raises(GeometryError, match=r"^bodies\[0\] 'ring': result: the deformed body crosses the revolution axis"):
         deform(case_from_dict(one_body(lower, upper, {"area_ratio": 1.0}, target)))
 
 

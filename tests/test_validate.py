@@ -24,7 +24,7 @@ COVER = CASES_DIR / "v2" / "cover-alone-on-arc.json"
 MESH = 0.4  # coarse reference: these tests check the comparison, not the reference's convergence
 LOWER = {"polyline": [[0.0, 0.0], [20.0, 0.0]]}
 UPPER = {"polyline": [[20.0, 0.0], [20.0, 5.0], [10.0, 6.0], [0.0, 5.0], [0.0, 0.0]]}
-TARGET = {"polyline": [[0.0, 0.0], [10.0, -2.0], [20.0, 0.0]]}
+TARGET = {"polyline": [[0.0, 0.0], [10.0, -1.5], [20.0, 0.0]]}  # a kink of 2 changes the pad's aspect 4.4-fold: refused by the paper model
 
 
 def shapely_hausdorff(a: np.ndarray, b: np.ndarray) -> float:
@@ -95,15 +95,18 @@ def test_revolution_distances_match_an_independent_computation(tread):
     assert bv.shape.max_pointwise >= bv.shape.hausdorff > 0  # two different models, one pairing of points
     # Over the height (12 mm: the tread's base to its crown) and over the mean thickness (area / base).
     assert v.height == pytest.approx(12.0, rel=1e-6)
-    assert bv.thickness == pytest.approx(shapely.Polygon(v.fast.initial_contour).area / 130.0, rel=1e-9)
+    # The area is the curves' exact one, which the initial polygon's chords miss by at most 2e-5 of it.
+    assert bv.thickness == pytest.approx(v.fast.area_initial / 130.0, rel=1e-9)
+    assert v.fast.area_initial == pytest.approx(shapely.Polygon(v.fast.initial_contour).area, rel=2e-5)
 
 
 def test_revolution_volumes_are_pappus_and_the_law(tread):
     f, r, bv = tread.fast.bodies[0], tread.reference.bodies[0], tread.bodies[0]
     v0 = pappus_volume(f.initial_contour, -250.0)
     assert bv.measure == "volume"
-    assert f.volume_initial == pytest.approx(v0, rel=1e-12)
-    assert f.volume_target == pytest.approx(0.98 * v0, rel=1e-12)
+    # The law holds against the curves' exact volume, which the initial polygon's misses by at most 2e-5 of it.
+    assert f.volume_initial == pytest.approx(v0, rel=2e-5)
+    assert f.volume_target == pytest.approx(0.98 * f.volume_initial, rel=1e-12)
     assert pappus_volume(f.contour, -250.0) == pytest.approx(f.volume_target, rel=1e-9)  # the fast model meets its law
     assert r.volume_initial == pytest.approx(v0, rel=1e-9)  # the reference meshes the same polygon
     assert abs(bv.fast_error) < 1e-9
@@ -129,7 +132,9 @@ def test_a_plane_one_body_case_with_both_models():
         assert v.model == model and not v.revolution
         length = shapely.LineString(ref.upper).length
         assert v.bodies[0].shape.hausdorff == pytest.approx(shapely_hausdorff(f.upper, ref.upper), abs=1e-3 * length)
-        target = 0.9 * shapely.Polygon(f.initial_contour).area
+        # The law holds against the curves' exact area, which the initial polygon's misses by at most 2e-5 of it.
+        assert f.area_initial == pytest.approx(shapely.Polygon(f.initial_contour).area, rel=2e-5)
+        target = 0.9 * f.area_initial
         assert f.area_target == pytest.approx(target, rel=1e-12)
         assert shapely.Polygon(f.contour).area == pytest.approx(target, rel=1e-9)
         assert abs(v.bodies[0].reference_error) < 2e-3

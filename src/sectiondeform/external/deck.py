@@ -331,7 +331,7 @@ def _bodies(problem, body_of: np.ndarray, areas: np.ndarray, axisymmetric: bool)
         target += law.target_area(area) if law.measure == "area" else area
         if abs(law.ratio - 1.0) > 1e-12:
             who = problem.label(i) or "the law"
-            if law.measure == "area" and not axisymmetric:
+            if law.growth is None and law.measure == "area" and not axisymmetric:  # not an extruded body's growth
                 unexpressed.append(_area_note(who, law.ratio))
             else:
                 unexpressed.append(f"{who} asks for {_law_text(law)}: volumetric growth has no place in a "

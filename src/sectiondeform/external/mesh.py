@@ -176,7 +176,7 @@ def check_deck_size(sections, sizes) -> float:
     >>> check_deck_size([unit], [1e-6])
     Traceback (most recent call last):
     ...
-    sectiondeform.errors.MeshError: solver mesh: 2.30941e+12 triangles needed, more than the bound 500000; raise --mesh-size (a fraction of the section's mean thickness)
+    sectiondeform.errors.MeshError: solver mesh: 2309405076759 triangles needed, more than the bound 500000; raise --mesh-size (a fraction of the section's mean thickness)
     """
     count = 0.0
     for section, size in zip(sections, sizes):

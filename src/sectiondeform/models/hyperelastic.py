@@ -241,9 +241,10 @@ def offset_to_area(ring: np.ndarray, movable: np.ndarray, signed_area: float) ->
     v[ok] = np.column_stack((tang[ok, 1], -tang[ok, 0])) / length[ok, None]
     cross = lambda a, b: a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]  # noqa: E731
     nxt = lambda a: np.roll(a, -1, axis=0)  # noqa: E731
-    area = 0.5 * float(cross(ring, nxt(ring)).sum())
+    local = ring - ring.mean(axis=0)  # the shoelace about the ring's own centre: far from the origin it keeps its digits
+    area = 0.5 * float(cross(local, nxt(local)).sum())
     c0 = area - signed_area
-    c1 = 0.5 * float((cross(v, nxt(ring)) + cross(ring, nxt(v))).sum())
+    c1 = 0.5 * float((cross(v, nxt(local)) + cross(local, nxt(v))).sum())  # translation invariant on a closed ring
     c2 = 0.5 * float(cross(v, nxt(v)).sum())
     if c1 == 0.0:
         raise LawError("law: no point of the upper curve is free to move to meet the area")
