@@ -132,9 +132,9 @@ class TableStore:
 
     def write_csv(self) -> Path:
         """``rows.csv`` next to ``rows.parquet``, streamed row group by row group (``warnings`` as a JSON list)."""
-        import pyarrow.csv as pacsv
-
         import json
+
+        import pyarrow.csv as pacsv
 
         out = self.outdir / "rows.csv"
         pf = pq.ParquetFile(self.path)
