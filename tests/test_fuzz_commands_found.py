@@ -24,3 +24,22 @@ def test_export_fe_of_a_section_whose_support_the_mesher_loses_is_one_line(tmp_p
     outcome = outcome_command_run(run, tmp_path)
     assert not outcome.failed, f"{outcome.kind}: {outcome.detail}"
     assert outcome.kind == "refused:exit-2" and "nodes on the support" in outcome.detail, sys.version
+
+
+def test_a_contact_loading_is_bounded_in_work_before_each_solve(monkeypatch):
+    """Found by the assemblies' fuzz: a rigid plate pressing a thin stack ran load step after load step (each
+    Newton solve within its own bound) for minutes. The loading as a whole is now bounded, checked before
+    each solve, and refused with the number, never halved further.
+    """
+    import sectiondeform as sd
+    from sectiondeform.models import hyperelastic_contact
+
+    case = sd.load_case(Path(__file__).parent / "data" / "cases" / "v2" / "bumper-under-plate.json")
+    assert sd.deform(case).rigid  # within the bound
+    monkeypatch.setattr(hyperelastic_contact, "MAX_LOADING_WORK", 1)
+    try:
+        sd.deform(case)
+    except sd.ConvergenceError as exc:
+        message = str(exc)
+    assert "Newton iterations" in message and "bound of 1 iterations x unknowns" in message
+    assert "halved" not in message and "\n" not in message
