@@ -201,7 +201,9 @@ def check_result(result, case=None) -> list[str]:
         fails.append(f"area_law: final {final!r} vs target {result.area_target!r}")
     if abs(final - result.area_final) > AREA_LAW_TOLERANCE * final:
         fails.append(f"area_reported: reported {result.area_final!r} vs recomputed {final!r}")
-    if abs(area_of(initial) - result.area_initial) > AREA_LAW_TOLERANCE * result.area_initial:
+    # The reported initial area is the curves' exact one (the law holds against it); the initial contour is
+    # their polygon within the chordal error, so the two agree to the section's area tolerance, not to 1e-8.
+    if abs(area_of(initial) - result.area_initial) > INITIAL_AREA_TOLERANCE * result.area_initial:
         fails.append(f"initial_reported: reported {result.area_initial!r} vs recomputed {area_of(initial)!r}")
     if not shapely.is_simple(shapely.linearrings(contour)):
         fails.append("simple: the deformed contour crosses itself")
