@@ -117,9 +117,10 @@ def main(argv=None) -> int:
         seconds.append(outcome.seconds)
         record(case, outcome, "api v2" if pick < share else "api")
         if pick < share and case.get("options", {}).get("model") == "hyperelastic" and case.get("name") == "fuzz-assembly":
-            stopped = "Newton stopped" in outcome.detail or "did not converge" in outcome.detail
+            unstable = "is unstable" in outcome.detail
+            stopped = not unstable and ("Newton stopped" in outcome.detail or "did not converge" in outcome.detail)
             newton["answered" if outcome.kind == "ok" else "Newton stopped / did not converge" if stopped
-                   else f"other {outcome.kind}"] += 1
+                   else "unstable material (named)" if unstable else f"other {outcome.kind}"] += 1
         if args.commands_every and n[0] % args.commands_every == 0:
             with tempfile.TemporaryDirectory() as folder:
                 record(command, outcome_command_run(command, Path(folder), args.limit), f"cmd {command['command']}")

@@ -717,8 +717,9 @@ def command_runs(draw, commands: tuple[str, ...] = COMMANDS):
             vary.pop("area_ratio")  # an assembly keeps each body's law
         study = {"format": "section-study/1", "name": "fuzz", "cases": [{"case": "case.json", "vary": vary}]}
         run["files"]["study.json"] = json.dumps(study)
+        rows = math.prod(len(v) for v in vary.values())  # each row a deform run, bounded as one
         run["steps"].append({"args": ["sweep", "study.json", "-o", "out", "--workers", "0", "--quiet", "--csv"],
-                             "outputs": ["out"], "quiet": True})
+                             "outputs": ["out"], "quiet": True, "rows": rows})
     else:
         ext = draw(st.sampled_from([".dxf", ".svg"]))
         run["steps"].append({"args": ["convert", "case.json", f"case{ext}"], "outputs": [f"case{ext}"]})
@@ -756,7 +757,8 @@ def outcome_command_run(run: dict, folder: Path, limit_s: float = TIME_LIMIT_S) 
 
     Each step as a ``sdfuzz-bundle/1`` step (exit 0, or 2 with one line and
     none of its outputs written; no traceback, no warning, nothing
-    non-finite on stdout), and beyond: a deck written by ``export-fe`` holds
+    non-finite on stdout; a sweep gets the time limit once per row, each row
+    being a ``deform`` run), and beyond: a deck written by ``export-fe`` holds
     no real longer than CalculiX reads; a ``--quiet`` sweep that succeeds
     prints nothing; the case ``convert`` wrote back (JSON) reads again.
     """
@@ -772,7 +774,7 @@ def outcome_command_run(run: dict, folder: Path, limit_s: float = TIME_LIMIT_S) 
             text = path.read_text(encoding="utf-8", errors="surrogateescape")
             path.write_bytes(_damage_text(text, run["damage"]).encode("utf-8", errors="surrogateescape"))
         outcome = _run_step({"cmd": step["args"][0], "args": step["args"][1:], "outputs": step["outputs"]},
-                            folder, limit_s)
+                            folder, limit_s * step.get("rows", 1))
         if outcome.kind != "ok":
             return outcome
         if step.get("quiet") and outcome.detail:
