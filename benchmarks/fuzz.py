@@ -1,10 +1,16 @@
 """The fuzz tests' generator at scale: count the outcomes, keep every input that breaks the promise.
 
-Draws ``--count`` cases from the generator of ``tests/fuzz_cases.py`` (both
-models, a quarter damaged) with hypothesis under ``--seed``, runs each
-through the library (``load_case``-equivalent and ``deform``, then the
-independent checks of :mod:`sectiondeform.verify`), and every
-``--cli-every``-th one also through the command line in a new process.
+Draws ``--count`` cases from the generators of ``tests/fuzz_cases.py``
+with hypothesis under ``--seed``: a share ``--v2`` of them assemblies and
+bodies of revolution (``assemblies``: 1-4 bodies stacked or side by side,
+stiffness contrasts to 1000, thin layers, every rubber model, rigid parts),
+the rest one-body cases (``cases``, both models, a quarter damaged). Runs
+each through the library (``load_case``-equivalent and ``deform``, then the
+independent checks: :func:`sectiondeform.verify.check_result`, or
+``check_bodies`` body by body), every ``--cli-every``-th one also through
+``sectiondeform deform`` in a new process, and every ``--commands-every``-th
+draws a run of another command (``fit``, ``sweep``, ``export-fe``,
+``convert``, ``convert`` of a damaged DXF or SVG: ``command_runs``).
 Prints progress on stderr and, at the end, the outcomes: ``ok`` (a result
 that passes the checks), ``refused:<ErrorClass>`` (one clean line) and
 ``failure:<what>`` (crash, multi-line message, failed check, numpy warning,
@@ -30,8 +36,17 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from fuzz_cases import TIME_LIMIT_S, cases, outcome_api, outcome_cli  # noqa: E402
+from fuzz_cases import (  # noqa: E402
+    TIME_LIMIT_S,
+    assemblies,
+    cases,
+    command_runs,
+    outcome_api,
+    outcome_cli,
+    outcome_command_run,
+)
 from hypothesis import HealthCheck, Phase, given, seed, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
 
 
 class _Stop(Exception):
@@ -45,6 +60,12 @@ def main(argv=None) -> int:
     parser.add_argument("--damage", type=float, default=0.25, help="share of damaged inputs (default 0.25)")
     parser.add_argument("--cli-every", type=int, default=50, metavar="N",
                         help="also run every N-th input through the command line (0: never; default 50)")
+    parser.add_argument("--v2", type=float, default=0.5,
+                        help="share of assemblies and bodies of revolution among the inputs (default 0.5)")
+    parser.add_argument("--commands-every", type=int, default=20, metavar="N",
+                        help="also run a generated fit, sweep, export-fe or convert every N-th input (0: never; default 20)")
+    parser.add_argument("--only-commands", action="store_true",
+                        help="draw only command runs (fit, sweep, export-fe, convert): --count of them")
     parser.add_argument("--limit", type=float, default=TIME_LIMIT_S, help=f"seconds per input (default {TIME_LIMIT_S:g})")
     parser.add_argument("--max-minutes", type=float, default=None,
                         help="stop drawing new inputs after this many minutes (the summary says how many ran)")
@@ -54,6 +75,7 @@ def main(argv=None) -> int:
 
     counts: collections.Counter[str] = collections.Counter()
     by_model: dict[str, collections.Counter[str]] = collections.defaultdict(collections.Counter)
+    newton = collections.Counter()  # hyperelastic assemblies without damage: answered, Newton refusals
     seconds: list[float] = []
     failures: list[str] = []
     start = time.perf_counter()
@@ -61,30 +83,47 @@ def main(argv=None) -> int:
 
     def record(case, outcome, via):
         counts[f"{via} {outcome.kind}"] += 1
-        if via == "api":
+        if via.startswith("api"):
             options = case.get("options")
             model = options.get("model") if isinstance(options, dict) else None
             by_model[str(model)][outcome.kind.split(":")[0]] += 1
         if outcome.failed:
             args.failures.mkdir(parents=True, exist_ok=True)
             stem = f"{via}-{outcome.kind.replace(':', '-')}-{args.seed}-{n[0]}"
+            stem = stem.replace(" ", "-")
             (args.failures / f"{stem}.json").write_text(json.dumps(case), encoding="utf-8")
             (args.failures / f"{stem}.txt").write_text(f"{via} {outcome.kind} after {outcome.seconds:.2f} s: {outcome.detail}\n",
                                                       encoding="utf-8")
             failures.append(f"{stem}: {outcome.detail[:200]}")
             print(f"FAILURE {stem}: {outcome.detail[:200]}", file=sys.stderr)
 
+    share = round(1000 * args.v2)
+
     @seed(args.seed)
     @settings(max_examples=args.count, database=None, deadline=None, phases=[Phase.generate],
               suppress_health_check=list(HealthCheck))
-    @given(case=cases(damage=args.damage))
-    def run(case):
+    @given(pick=st.integers(0, 999), one=cases(damage=args.damage), many=assemblies(),
+           command=command_runs())
+    def run(pick, one, many, command):
+        case = many if pick < share else one
         if args.max_minutes is not None and time.perf_counter() - start > 60.0 * args.max_minutes:
             raise _Stop
         n[0] += 1
+        if args.only_commands:
+            with tempfile.TemporaryDirectory() as folder:
+                record(command, outcome_command_run(command, Path(folder), args.limit), f"cmd {command['command']}")
+            return
         outcome = outcome_api(case, args.limit)
         seconds.append(outcome.seconds)
-        record(case, outcome, "api")
+        record(case, outcome, "api v2" if pick < share else "api")
+        if pick < share and case.get("options", {}).get("model") == "hyperelastic" and case.get("name") == "fuzz-assembly":
+            unstable = "is unstable" in outcome.detail
+            stopped = not unstable and ("Newton stopped" in outcome.detail or "did not converge" in outcome.detail)
+            newton["answered" if outcome.kind == "ok" else "Newton stopped / did not converge" if stopped
+                   else "unstable material (named)" if unstable else f"other {outcome.kind}"] += 1
+        if args.commands_every and n[0] % args.commands_every == 0:
+            with tempfile.TemporaryDirectory() as folder:
+                record(command, outcome_command_run(command, Path(folder), args.limit), f"cmd {command['command']}")
         if args.cli_every and n[0] % args.cli_every == 0:
             with tempfile.TemporaryDirectory() as folder:
                 record(case, outcome_cli(case, Path(folder), args.limit), "cli")
@@ -105,6 +144,10 @@ def main(argv=None) -> int:
     print("by model (api):")
     for model, c in sorted(by_model.items()):
         print(f"  {model}: " + ", ".join(f"{k} {v}" for k, v in sorted(c.items())))
+    total = sum(newton.values())
+    print(f"hyperelastic model on undamaged generated assemblies and bodies of revolution: {total}")
+    for key, value in sorted(newton.items(), key=lambda kv: -kv[1]):
+        print(f"  {value:6d}  ({100 * value / total:.1f} %)  {key}")
     print(f"failures: {len(failures)}" + (f", saved in {args.failures}" if failures else ""))
     return 1 if failures else 0
 

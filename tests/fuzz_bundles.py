@@ -96,7 +96,7 @@ def _run_step(step: dict, folder: Path, limit_s: float) -> Outcome:
         return Outcome(f"failure:exit-{run.returncode}", err[-600:], seconds)
     if _NON_FINITE.search(run.stdout):
         return Outcome("failure:non-finite", run.stdout[-600:], seconds)
-    return Outcome("ok", "", seconds)
+    return Outcome("ok", (run.stdout + run.stderr)[-600:], seconds)  # what it printed
 
 
 def outcome_bundle(path: Path, folder: Path, limit_s: float = TIME_LIMIT_S) -> Outcome:

@@ -42,7 +42,7 @@ def test_a_branch_and_separate_chains_are_errors_naming_where():
     with pytest.raises(CaseError, match=r"branch at \(1, 0\): 3 pieces meet"):
         one_chain([Piece(c, frozenset(), f"p{i}") for i, c in enumerate(legs)], "layer X", 1e-9)
     apart = [Polyline([[0, 0], [1, 0]]), Polyline([[1.5, 0], [2, 0]])]
-    with pytest.raises(CaseError, match=r"nearest gap is 0\.5 .* snap=0\.505"):
+    with pytest.raises(CaseError, match=r"nearest gap is 0\.5 .* option snap at 0\.505"):
         one_chain([Piece(c, frozenset(), f"p{i}") for i, c in enumerate(apart)], "layer X", 1e-9)
 
 

@@ -82,7 +82,7 @@ def test_rows_meet_the_law_and_keep_inputs(tmp_path):
     for r in table.to_pylist():
         assert r["ok"], r["error"]
         assert r["area_final"] == pytest.approx(r["area_ratio"] * r["area_initial"], rel=1e-9)
-        assert abs(r["relative_error"]) < 1e-9 and r["jacobian_min"] > 0
+        assert abs(r["relative_error"]) < 1e-9 and r["final_jacobian_min"] > 0 and r["final_area_stretch_min"] is None
     assert table.column("row").to_pylist() == [0, 1, 2, 3]
     assert [(r["area_ratio"], r["crown"]) for r in table.to_pylist()] == [(0.75, 0.0), (0.75, 3.0), (0.9, 0.0), (0.9, 3.0)]
 
@@ -258,3 +258,70 @@ def test_an_area_ratio_axis_on_a_case_of_several_bodies_is_refused(tmp_path):
     with pytest.raises(StudyError) as exc:
         load_study(path)
     assert str(exc.value).startswith("cases[0].vary.area_ratio: sets the law of a one-body case; this case has 2 bodies")
+
+
+def _row_problem(problem, row):
+    """The case of one table row: its target transformed as the row says, its law the row's."""
+    amounts = {k: row[k] for k in ("bend_radius", "crown", "stretch", "scale", "rotate_deg", "translate_x", "translate_y")}
+    if any(v is not None for v in amounts.values()):
+        problem = problem.replace(target=transformed_target(problem.target, **amounts))
+    if row["area_ratio"] is not None:
+        problem = problem.replace(law=sd.AreaRatio(row["area_ratio"]))
+    return problem
+
+
+@pytest.mark.parametrize("case, model, vary", [
+    ("paper-example.json", "paper", {"area_ratio": [0.8, 0.95], "bend_radius": [None, 60, -150, 400], "crown": [0.0, 3.0]}),
+    ("grooved-tread.json", "hyperelastic", {"bend_radius": [None, -120.0], "stretch": [1.0, 1.1]}),
+])
+def test_each_row_is_what_deform_gives_for_it(tmp_path, case, model, vary):
+    """A row is ``deform`` of the row's case: same contour to 1e-9 of the size, same figures, same warnings."""
+    path = _study(tmp_path, vary, extra={"cases": [{"case": case, "vary": {**vary, "model": [model]}}]})
+    table = sd.sweep(path, tmp_path / "out", workers=0, save="results").to_pylist()
+    problem = sd.load_case(tmp_path / case)
+    size = float(np.ptp(np.asarray(sd.deform(problem, model).contour), axis=0).max())
+    warned = 0
+    for row in table:
+        try:
+            expected = sd.deform(_row_problem(problem, row), model)
+        except sd.SectionDeformError as exc:
+            assert not row["ok"] and row["error_type"] == type(exc).__name__ and row["error"] == str(exc), row
+            continue
+        assert row["ok"], row["error"]
+        saved = json.loads((tmp_path / "out" / "results" / f"{row['row_id']}.json").read_text())
+        contour = np.asarray(saved["contour"])
+        assert contour.shape == np.asarray(expected.contour).shape
+        assert np.abs(contour - expected.contour).max() <= 1e-9 * size
+        assert row["warnings"] == list(expected.warnings)
+        warned += bool(expected.warnings)
+        quality = expected.bodies[0].quality.to_json()
+        for column in ("final_jacobian_min", "final_area_stretch_min"):
+            assert row[column] == (pytest.approx(quality[column], rel=1e-9) if column in quality else None)
+    assert sum(r["ok"] for r in table) >= len(table) // 2
+
+
+def test_each_column_has_one_unit_and_warnings_are_a_list(tmp_path):
+    from sectiondeform.studies.table import SCHEMA
+
+    study = _study(tmp_path, {}, extra={"cases": [{"case": "grooved-tread.json", "vary": {"area_ratio": [0.8, 1.0]}}]})
+    table = pq.read_table(sd.sweep(study, tmp_path / "out", workers=0, csv=True) and tmp_path / "out" / "rows.parquet")
+    assert "jacobian_min" not in table.column_names
+    units = {f.name: (f.metadata or {}).get(b"unit") for f in SCHEMA}
+    assert units["final_jacobian_min"] == "units²".encode() and units["final_area_stretch_min"] == b"1"
+    assert table.schema.field("warnings").type == pa.list_(pa.string())
+    rows = table.to_pylist()
+    assert rows[0]["warnings"] and rows[1]["warnings"] == []  # the heights change by -20 %: warned
+    assert all(isinstance(w, str) and "\n" not in w for r in rows for w in r["warnings"] or [])
+    import csv
+
+    with open(tmp_path / "out" / "rows.csv", newline="", encoding="utf-8") as f:
+        cells = [json.loads(r["warnings"]) if r["warnings"] else None for r in csv.DictReader(f)]
+    assert cells == [r["warnings"] for r in rows]
+
+
+def test_sweep_quiet_prints_nothing_on_success(tmp_path):
+    path = _study(tmp_path, {"area_ratio": [0.8, 0.9]})
+    run = subprocess.run([sys.executable, "-m", "sectiondeform", "sweep", str(path), "-o", str(tmp_path / "out"),
+                          "--workers", "0", "--quiet"], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0 and run.stdout == "" and run.stderr == ""
+    assert (tmp_path / "out" / "rows.parquet").is_file()

@@ -13,10 +13,14 @@ against the finite-element reference, ``docs/validation.md``) when
   (:func:`bend_change`, for a straight lower curve the height over the
   target's radius of curvature).
 
-* the law **changes the heights** by more than :data:`HEIGHT_CHANGE_LIMIT`:
-  the paper model puts the law's whole area change into the heights (its
-  height scale ``k``), where the material also spreads it sideways at free
-  walls and grooves and out of plane (the grooved tread).
+* the law **changes the heights** by more than :data:`HEIGHT_CHANGE_LIMIT`
+  beyond what the body's motion itself implies: the paper model puts the
+  law's whole area change into the heights (its height scale ``k``), where
+  the material also spreads it sideways at free walls and grooves and out
+  of plane (the grooved tread). The part of ``k`` that a uniform map keeping
+  the material gives (:func:`uniform_height_scale`: the support stretched
+  along its length, a body of revolution moved away from its axis) is exact,
+  not a distortion, and is not counted.
 
 And its answer means little whatever the material when the height scale
 ``k``, the stretch of the elements along the layers or their final aspect
@@ -39,6 +43,7 @@ __all__ = [
     "bend_change",
     "stretch_range",
     "aspect_change",
+    "uniform_height_scale",
     "applicability_warnings",
     "extent_warnings",
     "OVERHANG_LIMIT",
@@ -228,6 +233,42 @@ def aspect_change(initial: np.ndarray, final: np.ndarray) -> float:
     return float(np.maximum(q, 1.0 / q).max()) if len(q) else 1.0
 
 
+def uniform_height_scale(lower_length: float, target_length: float, density: float, final_density: float) -> float:
+    """The height scale of a uniform map that follows the support and keeps the material.
+
+    A body whose lower curve is stretched by ``s`` (target length over lower
+    length) and whose heights all scale by ``k`` keeps its law's quantity
+    when ``k s rho1 / rho0 = 1``, ``rho`` being the law's quantity per unit
+    area of section (1 for an area; ``2 pi`` times the centroid's distance
+    from the axis for a volume of revolution, Pappus). That share of the
+    paper model's ``k`` is the motion's, exact for a uniform map (a ring of
+    rubber moved away from its axis thins as the closed form says), not a
+    distortion; the height-change warning measures ``k`` against it.
+
+    Parameters
+    ----------
+    lower_length, target_length : float
+        Lengths of the body's lower polyline and of its image, units (> 0).
+    density, final_density : float
+        The law's quantity over the area, of the initial and the final
+        section: 1 for an area law, ``2 pi`` x centroid distance (units) for
+        a volume law.
+
+    Returns
+    -------
+    float
+        Dimensionless, > 0.
+
+    Examples
+    --------
+    >>> uniform_height_scale(10.0, 12.5, 1.0, 1.0)   # a plane body stretched 1.25 along its base
+    0.8
+    >>> round(uniform_height_scale(30.0, 30.0, 2 * math.pi * 105.0, 2 * math.pi * 133.92), 3)  # a ring moved out
+    0.784
+    """
+    return lower_length / (target_length * final_density / density)
+
+
 def applicability_warnings(height: float, overhang_length: float, bend: float, virtual_columns: tuple[int, int]) -> list[str]:
     """Warnings that the paper model may be far from the material, one per figure beyond its limit.
 
@@ -286,13 +327,15 @@ def extent_refusal(height_scale: float, aspect: float) -> str | None:
     return f"result: {why} beyond what the paper model can mean; {REFUSAL_FIX}"
 
 
-def extent_warnings(height_scale: float, stretch: tuple[float, float], aspect: float) -> list[str]:
+def extent_warnings(height_scale: float, stretch: tuple[float, float], aspect: float,
+                    uniform_scale: float = 1.0) -> list[str]:
     """Warnings for a placement near the documented limits of the layered map (``docs/method.md``).
 
     What is beyond them is refused (:func:`extent_refusal`); these are the
     milder figures: the heights changed by more than
-    :data:`HEIGHT_CHANGE_LIMIT`, elements stretched along the layers beyond
-    :data:`STRETCH_LIMITS`.
+    :data:`HEIGHT_CHANGE_LIMIT` beyond the uniform map's share
+    (``height_scale / uniform_scale``), elements stretched along the layers
+    beyond :data:`STRETCH_LIMITS`.
 
     Parameters
     ----------
@@ -302,11 +345,18 @@ def extent_warnings(height_scale: float, stretch: tuple[float, float], aspect: f
         :func:`stretch_range`.
     aspect : float
         :func:`aspect_change` (unused: its limit is a refusal).
+    uniform_scale : float
+        :func:`uniform_height_scale`: the share of ``k`` the body's motion
+        gives a uniform map (1: a body that keeps its base's length and,
+        for a body of revolution, its distance from the axis).
     """
     out = []
-    if abs(height_scale - 1.0) > HEIGHT_CHANGE_LIMIT:
+    change = height_scale / uniform_scale - 1.0
+    if abs(change) > HEIGHT_CHANGE_LIMIT:
+        motion = "" if abs(uniform_scale - 1.0) < 1e-9 else \
+            f" beyond the {uniform_scale:.3g} of a uniform map that follows the support"
         out.append(
-            f"result: the heights change by {100.0 * (height_scale - 1.0):+.3g} % (k = {height_scale:.3g}, limit "
+            f"result: the heights change by {100.0 * change:+.3g} %{motion} (k = {height_scale:.3g}, limit "
             f"{100.0 * HEIGHT_CHANGE_LIMIT:g} %): the paper model puts the law's whole area change into the heights; {HINT}"
         )
     lo, hi = STRETCH_LIMITS

@@ -15,7 +15,7 @@ import sys
 
 from . import __version__, commands
 from .commands._io_args import coordinate_tokens
-from .errors import SectionDeformError
+from .errors import SectionDeformError, spelled
 
 __all__ = ["main", "build_parser"]
 
@@ -56,8 +56,10 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(coordinate_tokens(sys.argv[1:] if argv is None else list(argv)))
     try:
         return int(args._run(args) or 0)
-    except SectionDeformError as exc:
-        print(f"sectiondeform {args.command}: error: {exc}", file=sys.stderr)
+    except SectionDeformError as exc:  # the library's option names in the command line's words
+        from .commands._common import OPTION_FLAGS
+
+        print(f"sectiondeform {args.command}: error: {spelled(str(exc), OPTION_FLAGS)}", file=sys.stderr)
         return 2
     except OSError as exc:  # a file that cannot be read or written: one line, not a traceback
         print(f"sectiondeform {args.command}: error: {exc}", file=sys.stderr)

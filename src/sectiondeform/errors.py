@@ -8,6 +8,8 @@ status 2.
 
 from __future__ import annotations
 
+import re
+
 
 class SectionDeformError(Exception):
     """Base class of every error raised on purpose by sectiondeform.
@@ -18,6 +20,44 @@ class SectionDeformError(Exception):
 
     def __str__(self) -> str:
         return " ".join(super().__str__().split())
+
+
+OPTION_PHRASE = re.compile(r"\boption ([a-z][a-z_]*)\b(?: at ([-+0-9.eE]*[0-9]))?")
+"""How a message names an option of the library: ``option simplify``, or with a value ``option snap at 0.1``
+(neutral words, no syntax of any surface).
+
+A surface writes it in its own words with :func:`spelled`: the command line
+as its flag (``--simplify TOL``), the page as its field's label.
+"""
+
+
+def spelled(text: str, names: dict) -> str:
+    """``text`` with every ``option KEY`` that ``names`` holds written ``names[KEY]`` (its flag and the value
+    with ``at VALUE``), and a leading field ``KEY:`` as the flag.
+
+    Parameters
+    ----------
+    text : str
+        A message of the library.
+    names : dict of str to str
+        The surface's spelling of each option key.
+
+    Examples
+    --------
+    >>> names = {"simplify": "--simplify TOL", "split": "--split XA,YA XB,YB", "snap": "--snap D"}
+    >>> spelled("simplify: must be > 0; give option split, or option snap at 0.2", names)
+    '--simplify: must be > 0; give --split XA,YA XB,YB, or --snap 0.2'
+    """
+    field, sep, rest = text.partition(": ")
+    if sep and field in names:
+        text = names[field].split()[0] + sep + rest
+
+    def spell(m):
+        name = names.get(m.group(1))
+        if name is None:
+            return m.group(0)
+        return f"{name.split()[0]} {m.group(2)}" if m.group(2) else name
+    return OPTION_PHRASE.sub(spell, text)
 
 
 class CaseError(SectionDeformError, ValueError):

@@ -597,7 +597,7 @@ def _grow(base, height, orientation, cover, off_base, tol, max_layers, smoother,
             if len(base) >= SCAN_MIN_POINTS and zigzag_fraction(base) > SCAN_ZIGZAG:  # a scan's noise, not a bend
                 advice = (f"the lower curve is a noisy polyline ({len(base)} points, turning left and right at "
                           f"{100 * zigzag_fraction(base):.0f}% of them, as a scan does): simplify it within a small "
-                          "tolerance (simplify=TOL when reading the drawing, or Curve.simplified(TOL))")
+                          "tolerance (option simplify when reading the drawing)")
             else:
                 advice = "the lower curve bends too sharply for this element size: lower options.element_size or smooth the lower curve"
             raise MeshError(

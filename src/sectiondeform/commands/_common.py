@@ -4,10 +4,20 @@ from __future__ import annotations
 
 import sys
 
-from ..errors import CaseError
+from ..errors import CaseError, spelled
 from ..laws import AreaRatio
 from ..models import MODEL_NAMES
 from ..result import RESULT_V1
+
+OPTION_FLAGS = {
+    "layers": "--layers ROLE=NAME,...", "split": "--split XA,YA XB,YB", "split_tol": "--split-tol D",
+    "lower_side": "--lower-side SIDE", "target_arc": "--target-arc SAGITTA", "bbox": "--bbox XMIN,YMIN,XMAX,YMAX",
+    "snap": "--snap D", "close_gap": "--close-gap MAXLEN", "join_tol": "--join-tol D", "simplify": "--simplify TOL",
+    "chordal_error": "--chordal-error TOL", "units": "--units UNIT", "law": "--area-ratio R",
+}
+"""The command line's spelling of each library option a message may name (``option simplify``, or a
+field ``simplify: ...``): :func:`~sectiondeform.errors.spelled` writes every error the command line prints
+with these."""
 
 
 def add_model_args(parser) -> None:
@@ -90,7 +100,7 @@ def summary(result, warnings: bool = True) -> str:
 def print_warnings(warnings) -> None:
     """Each warning on stderr as one line, ``warning: <text>``."""
     for w in warnings:
-        eprint("warning: " + " ".join(str(w).split()))
+        eprint("warning: " + spelled(" ".join(str(w).split()), OPTION_FLAGS))
 
 
 def eprint(*args) -> None:

@@ -3,10 +3,9 @@
 from __future__ import annotations
 
 import argparse
-import re
 from pathlib import Path
 
-from ..errors import CaseError, require
+from ..errors import require
 from ..io import (
     FIGURE_FORMATS,
     MESH_FORMATS,
@@ -112,33 +111,11 @@ def input_options(args) -> dict:
     return opts
 
 
-# The library names an option in a message as ``name=value``; the command line's flag for each.
-_SAYS = {**FLAGS, "law": "--area-ratio"}
-_PHRASES = {"layers={lower: NAME, upper: NAME}": "--layers lower=NAME,upper=NAME", "split=(A, B)": "--split XA,YA XB,YB",
-            "layers={contour: NAME}": "--layers contour=NAME", "bbox=(XMIN, YMIN, XMAX, YMAX)": "--bbox XMIN,YMIN,XMAX,YMAX"}
-_NAMED = re.compile(r"\b(" + "|".join(_SAYS) + r")=(AreaRatio\((\w+)\)|\{[^}]*\}|\([^)]*\))?")
-
-
-def _flag_words(text: str) -> str:
-    """``text`` with ``snap=0.1`` written ``--snap 0.1``, ``law=AreaRatio(R)`` ``--area-ratio R``..."""
-    for library, cli in _PHRASES.items():
-        text = text.replace(library, cli)
-
-    def flag(m):
-        name, value, ratio = m.group(1), m.group(2), m.group(3)
-        if ratio:
-            return f"{_SAYS[name]} {ratio}"
-        return _SAYS[name] + " " if value is None else _SAYS[name] + " ..."
-    return _NAMED.sub(flag, text)
-
-
 def read_input_case(path, args, report: list | None = None):
-    """Read the case at ``path`` with the drawing options of ``args``; errors name the flag at fault."""
-    try:
-        return read_case(path, report=report, **input_options(args))
-    except CaseError as exc:
-        field = _SAYS.get(exc.field, exc.field)
-        raise CaseError(field, _flag_words(exc.problem)) from None
+    """Read the case at ``path`` with the drawing options of ``args`` (errors name the option: the command
+    line spells it as its flag, :data:`~sectiondeform.commands._common.OPTION_FLAGS`).
+    """
+    return read_case(path, report=report, **input_options(args))
 
 
 def add_output_args(parser) -> None:

@@ -26,7 +26,7 @@ def add_args(parser) -> None:
                         help="per-row files in OUTDIR/results/: result JSON, or result JSON and PNG figure")
     parser.add_argument("--csv", action="store_true", help="also write OUTDIR/rows.csv")
     parser.add_argument("--reference", type=Path, metavar="RESULT", help="result JSON (one body, or as many as the cases): add each row's Hausdorff distance to it")
-    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    parser.add_argument("--quiet", action="store_true", help="print nothing on success (no progress, no summary)")
 
 
 def run(args) -> int:
@@ -38,6 +38,8 @@ def run(args) -> int:
     study = _as_study(args.study, args.reference)
     info = run_study(study, args.output, workers=args.workers, scheduler=args.scheduler,
                      save=args.save, csv=args.csv, quiet=args.quiet)
+    if args.quiet:
+        return 0
     print(f"{study.name}: {info['rows']} rows, {info['skipped']} already done, {info['run']} run, {info['failed']} failed")
     print(f"  wrote {info['table']}" + (f", {info['csv']}" if info["csv"] else ""))
     return 0

@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import CaseError
+from ..errors import CaseError, MeshError
 from ..materials.models import material_from_json
 from ..problem import V1
 from .axis import AxisFrame, axis_frame, reverse_orientation
@@ -381,6 +381,9 @@ def build_deck(problem, element: str | None = None, mesh_size: float = DEFAULT_M
     order = np.argsort(body_of, kind="stable")  # each body's elements in one run of numbers
     mesh = dataclasses.replace(mesh, cells=mesh.cells[order])
     mesh.cells.setflags(write=False)
+    if len(mesh.lower_nodes) < 2:  # nothing to move the bodies by: a deck without loading
+        raise MeshError(f"deck mesh: {len(mesh.lower_nodes)} nodes on the support, at least 2 needed to move it; "
+                        "the mesher lost the support of this small section: draw it in a smaller unit (larger numbers)")
     support = np.asarray(problem.target.at_fractions(mesh.lower_fractions), dtype=np.float64)
     areas = element_areas(mesh.points, mesh.cells, mesh.corners)
     axis = axis_frame(problem.revolution.axis, mesh.points) if axisymmetric else None

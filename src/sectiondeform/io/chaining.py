@@ -387,8 +387,8 @@ def one_chain(pieces: list[Piece], where: str, tol: float, snap: float = 0.0, cl
                 where,
                 f"the pieces form {len(paths)} separate chains, not one; the nearest gap is "
                 f"{d[i, j]:.4g} between {fmt_point(ends[i])} and {fmt_point(ends[j])}; join them in the "
-                f"drawing, or allow it with snap={d[i, j] * 1.01:.3g} (move the ends together) or "
-                f"close_gap={d[i, j] * 1.01:.3g} (add a straight piece)",
+                f"drawing, or allow it with option snap at {d[i, j] * 1.01:.3g} (move the ends together) or "
+                f"option close_gap at {d[i, j] * 1.01:.3g} (add a straight piece)",
             )
         raise CaseError(where, f"the pieces form {len(paths)} separate chains ({sum(p.closed for p in paths)} closed), not one")
     path = paths[0]
@@ -398,7 +398,7 @@ def one_chain(pieces: list[Piece], where: str, tol: float, snap: float = 0.0, cl
         raise CaseError(
             where,
             f"the contour is not closed: a gap of {gap:.4g} between {fmt_point(a)} and {fmt_point(b)}; "
-            f"close it in the drawing or with close_gap={gap * 1.01:.3g}",
+            f"close it in the drawing or with option close_gap at {gap * 1.01:.3g}",
         )
     if closed is False and path.closed:
         raise CaseError(where, "is a closed loop; an open curve is expected here")

@@ -352,7 +352,7 @@ def _split_ring(ring: np.ndarray, pa: np.ndarray, pb: np.ndarray, lower_side: st
     ring, ib, db = _nearest_on_ring(ring, pb)
     for label, p, d in (("A", pa, da), ("B", pb, db)):
         if d > limit:
-            raise CaseError("split", f"{label} {fmt_point(p)} is {d:.4g} from the {where}, more than split_tol={limit:.4g}; "
+            raise CaseError("split", f"{label} {fmt_point(p)} is {d:.4g} from the {where}, more than option split_tol ({limit:.4g}); "
                                      "give a point on the contour")
     if ib == 0:
         raise CaseError("split", f"A {fmt_point(pa)} and B {fmt_point(pb)} fall on the same contour point")
@@ -376,7 +376,7 @@ def curves_from_contour(pieces, ctx: Context, report) -> tuple[Curve, Curve]:
         chosen = [p for p in pieces if target_key not in p.tags]
         bad = [p for p in chosen if p.curve is None]
         if bad:
-            raise CaseError(where, f"unsupported entity {bad[0].source}; restrict the contour with layers={{contour: NAME}} or bbox=(XMIN, YMIN, XMAX, YMAX)")
+            raise CaseError(where, f"unsupported entity {bad[0].source}; restrict the contour with option layers (the contour's layer) or option bbox")
     ring = ctx.chain(chosen, where, True, report).characteristic_points(ctx.chord)[:-1]
     pa, pb = (np.asarray(p, dtype=np.float64) for p in ctx.options.split)
     size = float(np.hypot(*np.ptp(ring, axis=0))) or 1.0
@@ -404,7 +404,7 @@ def curves_from_layers(pieces, ctx: Context, meta: dict, path: Path, report) -> 
         raise CaseError(
             str(path),
             f"{ctx.what} {' and '.join(repr(m) for m in missing)} not found (the drawing has: {', '.join(found) or 'none'}); "
-            "name them with layers={lower: NAME, upper: NAME}, or give split=(A, B) for one closed contour",
+            "name the lower and upper layers (option layers), or give the split points (option split) for one closed contour",
         )
     lower = ctx.chain(ctx.select(pieces, "lower"), ctx.where("lower"), False, report)
     upper = ctx.chain(ctx.select(pieces, "upper"), ctx.where("upper"), False, report)
@@ -476,6 +476,6 @@ def find_target(pieces, support: Curve, curves, ctx: Context, meta: dict, path: 
         return o.target
     raise CaseError(
         str(path),
-        f"no target: draw it on {ctx.where('target')!r}, give target_arc=SAGITTA (an arc as long as the support), "
+        f"no target: draw it on {ctx.where('target')!r}, give option target_arc (an arc as long as the support), "
         "or a target in the case JSON",
     )

@@ -42,6 +42,7 @@ from ..fem.contact import (
     free_boundary,
     ring_factor,
 )
+from ..limits import MAX_NEWTON_WORK
 
 __all__ = ["Contact", "ContactState", "HistoryStep", "PENETRATION_WARNING", "MAX_HALVINGS"]
 
@@ -49,6 +50,13 @@ PENETRATION_WARNING = 1e-2
 """A penetration left above this fraction of the element size is a warning."""
 MAX_HALVINGS = 6
 """A load step is halved at most this many times before the loading is refused."""
+MAX_LOADING_WORK = MAX_NEWTON_WORK
+"""Newton iterations x unknowns of a whole contact loading, all load steps and updates together (checked
+before each solve): the bound of one plain solve (:data:`~sectiondeform.limits.MAX_NEWTON_WORK`)."""
+
+
+class _LoadingBound(ConvergenceError):
+    """The contact loading reached :data:`MAX_LOADING_WORK`: refused as it is, no smaller step tried."""
 MIN_STEPS, MAX_STEPS = 4, 32
 STEP_FRACTION = 0.25
 """A load step moves a part by at most this fraction of the smallest element size (within MIN_STEPS..MAX_STEPS steps)."""
@@ -182,7 +190,14 @@ class Contact:
         state = base
         history = []
 
+        unknowns = len(base.z)
+
         def run(t, to):
+            if totals[0] * unknowns > MAX_LOADING_WORK:  # checked before each solve: the loading's work is bounded
+                raise _LoadingBound(
+                    f"contact: the loading took {totals[0]} Newton iterations for {unknowns} unknowns, {t:.3g} of the "
+                    f"way, beyond its bound of {MAX_LOADING_WORK} iterations x unknowns; the parts' travel is too "
+                    "severe for these bodies (a shorter travel, or a stiffer rubber)")
             new = solver.solve(to, xd0 + t * (xd - xd0), math.exp(ln0 + t * (ln1 - ln0)))
             totals[0] += new.iterations[0]
             totals[1] += new.iterations[1]
@@ -200,6 +215,8 @@ class Contact:
                 cphys.t = t1
                 try:
                     state = run(t1, state)
+                except _LoadingBound as exc:
+                    raise ConvergenceError(str(exc)) from None
                 except ConvergenceError as exc:
                     dt *= 0.5
                     if dt < dt0 / 2**MAX_HALVINGS:

@@ -42,8 +42,10 @@ from ..applicability import (
     extent_warnings,
     overhang,
     stretch_range,
+    uniform_height_scale,
 )
 from ..curves import cross as _cross
+from ..curves import polygon_area
 from ..errors import CaseError, GeometryError, LawError, MeshError, SectionDeformError
 from ..laws import Law
 from ..layers import (
@@ -381,8 +383,11 @@ class PaperSection:
         holes = tuple(hf + k * hm for hf, hm in zip(fixed_holes, moving_holes))
         final = MeshData(nodes.reshape(-1, 2), self.quads, "quad", self.initial_mesh.shape)
         jac_max = float(np.maximum(np.maximum(jac[0], jac[1]), np.maximum(jac[2], jac[3])).max())
+        final_area = polygon_area(np.concatenate((real, upper[1:-1])))
         info = PaperInfo(
             height_scale=float(k),
+            uniform_height_scale=uniform_height_scale(sec.lower_length, lengths, abs(initial / sec.area),
+                                                      abs(wanted / final_area)),
             normal_smoothing=float(smoothing),
             bend_change=bend_change(sec.lower, real, self.height),
             overhang=self.overhang / self.height,
@@ -410,7 +415,8 @@ class PaperSection:
     def warnings(self, info: PaperInfo) -> list[str]:
         """The applicability and extent warnings of one placement (:mod:`sectiondeform.applicability`)."""
         return applicability_warnings(self.height, self.overhang, info.bend_change, self.quality.virtual_columns) + \
-            extent_warnings(info.height_scale, (info.stretch_min, info.stretch_max), info.aspect_change)
+            extent_warnings(info.height_scale, (info.stretch_min, info.stretch_max), info.aspect_change,
+                            info.uniform_height_scale)
 
 
 @dataclass(frozen=True)
@@ -426,6 +432,10 @@ class PaperInfo(Info):
     ----------
     height_scale : float
         The scale ``k`` of the nodes' offsets that meets the law.
+    uniform_height_scale : float
+        The height scale a uniform map following the support would give
+        (:func:`~sectiondeform.applicability.uniform_height_scale`): the
+        motion's share of ``k``.
     normal_smoothing : float
         Weight of the smoothing applied to the target's normals (0: none).
     bend_change : float, optional
@@ -441,6 +451,7 @@ class PaperInfo(Info):
     """
 
     height_scale: float
+    uniform_height_scale: float = 1.0
     normal_smoothing: float = 0.0
     bend_change: float | None = None
     overhang: float | None = None

@@ -1,12 +1,17 @@
-"""Run the rows of one section on a worker: the section prepared once, re-deformed per row.
+"""Run the rows of one section on a worker: each row is what ``deform`` gives for it.
 
-:func:`run_chunk` is the task every engine runs. A worker keeps the last few
-prepared sections (:data:`CACHE_SIZE`), so the chunks of one section that
-land on the same worker prepare it once.
+:func:`run_chunk` is the task every engine runs. A row is the case with its
+target and law replaced; its result is :func:`~sectiondeform.deform.deform`
+of that problem, to the bit. Preparing is what costs, so a worker keeps the
+last few prepared sections (:data:`CACHE_SIZE`) keyed by their sampling: a
+row whose sections come out sampled as a kept one's (the lower curves
+resolve the row's target at the same points: a change of law, or a target
+the case's sampling already resolves) reuses it; any other prepares again.
 """
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import json
 import os
@@ -24,13 +29,14 @@ from ..errors import CaseError
 from ..io.case import load_case
 from ..laws import AreaRatio
 from ..result import RESULT_V1
+from ..stack import Stack
 from .study import Row, read_target
 from .targets import TRANSFORMS, transformed_target
 
 __all__ = ["CACHE_SIZE", "Chunk", "run_chunk", "run_row"]
 
 CACHE_SIZE = 8
-_SECTIONS: OrderedDict = OrderedDict()  # section key -> Deformer, or the exception that preparing it raised
+_SECTIONS: OrderedDict = OrderedDict()  # (section key, sampling) -> Deformer, or the exception preparing it raised
 _FILES: dict = {}  # path -> parsed target curve, or the reference's closed contours (one per body)
 _WORKER = f"{socket.gethostname()}:{os.getpid()}"
 
@@ -54,14 +60,13 @@ class Chunk:
     outdir: str | None = None
 
 
-def _section(row: Row):
-    key = row.section_key
+def _kept(key, build):
+    """The prepared section kept under ``key``, else ``build()`` (or the exception it raised), kept."""
     if key in _SECTIONS:
         _SECTIONS.move_to_end(key)
     else:
         try:
-            _SECTIONS[key] = Deformer(_with_rigid(load_case(row.case_path), row), model=row.model,
-                                      element_size=row.element_size)
+            _SECTIONS[key] = build()
         except Exception as exc:  # noqa: BLE001 - a section that cannot be prepared fails each of its rows, not the study
             _SECTIONS[key] = exc
         while len(_SECTIONS) > CACHE_SIZE:
@@ -94,6 +99,50 @@ def _contact(result) -> str | None:
     return json.dumps(out)
 
 
+def _section(row: Row):
+    """The case's own section prepared for ``row``'s model and element size (a Deformer, or the exception)."""
+    return _kept((row.section_key, None), lambda: Deformer(_with_rigid(load_case(row.case_path), row), model=row.model,
+                                                           element_size=row.element_size))
+
+
+def _sampling(stack: Stack) -> bytes:
+    """What a prepared section depends on the target by: the support fractions and each section's lower nodes."""
+    return b"".join(np.ascontiguousarray(a, dtype=np.float64).tobytes()
+                    for a in (stack.fractions, *(s.lower for s in stack.sections)))
+
+
+def row_deformer(row: Row, deformer: Deformer, target, law) -> Deformer:
+    """A deformer of ``row``'s own problem (the case with ``target`` and ``law``), prepared only when needed.
+
+    ``deformer.deform()`` of the returned one is what
+    ``deform(problem, row.model, row.element_size)`` gives for the row's
+    problem: the row's sections are built (cheap) and, when they come out
+    sampled as a kept prepared section's, that one is reused with the row's
+    problem; otherwise the row's problem is prepared (and kept).
+    """
+    problem = deformer.problem
+    if law is not None:
+        deformer.laws(law)  # one law for a one-body problem: the same refusal as Deformer.deform
+        problem = problem.replace(law=law)
+    if target is not None:
+        problem = problem.replace(target=target)
+    if problem == deformer.problem:
+        return deformer
+    sampling = _sampling(Stack(problem, row.element_size))
+    if sampling == _sampling(deformer.stack):
+        kept = deformer
+    else:
+        kept = _kept((row.section_key, sampling),
+                     lambda: Deformer(problem, model=row.model, element_size=row.element_size))
+    if isinstance(kept, BaseException):
+        raise kept
+    if kept.problem == problem:
+        return kept
+    same = copy.copy(kept)
+    same.problem = problem
+    return same
+
+
 def _file(path: str, kind: str):
     key = (path, kind)
     if key not in _FILES:
@@ -118,7 +167,7 @@ def _hausdorff(result, reference: list) -> float:
 
 
 def _figures(result) -> dict:
-    """The table's figures of a result: areas summed over the bodies, the worst error and Jacobian, quality and info.
+    """The table's figures of a result: areas summed over the bodies, the worst error, Jacobian and area stretch, quality and info.
 
     ``quality`` and ``info`` are JSON text: the one body's object for a
     ``section-result/1`` result, else an object by body name.
@@ -126,8 +175,10 @@ def _figures(result) -> dict:
     bodies = result.bodies
     qualities = [b.quality.to_json() if b.quality is not None else {} for b in bodies]
     infos = [b.info.to_json() for b in bodies]
-    jacobians = [q.get("final_jacobian_min", q.get("final_area_stretch_min")) for q in qualities]
-    jacobians = [j for j in jacobians if j is not None]
+
+    def smallest(key):
+        values = [q[key] for q in qualities if q.get(key) is not None]
+        return min(values, default=None)
     targets = [b.area_target for b in bodies]
 
     def by_body(values):
@@ -138,7 +189,8 @@ def _figures(result) -> dict:
         area_target=None if None in targets else sum(targets),
         area_final=sum(b.area_final for b in bodies),
         relative_error=result.relative_error,
-        jacobian_min=min(jacobians, default=None),
+        final_jacobian_min=smallest("final_jacobian_min"),
+        final_area_stretch_min=smallest("final_area_stretch_min"),
         quality=json.dumps(by_body(qualities), default=str), info=json.dumps(by_body(infos), default=str),
     )
 
@@ -156,8 +208,10 @@ def run_row(row: Row, deformer, save: str = "none", outdir: str | None = None) -
     dict
         The row's inputs, ``ok``, ``error_type`` and ``error`` (one line),
         areas (units², summed over the bodies), ``relative_error`` of the
-        law (the worst body's), ``jacobian_min`` (the smallest),
-        ``quality`` and ``info`` (JSON text), ``rigid`` (JSON text: per rigid
+        law (the worst body's), ``final_jacobian_min`` (units², the paper
+        model's) or ``final_area_stretch_min`` (a ratio, the hyperelastic
+        model's), the smallest over the bodies, ``quality`` and ``info``
+        (JSON text), ``warnings`` (a list of lines), ``rigid`` (JSON text: per rigid
         part ``force_x``, ``force_y``, ``contact_length``, ``pressure_max``,
         and the support's force), ``hausdorff`` (units),
         ``prepare_s``, ``place_s``, ``row_s`` (seconds) and ``worker``.
@@ -167,13 +221,14 @@ def run_row(row: Row, deformer, save: str = "none", outdir: str | None = None) -
     try:
         if isinstance(deformer, BaseException):
             raise deformer
-        rec["prepare_s"] = deformer.prepare_seconds
         base = None if row.target_path is None else _file(row.target_path, "target")
         amounts = {k: getattr(row, k) for k in TRANSFORMS}
         if any(v is not None for v in amounts.values()):
             base = transformed_target(base if base is not None else deformer.problem.target, **amounts)
-        result = deformer.deform(base, None if row.area_ratio is None else AreaRatio(row.area_ratio))
-        rec.update(ok=True, **_figures(result), rigid=_contact(result), warnings="; ".join(result.warnings) or None,
+        deformer = row_deformer(row, deformer, base, None if row.area_ratio is None else AreaRatio(row.area_ratio))
+        rec["prepare_s"] = deformer.prepare_seconds
+        result = deformer.deform()
+        rec.update(ok=True, **_figures(result), rigid=_contact(result), warnings=list(result.warnings),
                    place_s=result.timings.get("place_s"))
         if row.reference_path is not None:
             rec["hausdorff"] = _hausdorff(result, _file(row.reference_path, "reference"))

@@ -25,14 +25,23 @@ BATCH_ROWS = 512
 BATCH_SECONDS = 2.0
 
 _F, _S = pa.float64(), pa.string()
+
+
+def _unit(name: str, unit: str) -> pa.Field:
+    """A float column with its unit in the field's metadata (``unit``: ``units``, ``units²``, ``1``, ``s``)."""
+    return pa.field(name, _F, metadata={"unit": unit})
+
+
 SCHEMA = pa.schema(
     [("row", pa.int64()), ("row_id", _S), ("case", _S), ("model", _S)]
     + [(k, _F) for k in NUMBER_AXES]
     + [("target_file", _S), ("reference", _S), ("ok", pa.bool_()), ("error_type", _S), ("error", _S),
-       ("area_initial", _F), ("area_target", _F), ("area_final", _F), ("relative_error", _F),
-       ("jacobian_min", _F), ("hausdorff", _F), ("quality", _S), ("info", _S), ("rigid", _S), ("warnings", _S),
-       ("prepare_s", _F), ("place_s", _F), ("row_s", _F), ("worker", _S)]
+       _unit("area_initial", "units²"), _unit("area_target", "units²"), _unit("area_final", "units²"),
+       _unit("relative_error", "1"), _unit("final_jacobian_min", "units²"), _unit("final_area_stretch_min", "1"),
+       _unit("hausdorff", "units"), ("quality", _S), ("info", _S), ("rigid", _S), ("warnings", pa.list_(_S)),
+       _unit("prepare_s", "s"), _unit("place_s", "s"), _unit("row_s", "s"), ("worker", _S)]
 )
+"""The table's columns: one unit per column (in the field's metadata), ``warnings`` a list of lines."""
 
 
 class TableStore:
@@ -122,12 +131,18 @@ class TableStore:
         return self.path
 
     def write_csv(self) -> Path:
-        """``rows.csv`` next to ``rows.parquet``, streamed row group by row group."""
+        """``rows.csv`` next to ``rows.parquet``, streamed row group by row group (``warnings`` as a JSON list)."""
+        import json
+
         import pyarrow.csv as pacsv
 
         out = self.outdir / "rows.csv"
         pf = pq.ParquetFile(self.path)
-        with pacsv.CSVWriter(out, SCHEMA) as writer:
-            for i in range(pf.num_row_groups):
-                writer.write_table(pf.read_row_group(i))
+        i = SCHEMA.get_field_index("warnings")
+        schema = SCHEMA.set(i, pa.field("warnings", _S))  # a CSV cell holds the list as JSON text
+        with pacsv.CSVWriter(out, schema) as writer:
+            for g in range(pf.num_row_groups):
+                group = pf.read_row_group(g)
+                text = [None if w is None else json.dumps(w) for w in group.column(i).to_pylist()]
+                writer.write_table(group.set_column(i, schema.field(i), pa.array(text, _S)))
         return out

@@ -1,0 +1,73 @@
+"""Each surface names an option in its own words: the library by its key, the command line by its flag.
+
+Library messages name an option as ``option KEY`` (``option simplify``,
+``option snap at 0.5``), never in Python syntax (``simplify=TOL``,
+``layers={lower: NAME}``, ``split=(A, B)``); the command line writes each
+in its spelling (``--simplify TOL``, ``--layers ROLE=NAME,...``,
+``--split XA,YA XB,YB``) from one table, ``commands._common.OPTION_FLAGS``.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from sectiondeform.cli import main
+from sectiondeform.commands._common import OPTION_FLAGS
+from sectiondeform.curves import Polyline
+from sectiondeform.errors import CaseError, spelled
+from sectiondeform.io.drawing import case_from_drawing
+from sectiondeform.io.pieces import Drawing, Piece
+from sectiondeform.laws import AreaRatio
+
+PYTHON_SYNTAX = re.compile(r"\b[a-z_]+=(\{|\(|[A-Z]{2,}\b|-?\d)|Deformer|AreaRatio\(")
+
+
+def _refusal(**options) -> str:
+    gap = Drawing([Piece(Polyline([[0, 0], [10, 0]]), frozenset({"CONTOUR"}), "a"),
+                   Piece(Polyline([[10, 0.5], [0, 0.5]]), frozenset({"CONTOUR"}), "b")], "mm", 1.0, {}, Path("g.svg"))
+    with pytest.raises(CaseError) as info:
+        case_from_drawing(gap, **options)
+    return str(info.value)
+
+
+@pytest.mark.parametrize("options, key", [
+    (dict(split=((1, 0), (9, 0)), target_arc=0.0, law=AreaRatio(0.9)), "close_gap"),
+    (dict(law=AreaRatio(0.9), target_arc=0.0), "split"),
+])
+def test_the_library_names_the_key_without_python_syntax(options, key):
+    message = _refusal(**options)
+    assert f"option {key}" in message and not PYTHON_SYNTAX.search(message), message
+    assert "--" not in message
+
+
+def _svg_box(path: Path) -> Path:
+    path.write_text('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 20 20">'
+                    '<path id="CONTOUR" d="M 0 0 L 10 0 L 10 4 L 0 4 Z" fill="none" stroke="black"/></svg>')
+    return path
+
+
+@pytest.mark.parametrize("args, flag", [
+    ([], "--split XA,YA XB,YB"),                                          # one contour, no split points
+    (["--split", "-1,-30", "9,0", "--target-arc", "0"], "--split-tol D"),  # split point far from the contour
+    (["--layers", "lower=BASE", "--target-arc", "0"], "--layers ROLE=NAME,..."),
+])
+def test_the_command_line_spells_the_flag(tmp_path, capsys, args, flag):
+    pytest.importorskip("svgelements")
+    out = tmp_path / "o.json"
+    assert main(["convert", str(_svg_box(tmp_path / "c.svg")), str(out), "--area-ratio", "0.9", *args]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and not out.exists()
+    assert flag in err or flag.split()[0] + ":" in err, err
+    assert "option " not in err and not PYTHON_SYNTAX.search(err), err
+
+
+def test_one_table_spells_every_key_and_a_value():
+    names = dict(OPTION_FLAGS)
+    assert spelled("x: allow it with option snap at 0.505 or option close_gap at 1", names) == \
+        "x: allow it with --snap 0.505 or --close-gap 1"
+    assert spelled("simplify: must be > 0", names) == "--simplify: must be > 0"
+    assert spelled("give option simplify", names) == "give --simplify TOL"
+    assert spelled("option unknown stays", names) == "option unknown stays"
