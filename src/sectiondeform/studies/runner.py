@@ -251,5 +251,18 @@ def _save(result, row: Row, save: str, outdir: Path) -> None:
 
 
 def run_chunk(chunk: Chunk) -> list[dict]:
-    """Run every row of a chunk (one section) on this worker; one record per row, in order."""
-    return [run_row(row, _section(row), chunk.save, chunk.outdir) for row in chunk.rows]
+    """Run every row of a chunk (one section) on this worker; one record per row, in order.
+
+    The rows run grouped by target (rows that differ only in their law one
+    after the other), so a target that needs its own preparation is
+    prepared once for all of them.
+    """
+    def target_of(i):
+        row = chunk.rows[i]
+        return repr((row.target_path, *(getattr(row, k) for k in TRANSFORMS)))
+
+    order = sorted(range(len(chunk.rows)), key=target_of)
+    records = [None] * len(chunk.rows)
+    for i in order:
+        records[i] = run_row(chunk.rows[i], _section(chunk.rows[i]), chunk.save, chunk.outdir)
+    return records
