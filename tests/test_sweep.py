@@ -38,12 +38,12 @@ def _study(tmp_path, vary, name="study.json", extra=None):
     return path
 
 
-BIG = {  # 4 x 5 x 3 x 2 x 3 = 360 rows, two sections
-    "area_ratio": {"start": 0.7, "stop": 1.0, "num": 4},
-    "bend_radius": [30, 80, PAPER_RADIUS, 300, -150],
-    "crown": {"start": 0, "stop": 4, "num": 3},
+BIG = {  # 2 x 3 x 2 x 2 x 2 = 48 rows, two sections (each row a deform run: a target prepares its own sampling)
+    "area_ratio": {"start": 0.7, "stop": 1.0, "num": 2},
+    "bend_radius": [30, PAPER_RADIUS, -150],
+    "crown": {"start": 0, "stop": 4, "num": 2},
     "element_size": [None, 4.0],
-    "stretch": [0.95, 1.0, 1.05],
+    "stretch": [1.0, 1.05],
 }
 
 
@@ -66,9 +66,9 @@ def _same(a, b):
 def test_same_table_on_every_engine(tmp_path):
     study = _study(tmp_path, BIG)
     one = sd.sweep(study, tmp_path / "one", workers=1)
-    assert one.num_rows == 360
+    assert one.num_rows == 48
     ok = one.column("ok").to_pylist()
-    assert 0 < sum(ok) < 360  # the tightest bends cannot carry the section: recorded, not raised
+    assert 0 < sum(ok) < 48  # the tightest bends cannot carry the section: recorded, not raised
     two = sd.sweep(study, tmp_path / "two", workers=2)
     _same(_rows(one), _rows(two))
     pytest.importorskip("distributed")
