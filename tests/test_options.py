@@ -93,7 +93,7 @@ def test_quality_and_info_are_types_whose_json_keys_are_the_result_format():
             "final_jacobian_min", "final_jacobian_max"} <= set(j)
     assert j["final_jacobian_min"] == q.final.jacobian_min
     assert set(r.to_json()["info"]) == {"height_scale", "normal_smoothing", "bend_change", "overhang", "stretch_min",
-                                        "stretch_max", "aspect_change"}
+                                        "stretch_max", "aspect_change", "uniform_height_scale"}
     h = sd.Deformer(sd.case_from_dict(box_case()), model="hyperelastic").deform()
     assert h.quality.initial.layers is None and h.quality.initial.nodes > 0
     assert {"newton_full", "warm_start", "area_correction"} <= set(h.to_json()["info"])
