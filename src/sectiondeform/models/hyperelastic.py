@@ -67,6 +67,7 @@ from ..fem.neohooke import Fields, MixedNeoHooke, Pattern
 from ..fem.newton import NewtonSolver, State
 from ..fem.rubber import MixedRubber
 from ..fem.union_mesh import union_mesh
+from ..limits import MAX_FE_UNKNOWNS, bounded
 from ..materials import NeoHookean, material_from_json
 from ..stack import SUPPORT, Stack, renamed
 from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions, Placed, Placement, Prepared
@@ -359,6 +360,8 @@ class HyperelasticPrepared(Prepared):
         n = len(mesh.nodes)
         fixed = (2 * ids[:, None] + np.arange(2)).ravel()
         pattern = Pattern(self.physics.edofs, 2 * n + mesh.n_pressures, fixed)
+        bounded(len(pattern.free), MAX_FE_UNKNOWNS, "unknowns",  # each factorisation grows faster than the unknowns
+                "lower options.elements_through_thickness, or simplify the bodies' thin or small features", MeshError, "mesh")
         self.solver = NewtonSolver(self.physics, pattern, thickness, options.newton_tolerance, permc_spec=self._ordering(mesh))
         self.solver.dres_dlnlz = self._dres_dlns(self.physics)
         z_ref = np.concatenate((mesh.nodes.ravel(), np.zeros(mesh.n_pressures)))
