@@ -54,7 +54,7 @@ def net_quantity(outer: float, holes) -> float:
     >>> net_quantity(-10.0, [2.0, -3.0])
     -5.0
     """
-    return outer - np.sign(outer) * float(sum(abs(h) for h in holes))
+    return float(outer - np.sign(outer) * sum(abs(h) for h in holes))
 
 
 class StackedBody:
