@@ -144,7 +144,8 @@ def element_areas(points: np.ndarray, cells: np.ndarray, corners: int) -> np.nda
 
     Green's theorem on the element's boundary: the polygon through its
     nodes, plus, for a quadratic edge a-m-b, one third of the triangle
-    (a, m, b) (Archimedes: a parabolic segment is 4/3 of that triangle).
+    (a, m, b) (Archimedes: a parabolic segment is 4/3 of that triangle),
+    about each element's first node so that it stays exact far from the origin.
     """
     if cells.shape[1] == corners:
         ring = points[cells]
@@ -156,6 +157,7 @@ def element_areas(points: np.ndarray, cells: np.ndarray, corners: int) -> np.nda
         d1, d2 = mid - a, b - a
         bulge = 0.5 * (d1[..., 0] * d2[..., 1] - d1[..., 1] * d2[..., 0])
         bulge = np.sum(bulge, axis=1) / 3.0
+    ring = ring - ring[:, :1]  # about each element's first node: far from the origin, no cancellation
     x, y = ring[..., 0], ring[..., 1]
     poly = 0.5 * np.sum(x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y, axis=1)
     return poly + bulge

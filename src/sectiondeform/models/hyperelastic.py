@@ -365,7 +365,12 @@ class HyperelasticPrepared(Prepared):
         self.solver = NewtonSolver(self.physics, pattern, thickness, options.newton_tolerance, permc_spec=self._ordering(mesh))
         self.solver.dres_dlnlz = self._dres_dlns(self.physics)
         z_ref = np.concatenate((mesh.nodes.ravel(), np.zeros(mesh.n_pressures)))
-        self.reference = State(z_ref, 1.0, self.solver.tangent(self.physics.fields(z_ref, 1.0)))
+        at_rest = self.physics.fields(z_ref, 1.0)
+        if at_rest is None:  # a curved element folded over at rest: no state can start from it
+            raise MeshError("the coarse mesh has an element turned inside out before any deformation (a feature too "
+                            "small or too curved for it); raise options.elements_through_thickness or simplify the "
+                            "bodies' small features")
+        self.reference = State(z_ref, 1.0, self.solver.tangent(at_rest))
         self.bodies = tuple(self._body_mesh(b, geom, len(pattern.free), options.elements_through_thickness)
                                  for b in range(len(a.bodies)))
         self.pressure_dofs = tuple(2 * n + mesh.pressure_cells[bm.elements] for bm in self.bodies)
