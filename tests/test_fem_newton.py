@@ -96,3 +96,22 @@ def test_the_union_mesh_of_a_small_body_far_off_is_its_mesh_at_the_origin_moved(
     areas = 0.5 * (e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
     x, y = ring.T
     assert areas.min() > 0 and np.isclose(areas.sum(), 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y)), rtol=1e-9)
+
+
+def test_a_thin_sliver_factorises_with_little_fill():
+    """The column order keeps a thin one-body sliver sparse (the minimum-degree order filled it 25 times more).
+
+    tests/data/fuzz-found/hang-fem-assembly-element-matrices-183.json meshes to 16,240 unknowns; its first
+    tangent in SuperLU's ``MMD_AT_PLUS_A`` order had 37.0 M entries in L and U (2,277 per unknown, 8 s of
+    factorisation), in COLAMD order 1.45 M (89 per unknown).
+    """
+    from pathlib import Path
+
+    import sectiondeform as sd
+
+    path = Path(__file__).parent / "data" / "fuzz-found" / "hang-fem-assembly-element-matrices-183.json"
+    prepared = sd.Deformer(sd.load_case(path), "hyperelastic").prepared
+    n = len(prepared.solver.pattern.free)
+    lu = prepared.reference.tangent.lu
+    assert n > 12_000
+    assert lu.L.nnz + lu.U.nnz < 200 * n

@@ -362,7 +362,7 @@ class HyperelasticPrepared(Prepared):
         pattern = Pattern(self.physics.edofs, 2 * n + mesh.n_pressures, fixed)
         bounded(len(pattern.free), MAX_FE_UNKNOWNS, "unknowns",  # each factorisation grows faster than the unknowns
                 "lower options.elements_through_thickness, or simplify the bodies' thin or small features", MeshError, "mesh")
-        self.solver = NewtonSolver(self.physics, pattern, thickness, options.newton_tolerance, permc_spec=self._ordering(mesh))
+        self.solver = NewtonSolver(self.physics, pattern, thickness, options.newton_tolerance)
         self.solver.dres_dlnlz = self._dres_dlns(self.physics)
         z_ref = np.concatenate((mesh.nodes.ravel(), np.zeros(mesh.n_pressures)))
         at_rest = self.physics.fields(z_ref, 1.0)
@@ -379,21 +379,6 @@ class HyperelasticPrepared(Prepared):
             from .hyperelastic_contact import Contact
 
             self.contact = Contact(self)
-
-    @staticmethod
-    def _ordering(mesh) -> str:
-        """SuperLU's column order for the joint tangent.
-
-        One pressure field (no vertex shared by bodies): a minimum-degree
-        order of K + Kᵀ, less fill and faster factorisations than COLAMD on
-        these meshes. A pressure per body: COLAMD. The minimum-degree order
-        then eliminates the bodies' own pressures at their shared vertices
-        early (few neighbours each), where their diagonal is still the small
-        −M/κ, and SuperLU pivots off the diagonal (a few hundred times on the
-        shared cases): 1.2 to 2.2 times the fill of COLAMD there, which
-        pivots on the diagonal throughout.
-        """
-        return "MMD_AT_PLUS_A" if mesh.n_pressures == mesh.n_vertices else "COLAMD"
 
     plane = True
     """Plane sections: ``stretches`` are the bodies' out-of-plane stretches (else growths, reported as 1)."""
