@@ -133,7 +133,7 @@ def test_a_part_starting_inside_a_body_is_refused_with_the_overlap():
 def test_the_paper_model_is_refused_in_one_line():
     d = _bumper_dict()
     d["options"]["model"] = "paper"
-    with pytest.raises(CaseError, match=r'^rigid: .*options.model "hyperelastic"$'):
+    with pytest.raises(CaseError, match=r'^rigid: .*option model at hyperelastic$'):
         sd.Deformer(case_from_dict(d))
 
 

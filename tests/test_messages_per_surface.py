@@ -71,3 +71,24 @@ def test_one_table_spells_every_key_and_a_value():
     assert spelled("simplify: must be > 0", names) == "--simplify: must be > 0"
     assert spelled("give option simplify", names) == "give --simplify TOL"
     assert spelled("option unknown stays", names) == "option unknown stays"
+
+
+CASES = Path(__file__).parent / "data" / "cases"
+
+
+def test_a_refusal_naming_the_model_is_spelled_by_each_surface(tmp_path, capsys):
+    """The paper model refuses rigid parts naming the model: as a key in Python, a flag in the shell, a label on the page."""
+    import sectiondeform as sd
+    from sectiondeform.app.server import one_line
+
+    case = CASES / "v2" / "bumper-under-plate.json"
+    with pytest.raises(sd.SectionDeformError) as info:
+        sd.deform(sd.load_case(case), model="paper")
+    message = str(info.value)
+    assert "option model at hyperelastic" in message and "--" not in message
+    assert main(["deform", str(case), "--model", "paper", "-o", str(tmp_path / "r.json")]) == 2
+    err = capsys.readouterr().err
+    assert "(--model hyperelastic" in err or "use --model hyperelastic" in err, err
+    assert "option model" not in err and not (tmp_path / "r.json").exists()
+    page = one_line(message)
+    assert "use model hyperelastic" in page and "option" not in page and "--" not in page

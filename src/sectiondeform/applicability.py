@@ -71,8 +71,8 @@ STRETCH_LIMITS = (0.5, 2.0)
 #: Largest change of an element's aspect ratio (along over across the layers), either way.
 ASPECT_LIMIT = 4.0
 
-HINT = 'the paper model may be far from the material; the hyperelastic model (options.model "hyperelastic") follows it'
-REFUSAL_FIX = 'refused: deform with the hyperelastic model (options.model "hyperelastic"), which follows the material'
+HINT = 'the paper model may be far from the material; the hyperelastic model (option model at hyperelastic) follows it'
+REFUSAL_FIX = 'refused: deform with the hyperelastic model (option model at hyperelastic), which follows the material'
 
 
 def overhang(lower: np.ndarray, upper: np.ndarray) -> float:

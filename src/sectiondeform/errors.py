@@ -8,6 +8,7 @@ status 2.
 
 from __future__ import annotations
 
+import itertools
 import re
 
 
@@ -22,13 +23,18 @@ class SectionDeformError(Exception):
         return " ".join(super().__str__().split())
 
 
-OPTION_PHRASE = re.compile(r"\boption ([a-z][a-z_]*)\b(?: at ([-+0-9.eE]*[0-9]))?")
+OPTION_PHRASE = re.compile(r"\boption ([a-z][a-z_]*)\b(?: at ([-+0-9.eE]*[0-9]|[a-z][a-z_]*\b))?")
 """How a message names an option of the library: ``option simplify``, or with a value ``option snap at 0.1``
-(neutral words, no syntax of any surface).
+or ``option model at hyperelastic`` (neutral words, no syntax of any surface).
 
 A surface writes it in its own words with :func:`spelled`: the command line
 as its flag (``--simplify TOL``), the page as its field's label.
 """
+
+
+def _flag(name: str) -> str:
+    """A surface's name of an option without its placeholders: ``--snap D`` -> ``--snap``, ``chordal error`` as is."""
+    return " ".join(itertools.takewhile(lambda word: not word.isupper(), name.split())) or name
 
 
 def spelled(text: str, names: dict) -> str:
@@ -47,16 +53,18 @@ def spelled(text: str, names: dict) -> str:
     >>> names = {"simplify": "--simplify TOL", "split": "--split XA,YA XB,YB", "snap": "--snap D"}
     >>> spelled("simplify: must be > 0; give option split, or option snap at 0.2", names)
     '--simplify: must be > 0; give --split XA,YA XB,YB, or --snap 0.2'
+    >>> spelled("use the hyperelastic model (option model at hyperelastic)", {"model": "--model NAME"})
+    'use the hyperelastic model (--model hyperelastic)'
     """
     field, sep, rest = text.partition(": ")
     if sep and field in names:
-        text = names[field].split()[0] + sep + rest
+        text = _flag(names[field]) + sep + rest
 
     def spell(m):
         name = names.get(m.group(1))
         if name is None:
             return m.group(0)
-        return f"{name.split()[0]} {m.group(2)}" if m.group(2) else name
+        return f"{_flag(name)} {m.group(2)}" if m.group(2) else name
     return OPTION_PHRASE.sub(spell, text)
 
 

@@ -58,7 +58,7 @@ from starlette.routing import Mount, Route, WebSocketRoute
 from starlette.staticfiles import StaticFiles
 from starlette.websockets import WebSocket
 
-from ..errors import CaseError, SectionDeformError
+from ..errors import CaseError, SectionDeformError, spelled
 from . import engine
 
 __all__ = ["MAX_CONNECTIONS", "MAX_MESSAGE", "MAX_UPLOAD", "STATIC", "UVICORN_OPTIONS", "WORKERS", "cookie_name",
@@ -113,6 +113,14 @@ SECURITY_HEADERS = [
 _PATH = re.compile(r"(?<![\w.:/\\])/(?:[^\s'\"/]+/)+[^\s'\",;)]*|\b[A-Za-z]:\\[^\s'\",;)]*")
 
 
+PAGE_OPTIONS = {
+    "model": "model NAME", "layers": "layers ROLE=NAME,...", "split": "split A, split B", "split_tol": "split tol",
+    "snap": "snap D", "simplify": "simplify TOL", "chordal_error": "chordal error",
+}
+"""The page's spelling of each library option a message may name: its control's label
+(:func:`~sectiondeform.errors.spelled`; the command line's is ``commands._common.OPTION_FLAGS``)."""
+
+
 def one_line(text: str, names: dict | None = None, limit: int = 400) -> str:
     """A message for the page: its first non-blank line, the server's paths replaced.
 
@@ -128,7 +136,7 @@ def one_line(text: str, names: dict | None = None, limit: int = 400) -> str:
         pattern = re.compile("|".join(re.escape(k) for k in sorted(names, key=len, reverse=True) if k))
         text = pattern.sub(lambda m: names[m.group(0)], text)
     line = next((s.strip() for s in text.splitlines() if s.strip()), "")
-    line = _PATH.sub("(a file of the server)", line)
+    line = spelled(_PATH.sub("(a file of the server)", line), PAGE_OPTIONS)
     return line if len(line) <= limit else line[:limit - 3] + "..."
 
 

@@ -14,6 +14,7 @@ OPTION_FLAGS = {
     "lower_side": "--lower-side SIDE", "target_arc": "--target-arc SAGITTA", "bbox": "--bbox XMIN,YMIN,XMAX,YMAX",
     "snap": "--snap D", "close_gap": "--close-gap MAXLEN", "join_tol": "--join-tol D", "simplify": "--simplify TOL",
     "chordal_error": "--chordal-error TOL", "units": "--units UNIT", "law": "--area-ratio R",
+    "model": "--model NAME",
 }
 """The command line's spelling of each library option a message may name (``option simplify``, or a
 field ``simplify: ...``): :func:`~sectiondeform.errors.spelled` writes every error the command line prints

@@ -376,7 +376,7 @@ class PaperSection:
             raise MeshError(
                 f"target: the final mesh has an inverted element (layer {e // cols}, column {e % cols}) "
                 "even with its normals smoothed; the target bends too sharply for this section's thickness "
-                '(the hyperelastic model, options.model "hyperelastic", follows the material instead of the normals)'
+                '(the hyperelastic model, option model at hyperelastic, follows the material instead of the normals)'
             )
         upper = fixed_up + k * moving_up
         upper[0], upper[-1] = real[-1], real[0]
@@ -402,7 +402,7 @@ class PaperSection:
         if law.growth is not None and law.measure == "area":
             warnings.append(f"law: the growth {law.growth:g} of an extruded body is met geometrically: the paper model scales "
                             f"the section's area by {law.growth:g}^(2/3), a free body's growth; a bonded body's follows its "
-                            'mechanics (options.model "hyperelastic")')
+                            'mechanics (option model at hyperelastic)')
         return Placement(
             upper=upper,
             final_mesh=final,
@@ -509,7 +509,7 @@ class PaperModel(Model):
 
     def prepare(self, stack: Stack, options: PaperOptions | None = None) -> PaperPrepared:
         if stack.problem.rigid:
-            raise CaseError("rigid", 'the paper model has no mechanics for rigid parts in contact; use options.model "hyperelastic"')
+            raise CaseError("rigid", 'the paper model has no mechanics for rigid parts in contact; use option model at hyperelastic')
         return PaperPrepared(stack)
 
 
