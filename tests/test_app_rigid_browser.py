@@ -153,4 +153,20 @@ def test_the_paper_model_says_it_refuses_rigid_parts(page):
     note = page.locator("#rigid-note").inner_text()
     assert note.startswith("rigid: the paper model has no mechanics for rigid parts") and "\n" not in note
     assert page.locator("#rigid .rigid-final").get_attribute("d")  # the part is still drawn
+    assert page.locator(f"{PART}.stale").count() == 1  # the figures on screen are not the paper model's: greyed
     wait_for(page, "d.refusedSeq === d.pending")
+
+
+def test_an_edited_travel_survives_a_reload_of_the_tab(page):
+    """Never losing work: the edited travel is kept in the tab, and the reopened page solves it again."""
+    field = page.locator(f"{PART} .travel-input")
+    field.fill("1.4")
+    field.press("Enter")
+    before = solved(page, 1.4)
+    page.on("dialog", lambda d: d.accept())  # leaving with edits not saved as a case file: yes
+    page.reload()
+    page.wait_for_selector("#message[data-kind=info]")
+    after = solved(page, 1.4)
+    assert float(page.locator(f"{PART} .travel-input").input_value()) == 1.4
+    assert float(after["forceY"]) == pytest.approx(float(before["forceY"]), rel=1e-3)
+    assert page.locator("#rigid .rigid-final").get_attribute("d")  # drawn again, from the answer

@@ -8,6 +8,7 @@ its start kept) is solved and saved like any other edit of the case.
 from __future__ import annotations
 
 import copy
+import io
 import json
 from pathlib import Path
 
@@ -144,3 +145,23 @@ def test_a_rigid_outline_with_a_bad_travel_is_one_line(bumper, travel):
     case["rigid"][0]["travel"] = travel
     with pytest.raises(CaseError, match=r"^rigid\[0\]\.travel: expected two finite numbers"):
         engine.rigid_outline(case)
+
+
+def test_an_opened_case_brings_its_parts_as_drawn(client, bumper):
+    moved = with_travel(bumper, 0.5)
+    files = {"file": ("bumper.json", io.BytesIO(json.dumps(moved).encode()), "application/json")}
+    r = client.post("/api/open", files=files, headers=ORIGIN)
+    assert r.status_code == 200
+    data = r.json()
+    assert data["case"]["rigid"] == moved["rigid"] and data["model"] == "hyperelastic"
+    assert data["rigid"] == [{"name": "plate", "contour": moved["rigid"][0]["contour"]["polyline"], "travel": [0.0, -0.5]}]
+
+
+def test_a_ring_gets_the_whole_rings_force_in_newtons(client):
+    """A body of revolution: the part's force is the whole ring's (N with MPa and mm), as the library gives it."""
+    sleeve = json.loads((BUMPER.parent / "sleeve-on-shaft.json").read_text())
+    with client.websocket_connect("/ws", headers=ORIGIN) as ws:
+        ws.send_text(request(sleeve, 1))
+        r = receive(ws)
+    assert r["revolution"] and r["contact_units"]["force"] == "N"
+    assert r["rigid"][0]["force"] == list(Deformer(case_from_dict(sleeve)).deform().rigid[0].force)

@@ -11,7 +11,8 @@ Routes
     Live deformation. The page sends ``{"seq", "final", "case", "model",
     "ratio"}``; only the latest pending request is computed (coalescing); the
     server answers a result as one binary frame (a JSON header and the point
-    arrays as raw float64, see :func:`framed`), a refusal as the text
+    arrays as raw float64, see :func:`framed`; a full deformation with rigid
+    parts carries each part's contact, :func:`engine.contact_view`), a refusal as the text
     ``{"type": "refused", "seq", "message"}``, and keeps running.
 ``POST /api/open``
     An uploaded case file (.json, .dxf, .svg, multipart field ``file``),

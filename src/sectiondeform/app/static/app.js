@@ -443,12 +443,12 @@ function showRigid() {
     div.querySelector(".rigid-dir").textContent = (u ? u + " " : "") + (d ? `along (${fmt(d[0], 2)}, ${fmt(d[1], 2)})` : "(fixed)");
     const f = figures && figures[i];
     const stale = !f || f.name !== part.name || f.travel[0] !== part.travel[0] || f.travel[1] !== part.travel[1];
-    div.classList.toggle("stale", Boolean(f) && stale);
+    div.classList.toggle("stale", Boolean(f) && (stale || Boolean(state.refused)));
     div.dataset.travel = alongTravel(i);
     if (!f) { for (const k of ["force", "contact", "pressure"]) div.querySelector(".r-" + k).textContent = "—"; return; }
     const m = Math.hypot(f.force[0], f.force[1]), comp = (v) => (Math.abs(v) <= 1e-9 * m ? "0" : v.toPrecision(4));
     div.querySelector(".r-force").textContent = `${fmt(m)} ${c.units.force} (x ${comp(f.force[0])}, y ${comp(f.force[1])})` +
-      (stale ? " — solving…" : "");
+      (stale ? (state.refused ? " — refused for this travel (see the message)" : " — solving…") : "");
     div.querySelector(".r-contact").textContent = `${fmt(f.length)} ${c.units.length}`;
     div.querySelector(".r-pressure").textContent = `${fmt(f.pressure_max)} ${c.units.pressure} (mean ${fmt(f.pressure_mean, 2)})`;
     Object.assign(div.dataset, { force: m, forceX: f.force[0], forceY: f.force[1], length: f.length,
@@ -772,6 +772,8 @@ function onAnswer(msg, received) {
     const rigidRefused = rigidCase().length > 0 && /^rigid\b/.test(msg.message);
     $("rigid-note").hidden = !rigidRefused;
     $("rigid-note").textContent = rigidRefused ? msg.message : "";
+    state.refused = true;
+    showRigid();
     svg.classList.add("refused");
     svg.dataset.refusedSeq = msg.seq;
     message("refused: " + msg.message + (state.result ? " (the last good shape is kept)" : ""), "error");
@@ -802,6 +804,7 @@ function onAnswer(msg, received) {
     if (msg.mesh_final && last.mesh_final) msg.mesh_final.cells = last.mesh_final.cells;
   }
   state.result = msg;
+  state.refused = false;
   if (msg.final) { takeContact(msg); $("rigid-note").hidden = true; }
   drawResult();
   drawRigid();
