@@ -63,7 +63,7 @@ def page(browser, server):
     errors = []
     page.on("pageerror", lambda e: errors.append(str(e)))
     page.goto(server)
-    page.wait_for_selector(f"#view[data-final='1'] ~ * {PART}, {PART}[data-seq]", timeout=60_000)
+    page.wait_for_selector(f"{PART}[data-seq]", timeout=60_000)  # the first full deformation's figures
     yield page
     context.close()
     assert not errors, errors
