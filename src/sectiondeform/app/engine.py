@@ -32,15 +32,17 @@ from ..problem import V2, Problem
 from ..result import RESULT_V1, Result
 from ..section import local_green
 
-__all__ = ["FIELDS", "MODELS", "DeformerCache", "SharedDeformers", "answer", "case_from_json", "case_json_of", "case_model", "describe",
-           "field_view", "full_result", "is_assembly", "law_of", "laws_of", "model_of_json", "outline", "report_figure",
-           "section_key", "with_model"]
+__all__ = ["FIELDS", "MODELS", "DeformerCache", "SharedDeformers", "answer", "case_from_json", "case_json_of", "case_model",
+           "contact_units", "contact_view", "describe", "field_view", "full_result", "is_assembly", "law_of", "laws_of",
+           "model_of_json", "outline", "report_figure", "rigid_outline", "section_key", "with_model"]
 
 MODELS = MODEL_NAMES
 OUTLINE_SAMPLES = 65
 """Points of each curve of a body's outline."""
 FIELDS = ("J", "max_principal_strain", "von_mises_stress", "pressure")
 """The colour maps the page offers on the final mesh (:data:`sectiondeform.field_plot.PLOT_FIELDS` names)."""
+RIGID_CHORDAL = 1e-3
+"""Chordal error of a rigid part's drawn outline, relative to the part's size."""
 
 
 def is_assembly(case_json) -> bool:
@@ -243,6 +245,8 @@ def answer(cache: DeformerCache, case_json: dict, model: str, ratio, final: bool
         cache.remember(deformer, result)
     support = target.at_fractions(deformer.fractions)
     out = describe(result, support, final, prepared, meshes, 1e3 * (time.perf_counter() - t0))
+    if final and result.rigid:  # a preview's contact figures would be the last full deformation's: not sent
+        out.update(contact_view(result, deformer.problem))
     if field is not None and final:
         out.update(field_view(result, field))
         out["compute_ms"] = 1e3 * (time.perf_counter() - t0)
@@ -283,6 +287,81 @@ def field_view(result: Result, name) -> dict:
         view["values"] = None
         view["bodies"] = [{"values": v} for v in values]
     return {"field": view}
+
+
+def contact_units(units: str, revolution: bool) -> dict:
+    """The units of a result's contact figures, for labels: ``{"length", "pressure", "force"}``.
+
+    The case format's convention: moduli in MPa, lengths in the case's
+    ``units``; a part's force per unit length of a plane section (N/mm with
+    mm), the whole ring's for a body of revolution (N with mm). Other
+    lengths give the same products written out (``MPa·m`` per ...).
+    """
+    u = units or "units"
+    if u == "mm":
+        force = "N" if revolution else "N/mm"
+    else:
+        force = f"MPa·{u}²" if revolution else f"MPa·{u}"
+    return {"length": u, "pressure": "MPa", "force": force}
+
+
+def contact_view(result: Result, problem: Problem) -> dict:
+    """The page's view of a full deformation's contact with rigid parts (:attr:`Result.rigid`).
+
+    Returns
+    -------
+    dict
+        ``rigid``: per part (in the case's order) its ``name``, the
+        ``travel`` it was solved for (``[dx, dy]``, units), ``force``
+        (``[fx, fy]``: what the bodies exert on it, see :func:`contact_units`),
+        ``length``, ``pressure_max``, ``pressure_mean``, ``penetration_max``,
+        ``pressure`` (``(m, 3)`` float64, ``[x, y, p]`` along the contact)
+        and ``outline`` (``(k, 2)`` float64, where it ends); the support's
+        ``support_force``, the load steps' forces ``history`` and the
+        ``contact_units``.
+    """
+    travels = {part.name: list(part.travel) for part in problem.rigid}
+    parts = []
+    for part in result.rigid:
+        outline = np.asarray(part.outline, dtype=np.float64)
+        parts.append({"name": part.name, "travel": travels[part.name], "force": [float(v) for v in part.force],
+                      "length": float(part.length), "pressure_max": float(part.pressure_max),
+                      "pressure_mean": float(part.pressure_mean), "penetration_max": float(part.penetration_max),
+                      "pressure": np.asarray(part.pressure, dtype=np.float64).reshape(-1, 3), "outline": outline})
+    return {"rigid": parts, "support_force": [float(v) for v in result.support_force],
+            "history": [step.to_json() for step in result.history],
+            "contact_units": contact_units(result.units, result.axis is not None)}
+
+
+def rigid_outline(case_json: dict) -> list[dict]:
+    """Each rigid part of a case as drawn, before any answer: ``{"name", "contour", "travel"}``.
+
+    ``contour`` is the part's closed outline where it ends (``(k, 2)``
+    float64, units, within :data:`RIGID_CHORDAL` of its size), ``travel``
+    its ``[dx, dy]``: the page draws it at its start (``contour - travel``)
+    and its end, for either model (the paper model refuses rigid parts, and
+    the page shows them with the refusal). Only the parts' curves and
+    travels are read.
+    """
+    parts = case_json.get("rigid") if isinstance(case_json, dict) else None
+    if parts is None:
+        return []
+    if not isinstance(parts, list):
+        raise CaseError("rigid", f"expected a list of rigid parts, got {type(parts).__name__}")
+    out = []
+    for i, part in enumerate(parts):
+        if not isinstance(part, dict):
+            raise CaseError(f"rigid[{i}]", f"expected a rigid part object, got {type(part).__name__}")
+        curve = curve_from_json(part.get("contour"), f"rigid[{i}].contour")
+        travel = part.get("travel", [0.0, 0.0])
+        if (not isinstance(travel, list) or len(travel) != 2
+                or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and np.isfinite(v) for v in travel)):
+            raise CaseError(f"rigid[{i}].travel", f"expected two finite numbers [dx, dy], got {travel!r}")
+        size = float(np.hypot(*np.ptp(curve.at_fractions(np.linspace(0.0, 1.0, OUTLINE_SAMPLES)), axis=0)))
+        points = curve.discretise(RIGID_CHORDAL * size)[0] if size > 0 else curve.at_fractions(np.zeros(1))
+        out.append({"name": str(part.get("name", i)), "contour": np.asarray(points, dtype=np.float64),
+                    "travel": [float(v) for v in travel]})
+    return out
 
 
 def describe(result: Result, support: np.ndarray, final: bool, prepared: bool, meshes: bool, compute_ms: float) -> dict:

@@ -5,12 +5,14 @@ Routes
 ``GET /``, ``/static/...``
     The page: plain JavaScript and SVG shipped in the package.
 ``GET /api/start``
-    The case the server was started with (``section-case/1``) and the models.
+    The case the server was started with, the models, its bodies' outlines
+    and its rigid parts as drawn (:func:`engine.rigid_outline`).
 ``WS /ws``
     Live deformation. The page sends ``{"seq", "final", "case", "model",
     "ratio"}``; only the latest pending request is computed (coalescing); the
     server answers a result as one binary frame (a JSON header and the point
-    arrays as raw float64, see :func:`framed`), a refusal as the text
+    arrays as raw float64, see :func:`framed`; a full deformation with rigid
+    parts carries each part's contact, :func:`engine.contact_view`), a refusal as the text
     ``{"type": "refused", "seq", "message"}``, and keeps running.
 ``POST /api/open``
     An uploaded case file (.json, .dxf, .svg, multipart field ``file``),
@@ -348,6 +350,7 @@ def _read_upload(name: str, data: bytes, form: dict) -> dict:
                 case = case.replace(name=Path(shown).stem)
             out = {"case": engine.case_json_of(case), "model": engine.case_model(case), "report": report}
             out["outline"] = engine.outline(out["case"])
+            out["rigid"] = engine.rigid_outline(out["case"])
         except SectionDeformError as exc:
             raise CaseError("file", one_line(str(exc), names)) from None
         except Exception as exc:  # noqa: BLE001 - any unreadable upload is the user's file, not a crash
@@ -406,8 +409,12 @@ def _assembly_opened(case_json: dict) -> dict:
         case_json = engine.case_json_of(engine.case_from_json(case_json))
     except SectionDeformError as exc:
         report.append(f"the library refuses this assembly: {exc}")
+    try:
+        rigid = engine.rigid_outline(case_json)
+    except SectionDeformError:  # the library's refusal, in the report, names it
+        rigid = []
     return {"case": case_json, "model": engine.model_of_json(case_json), "report": report,
-            "outline": engine.outline(case_json)}
+            "outline": engine.outline(case_json), "rigid": rigid}
 
 
 def _write(case_json, model, what: str, ext: str) -> bytes:
@@ -517,7 +524,8 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
     cookie = cookie_name(token)
     start_model = engine.model_of_json(case_json)
     first = {"case": case_json, "model": start_model, "models": list(engine.MODELS),
-             "fields": list(engine.FIELDS), "limit": message_limit, "outline": engine.outline(case_json)}
+             "fields": list(engine.FIELDS), "limit": message_limit, "outline": engine.outline(case_json),
+             "rigid": engine.rigid_outline(case_json)}
     shared = Workers(workers)
     prepared = engine.SharedDeformers(SHARED_SECTIONS)
     connections = 0

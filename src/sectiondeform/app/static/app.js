@@ -32,6 +32,8 @@ const state = {
   saved: "",           // the edits as last opened or saved (see dirty)
   field: "",           // the colour map on the final mesh ("" none)
   probe: null,         // the thickness probe: null (off) or its points [[x, y], ...] (world units)
+  parts: [],           // the case's rigid parts as drawn: {outline [[x, y]...] at travel `at`, dir (unit travel) or null}
+  contact: null,       // the contact figures of the last full deformation: {seq, rigid, support_force, units}
 };
 window.sdState = state;
 
@@ -202,6 +204,7 @@ function fit() {
   else if (res) pts.push(...res.initial_contour, ...res.contour);
   else if (state.outline) state.outline.forEach((b) => pts.push(...b.contour));
   else if (state.case.upper) pts.push(...Geo.points(state.case.upper));
+  state.parts.forEach((_, i) => { const at = partPlaces(i); if (at) pts.push(...at.start, ...at.end); });
   const xs = pts.map((p) => p[0]), ys = pts.map((p) => p[1]);
   const x0 = Math.min(...xs), x1 = Math.max(...xs), y0 = Math.min(...ys), y1 = Math.max(...ys);
   const r = svg.getBoundingClientRect();
@@ -335,15 +338,160 @@ function drawOutline() {
 
 function drawEdits(handles = true) {
   if (!state.case) return;
+  drawRigid();
   $("target-polygon").setAttribute("d", pathOf(Geo.points(state.case.target), false));
   const up = state.case.upper;
   $("upper-polygon").setAttribute("d", up && up.bspline ? pathOf(Geo.points(up), false) : "");
   if (handles) drawHandles();
 }
 
-// Handles: the target's points (red), the upper curve's inner points (green), whole-target handles.
+// ---- rigid parts ---------------------------------------------------------
+
+// Each part in its own colour, apart from the bodies'.
+const RIGID_COLOURS = ["#b8860b", "#00838f", "#ad1457", "#5d4037"];
+const rigidColour = (i) => RIGID_COLOURS[i % RIGID_COLOURS.length];
+const rigidCase = () => (state.case && Array.isArray(state.case.rigid) ? state.case.rigid : []);
+const shifted = (pts, d) => pts.map((p) => [p[0] + d[0], p[1] + d[1]]);
+const centroid = (pts) => [pts.reduce((s, p) => s + p[0], 0) / pts.length, pts.reduce((s, p) => s + p[1], 0) / pts.length];
+
+// The parts as drawn, from the case's own rigid list and the server's outlines ({contour, travel} per part:
+// the outline where the part ends at that travel). A part that travels can be moved along its travel.
+function setParts(given) {
+  state.parts = rigidCase().map((part, i) => {
+    const t = part.travel || [0, 0], len = Math.hypot(t[0], t[1]);
+    const g = given && given[i];
+    return { outline: g ? g.contour : null, at: g ? g.travel : null, dir: len > 0 ? [t[0] / len, t[1] / len] : null };
+  });
+}
+
+// Part i's start (dashed: where it starts, the outline less its travel) and end (solid: where the travel takes it).
+function partPlaces(i) {
+  const p = state.parts[i], t = rigidCase()[i].travel || [0, 0];
+  if (!p || !p.outline) return null;
+  return { start: shifted(p.outline, [-p.at[0], -p.at[1]]), end: shifted(p.outline, [t[0] - p.at[0], t[1] - p.at[1]]) };
+}
+
+// Part i's travel along its direction (units).
+const alongTravel = (i) => { const t = rigidCase()[i].travel, d = state.parts[i].dir; return d ? Geo.dot(t, d) : 0; };
+
+// Part i travels `s` along its direction: its end (the case's contour) moves with it, its start stays.
+function setTravel(i, s) {
+  const part = rigidCase()[i], d = state.parts[i].dir, old = part.travel || [0, 0];
+  const t = [s * d[0] + 0, s * d[1] + 0];
+  part.contour = Geo.translated(part.contour, [t[0] - old[0], t[1] - old[1]]);
+  part.travel = t;
+}
+
+function drawRigid() {
+  const g = $("rigid"), parts = rigidCase();
+  if (g.children.length !== parts.length) {
+    g.replaceChildren(...parts.map((_, i) => {
+      const e = svgEl("g", { class: "rigid-shape", "data-part": i });
+      e.style.setProperty("--c", rigidColour(i));
+      for (const k of ["initial", "arrow", "final"]) e.appendChild(svgEl("path", { class: "rigid-" + k }));
+      e.appendChild(svgEl("g", { class: "rigid-pressure" }));
+      return e;
+    }));
+  }
+  const c = state.contact, res = state.result;
+  // the pressure belongs to the full deformation on screen: drawn with it only
+  const pressure = c && res && res.seq === c.seq && c.rigid.length === parts.length;
+  const top = pressure ? Math.max(...c.rigid.map((r) => r.pressure_max), 0) || 1 : 1;
+  parts.forEach((_, i) => {
+    const [initial, travel, final, dots] = g.children[i].children, at = partPlaces(i);
+    initial.setAttribute("d", at ? pathOf(at.start, true) : "");
+    final.setAttribute("d", at ? pathOf(at.end, true) : "");
+    travel.setAttribute("d", at ? pathOf([centroid(at.start), centroid(at.end)], false) : "");
+    const ds = new Array(BINS).fill("");
+    if (pressure) for (const [x, y, p] of c.rigid[i].pressure) ds[Math.min(BINS - 1, Math.floor(BINS * p / top))] += `M${round(x)} ${round(y)}l0 0`;
+    dots.replaceChildren(...ds.map((d, k) => (d ? svgEl("path", { d, stroke: viridis((k + 0.5) / BINS) }) : null)).filter(Boolean));
+  });
+  $("pressure-legend").hidden = !pressure || !parts.length;
+  if (pressure) {
+    $("pressure-label").textContent = `contact pressure along the body (${c.units.pressure})`;
+    $("pressure-ramp").style.background = `linear-gradient(to right, ${VIRIDIS.join(", ")})`;
+    $("pressure-max").textContent = fmt(top, 2);
+  }
+}
+
+// The parts' panel: each part's travel (editable), and the last full deformation's force, contact and pressures.
+function showRigid() {
+  const parts = rigidCase(), box = $("rigid-parts");
+  $("rigid-panel").hidden = !parts.length;
+  if (!parts.length) { box.replaceChildren(); return; }
+  if (box.children.length !== parts.length) {
+    box.replaceChildren(...parts.map((part, i) => {
+      const div = document.createElement("div");
+      div.className = "rigid-part"; div.dataset.part = i;
+      div.style.setProperty("--c", rigidColour(i));
+      div.innerHTML = `<div class="rigid-head"><strong class="rigid-name"></strong><label>travel
+        <input class="travel-input" type="number" step="any" min="0"></label><span class="rigid-dir"></span></div>
+        <dl><dt>force</dt><dd class="r-force"></dd><dt>contact</dt><dd class="r-contact"></dd>
+        <dt>peak pressure</dt><dd class="r-pressure"></dd></dl>`;
+      div.querySelector(".travel-input").addEventListener("change", (e) => travelTyped(i, e.target));
+      return div;
+    }));
+  }
+  const u = units(), c = state.contact;
+  const figures = c && c.rigid.length === parts.length ? c.rigid : null;
+  parts.forEach((part, i) => {
+    const div = box.children[i], input = div.querySelector(".travel-input"), d = state.parts[i] && state.parts[i].dir;
+    div.querySelector(".rigid-name").textContent = part.name;
+    input.disabled = !d;
+    input.title = d ? "how far the part travels along its direction, from where it starts" : "a fixed part (no travel)";
+    if (document.activeElement !== input) input.value = d ? Number(alongTravel(i).toPrecision(12)) : 0;
+    div.querySelector(".rigid-dir").textContent = (u ? u + " " : "") + (d ? `along (${fmt(d[0], 2)}, ${fmt(d[1], 2)})` : "(fixed)");
+    const f = figures && figures[i];
+    const stale = !f || f.name !== part.name || f.travel[0] !== part.travel[0] || f.travel[1] !== part.travel[1];
+    div.classList.toggle("stale", Boolean(f) && (stale || Boolean(state.refused)));
+    div.dataset.travel = alongTravel(i);
+    if (!f) { for (const k of ["force", "contact", "pressure"]) div.querySelector(".r-" + k).textContent = "—"; return; }
+    const m = Math.hypot(f.force[0], f.force[1]), comp = (v) => (Math.abs(v) <= 1e-9 * m ? "0" : v.toPrecision(4));
+    div.querySelector(".r-force").textContent = `${fmt(m)} ${c.units.force} (x ${comp(f.force[0])}, y ${comp(f.force[1])})` +
+      (stale ? (state.refused ? " — refused for this travel (see the message)" : " — solving…") : "");
+    div.querySelector(".r-contact").textContent = `${fmt(f.length)} ${c.units.length}`;
+    div.querySelector(".r-pressure").textContent = `${fmt(f.pressure_max)} ${c.units.pressure} (mean ${fmt(f.pressure_mean, 2)})`;
+    Object.assign(div.dataset, { force: m, forceX: f.force[0], forceY: f.force[1], length: f.length,
+                                 pressureMax: f.pressure_max, solvedTravel: JSON.stringify(f.travel), seq: c.seq });
+  });
+}
+
+// A travel typed in a part's field: solved in full (a preview has no contact).
+function travelTyped(i, input) {
+  const v = Number(input.value);
+  if (input.value === "" || !(v >= 0)) {
+    message(`${rigidCase()[i].name}: travel must be a number ≥ 0 (${units() || "units"} along the part's travel)`, "error");
+    input.value = alongTravel(i);
+    return;
+  }
+  state.undo.push(snapshot());
+  setTravel(i, v);
+  drawEdits(); showRigid();
+  request(true);
+}
+
+// The contact figures of a full deformation: kept (with the parts' outlines where they ended) until the next one.
+function takeContact(msg) {
+  const parts = rigidCase();
+  if (!msg.rigid || msg.rigid.length !== parts.length) return;
+  msg.rigid.forEach((r, i) => {
+    const p = r.pressure, out = [];
+    for (let k = 0; k + 2 < p.length; k += 3) out.push([p[k], p[k + 1], p[k + 2]]);
+    r.pressure = out;
+    r.outline = pairs(r.outline);
+    if (state.parts[i] && r.name === parts[i].name) { state.parts[i].outline = r.outline; state.parts[i].at = r.travel; }
+  });
+  state.contact = { seq: msg.seq, rigid: msg.rigid, support_force: msg.support_force, units: msg.contact_units };
+}
+
+// Handles: the target's points (red), the upper curve's inner points (green), whole-target handles, and each
+// travelling rigid part's end (in its colour).
 function handleList() {
   const list = [];
+  state.parts.forEach((p, i) => {
+    const at = p.dir && partPlaces(i);
+    if (at) list.push({ rigid: i, p: centroid(at.end) });
+  });
   const tp = Geo.points(state.case.target);
   tp.forEach((p, i) => list.push({ curve: "target", index: i, p }));
   const up = state.case.upper ? Geo.points(state.case.upper) : [];   // an assembly's bodies are not edited here
@@ -371,14 +519,17 @@ function drawHandles() {
   const g = $("handles");
   if (!state.case) { g.replaceChildren(); delete g.dataset.keys; return; }
   const list = handleList();
-  const keys = list.map((h) => `${h.curve || "target"}:${h.whole || h.index}`).join(",");
+  const keys = list.map((h) => (h.rigid !== undefined ? `rigid:${h.rigid}` : `${h.curve || "target"}:${h.whole || h.index}`)).join(",");
   if (g.dataset.keys !== keys) {
     g.replaceChildren();
     for (const h of list) {
       const c = document.createElementNS(NS, "circle");
-      c.setAttribute("r", h.whole ? 8 : 6);
-      c.dataset.curve = h.curve || "target";
-      if (h.whole) c.dataset.whole = h.whole; else c.dataset.index = h.index;
+      c.setAttribute("r", h.whole || h.rigid !== undefined ? 8 : 6);
+      if (h.rigid !== undefined) { c.dataset.rigid = h.rigid; c.style.setProperty("--c", rigidColour(h.rigid)); }
+      else {
+        c.dataset.curve = h.curve || "target";
+        if (h.whole) c.dataset.whole = h.whole; else c.dataset.index = h.index;
+      }
       g.appendChild(c);
       if (h.label) {
         const t = document.createElementNS(NS, "text");
@@ -396,7 +547,8 @@ function drawHandles() {
     const [x, y] = h.screen || toScreen(h.p);
     c.setAttribute("cx", x); c.setAttribute("cy", y);
     const sel = state.selected && !h.whole && state.selected.curve === h.curve && state.selected.index === h.index;
-    c.setAttribute("class", "handle" + (h.curve === "upper" ? " upper" : "") + (h.whole ? " whole" : "") + (sel ? " selected" : ""));
+    c.setAttribute("class", "handle" + (h.curve === "upper" ? " upper" : "") + (h.whole ? " whole" : "") +
+                   (h.rigid !== undefined ? " rigid" : "") + (sel ? " selected" : ""));
     c.handle = h;
     if (c.label) { c.label.setAttribute("x", x + 10); c.label.setAttribute("y", y + 4); }
   });
@@ -616,6 +768,12 @@ function onAnswer(msg, received) {
   for (const k of state.sentAt.keys()) if (k <= msg.seq) state.sentAt.delete(k);
   if (msg.type === "refused") {
     flushEdits();
+    // the library refuses rigid parts (the paper model): said in one line where the parts' figures are
+    const rigidRefused = rigidCase().length > 0 && /^rigid\b/.test(msg.message);
+    $("rigid-note").hidden = !rigidRefused;
+    $("rigid-note").textContent = rigidRefused ? msg.message : "";
+    state.refused = true;
+    showRigid();
     svg.classList.add("refused");
     svg.dataset.refusedSeq = msg.seq;
     message("refused: " + msg.message + (state.result ? " (the last good shape is kept)" : ""), "error");
@@ -646,7 +804,11 @@ function onAnswer(msg, received) {
     if (msg.mesh_final && last.mesh_final) msg.mesh_final.cells = last.mesh_final.cells;
   }
   state.result = msg;
+  state.refused = false;
+  if (msg.final) { takeContact(msg); $("rigid-note").hidden = true; }
   drawResult();
+  drawRigid();
+  showRigid();
   if (state.editsPending) flushEdits(); else if (!state.drag) drawHandles();
   const now = performance.now();
   if (t0 !== undefined) {
@@ -667,13 +829,15 @@ function onAnswer(msg, received) {
 
 function snapshot() {
   return { target: clone(state.case.target), upper: clone(state.case.upper), ratio: state.ratio,
-           laws: isAssembly() ? state.case.bodies.map((b) => clone(b.law)) : null };
+           laws: isAssembly() ? state.case.bodies.map((b) => clone(b.law)) : null, rigid: clone(state.case.rigid) };
 }
 
 // The whole page's case, before a reset or an opened file replaces it: undo brings it back.
 function wholeSnapshot() {
   return { whole: true, case: clone(state.case), model: state.model, ratio: state.ratio, body: state.body,
            opened: state.opened, openedModel: state.openedModel, outline: state.outline, saved: state.saved,
+           rigidOutline: state.parts.map((p) => (p.outline ? { contour: p.outline, travel: p.at } : null)),
+           openedRigid: state.openedRigid,
            name: $("case-name").textContent };
 }
 
@@ -718,7 +882,12 @@ svg.addEventListener("pointerdown", (e) => {
   const t0 = performance.now();
   svg.focus();
   const h = e.target.handle;
-  if (h) {
+  if (h && h.rigid !== undefined) {   // a rigid part's end, moved along its travel
+    e.preventDefault();
+    svg.setPointerCapture(e.pointerId);
+    state.undo.push(snapshot());
+    state.drag = { h, rigid: h.rigid, from: toWorld(e), s0: alongTravel(h.rigid), moved: false };
+  } else if (h) {
     e.preventDefault();
     svg.setPointerCapture(e.pointerId);
     state.undo.push(snapshot());
@@ -751,6 +920,14 @@ svg.addEventListener("pointermove", (e) => {
     return;
   }
   const to = toWorld(e);
+  if (d.rigid !== undefined) {   // drawn at once; solved on release (a preview has no contact)
+    const step = niceStep(1 / state.view.s);   // a round travel, to about a screen pixel
+    const s = Math.max(0, d.s0 + Geo.dot(Geo.sub(to, d.from), state.parts[d.rigid].dir));
+    setTravel(d.rigid, Number(numText(Math.round(s / step) * step, step)));
+    d.moved = true;
+    drawEdits(); showRigid();
+    return;
+  }
   let P;
   if (d.h.whole) P = Geo.wholeEdit(d.h.whole, d.P0, d.from, to);
   else {
@@ -808,7 +985,8 @@ function undo() {
   if (s.laws) { s.laws.forEach((law, i) => { state.case.bodies[i].law = law; }); showRatio(); }
   else { state.case.upper = s.upper; setRatio(s.ratio); }
   if (s.model) setModel(s.model);
-  drawEdits(); request(true);
+  if (s.rigid) state.case.rigid = s.rigid;
+  drawEdits(); showRigid(); request(true);
 }
 
 // The law key of an assembly's body: its own, else the volume ratio for a body of revolution.
@@ -886,7 +1064,7 @@ $("undo").addEventListener("click", undo);
 $("fit").addEventListener("click", fit);
 $("reset").addEventListener("click", () => {
   if (!mayReplace("Reset")) return;
-  load({ case: state.opened, model: state.openedModel, outline: state.openedOutline }, false, true);
+  load({ case: state.opened, model: state.openedModel, outline: state.openedOutline, rigid: state.openedRigid }, false, true);
 });
 
 // ---- files -------------------------------------------------------------
@@ -898,7 +1076,8 @@ function load(data, refit = true, undoable = false) {
   state.opened = clone(data.case);
   state.openedModel = data.model || "paper";
   state.openedOutline = data.outline || null;
-  show(data.case, state.openedModel, data.outline || null, refit);
+  state.openedRigid = data.rigid || null;
+  show(data.case, state.openedModel, data.outline || null, refit, undefined, undefined, data.rigid);
   state.saved = editKey();
   keep();
   request(true);
@@ -906,8 +1085,8 @@ function load(data, refit = true, undoable = false) {
 
 // Undo of a reset or an opened file: the case before it, with what it was opened from.
 function restore(s) {
-  state.opened = s.opened; state.openedModel = s.openedModel;
-  show(s.case, s.model, s.outline, true, s.ratio, s.body);
+  state.opened = s.opened; state.openedModel = s.openedModel; state.openedRigid = s.openedRigid;
+  show(s.case, s.model, s.outline, true, s.ratio, s.body, s.rigidOutline);
   state.saved = s.saved;
   $("case-name").textContent = s.name;
   keep();
@@ -915,8 +1094,14 @@ function restore(s) {
 }
 
 // Put a case on the page, drawn at once from its own curves (`outline`) until the server's answer comes.
-function show(caseJson, model, outline, refit, ratio, body) {
+function show(caseJson, model, outline, refit, ratio, body, rigid) {
   state.case = clone(caseJson);
+  state.contact = null;
+  setParts(rigid);
+  $("rigid-parts").replaceChildren();
+  $("rigid-note").hidden = true;
+  showRigid();
+  drawRigid();
   setModel(model);
   state.body = body || 0;
   state.outline = outline;

@@ -76,6 +76,16 @@ const Geo = (() => {
     return { A, B, M: [(A[0] + B[0]) / 2, (A[1] + B[1]) / 2], u, n: [-u[1], u[0]], L };
   }
 
+  // The curve `c` moved by d = [dx, dy], exactly (an arc's centre moves, its radius and angles stay).
+  function translated(c, d) {
+    const move = (P) => P.map((p) => [p[0] + d[0], p[1] + d[1]]);
+    if (c.polyline) return { ...c, polyline: move(c.polyline) };
+    if (c.bspline) return { ...c, bspline: { ...c.bspline, control_points: move(c.bspline.control_points) } };
+    if (c.arc) return { ...c, arc: { ...c.arc, center: [c.arc.center[0] + d[0], c.arc.center[1] + d[1]] } };
+    if (c.chain) return { ...c, chain: c.chain.map((piece) => translated(piece, d)) };
+    return c;
+  }
+
   const dot = (a, b) => a[0] * b[0] + a[1] * b[1];
   const sub = (a, b) => [a[0] - b[0], a[1] - b[1]];
 
@@ -111,7 +121,7 @@ const Geo = (() => {
     return P0;
   }
 
-  return { arcPoints, arcFrom3, points, withPoints, ends, frame, wholeEdit, dot, sub };
+  return { arcPoints, arcFrom3, points, withPoints, ends, frame, wholeEdit, translated, dot, sub };
 })();
 
 if (typeof module !== "undefined") module.exports = Geo;

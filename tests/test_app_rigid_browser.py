@@ -1,0 +1,172 @@
+"""The page with rigid parts in Chromium (Playwright): the part drawn, its force, a travel changed, saved, read back.
+
+Same set-up as test_app_browser.py (skips without Chromium or Playwright,
+unless ``SECTIONDEFORM_REQUIRE_BROWSER=1``); the server starts on the bumper
+pressed by a rigid plate (hyperelastic, about half a second per solve).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from test_app_browser import LAUNCH_ARGS, _missing, chromium_path, wait_for
+
+from sectiondeform.deform import Deformer
+from sectiondeform.io import read_case
+from sectiondeform.io.case import case_from_dict
+
+BUMPER = Path(__file__).parent / "data" / "cases" / "v2" / "bumper-under-plate.json"
+PART = ".rigid-part[data-part='0']"
+
+
+@pytest.fixture(scope="module")
+def server():
+    why = _missing()
+    if why:
+        if os.environ.get("SECTIONDEFORM_REQUIRE_BROWSER") == "1":
+            pytest.fail(f"browser tests required but cannot run: {why}")
+        pytest.skip(why)
+    proc = subprocess.Popen([sys.executable, "-m", "sectiondeform", "serve", str(BUMPER), "--port", "0", "--no-browser"],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    line = proc.stdout.readline()
+    match = re.search(r"(http://\S+/\?token=\S+)", line)
+    if not match:
+        proc.kill()
+        pytest.fail(f"the server did not start: {line}{proc.stdout.read()}")
+    yield match.group(1)
+    proc.terminate()
+    proc.wait(timeout=10)
+
+
+@pytest.fixture(scope="module")
+def browser(server):
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        b = p.chromium.launch(executable_path=chromium_path(), args=LAUNCH_ARGS)
+        yield b
+        b.close()
+
+
+@pytest.fixture()
+def page(browser, server):
+    context = browser.new_context(viewport={"width": 1200, "height": 700}, accept_downloads=True)
+    page = context.new_page()
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(server)
+    page.wait_for_selector(f"{PART}[data-seq]", timeout=60_000)  # the first full deformation's figures
+    yield page
+    context.close()
+    assert not errors, errors
+
+
+def solved(page, travel: float) -> dict:
+    """The part's figures once the full deformation for ``travel`` (mm, down) is shown."""
+    want = json.dumps([0, -travel]).replace(" ", "")
+    page.wait_for_function(f"document.querySelector(\"{PART}\").dataset.solvedTravel === '{want}' && "
+                           "document.getElementById('view').dataset.final === '1'", timeout=20_000)
+    return page.eval_on_selector(PART, "e => ({...e.dataset, force_text: e.querySelector('.r-force').textContent})")
+
+
+def shown_force(text: str) -> float:
+    """The force magnitude as printed, checked for its unit (N/mm: a plane section)."""
+    match = re.match(r"([-\d.e+]+) N/mm ", text)
+    assert match, text
+    return float(match.group(1))
+
+
+def path_points(d: str) -> np.ndarray:
+    """The points of a drawn path, ``(n, 2)`` (world units, rounded to a twentieth of a screen pixel)."""
+    return np.array([(float(x), float(y)) for x, y in re.findall(r"[ML]\s*(-?[\d.e+-]+)\s+(-?[\d.e+-]+)", d)])
+
+
+def drawn(locator, want) -> None:
+    np.testing.assert_allclose(path_points(locator.get_attribute("d")), want, atol=1e-3)
+
+
+def test_the_plate_is_drawn_its_force_shown_and_a_travel_changed_and_saved(page, tmp_path):
+    case = json.loads(BUMPER.read_text())
+    plate = np.array(case["rigid"][0]["contour"]["polyline"][:-1])
+    shape = page.locator("#rigid .rigid-shape[data-part='0']")
+    drawn(shape.locator(".rigid-final"), plate)  # where it ends
+    drawn(shape.locator(".rigid-initial"), plate + [0, 1.2])  # where it starts: 1.2 mm higher
+    assert shape.locator(".rigid-initial").evaluate("e => getComputedStyle(e).strokeDasharray") != "none"
+    assert shape.locator(".rigid-pressure path").count() > 0  # the pressure along the contact, coloured
+
+    library = Deformer(case_from_dict(case)).deform().rigid[0]
+    before = solved(page, 1.2)
+    assert shown_force(before["force_text"]) == float(f"{math.hypot(*library.force):.6g}")
+    length, unit = page.locator(f"{PART} .r-contact").inner_text().split()
+    assert float(length) == float(f"{library.length:.6g}") and unit == "mm"
+    peak, unit = page.locator(f"{PART} .r-pressure").inner_text().split()[:2]
+    assert float(peak) == float(f"{library.pressure_max:.6g}") and unit == "MPa"
+
+    field = page.locator(f"{PART} .travel-input")
+    assert float(field.input_value()) == 1.2
+    field.fill("1.5")
+    field.press("Enter")
+    after = solved(page, 1.5)
+    assert shown_force(after["force_text"]) > shown_force(before["force_text"])  # more travel, more force
+    assert float(after["forceY"]) > float(before["forceY"]) > 0
+    drawn(shape.locator(".rigid-final"), plate - [0, 0.3])  # the end moved down, the start stayed
+    drawn(shape.locator(".rigid-initial"), plate + [0, 1.2])
+
+    with page.expect_download() as info:
+        page.click("[data-save='case.json']")
+    saved = tmp_path / "saved.json"
+    info.value.save_as(saved)
+    (part,) = read_case(saved).rigid
+    assert part.travel == (0.0, -1.5) and part.name == "plate" and part.friction == 0.0
+
+
+def test_dragging_the_plate_down_adds_travel_and_force(page):
+    before = solved(page, 1.2)
+    box = page.locator("circle[data-rigid='0']").bounding_box()
+    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for k in range(1, 6):
+        page.mouse.move(x + k, y + 4 * k)  # down, and a little sideways: only the travel's direction counts
+    page.mouse.up()
+    travel = float(page.eval_on_selector(PART, "e => e.dataset.travel"))
+    assert 1.5 < travel < 3.0
+    after = solved(page, travel)
+    assert float(after["forceY"]) > float(before["forceY"])
+    page.keyboard.press("Control+z")  # undo: back to the case's travel
+    again = solved(page, 1.2)
+    # the same prepared problem, warm-started from its first solve: the same force to the contact's tolerance
+    assert float(again["forceY"]) == pytest.approx(float(before["forceY"]), rel=1e-3)
+
+
+def test_the_paper_model_says_it_refuses_rigid_parts(page):
+    page.select_option("#model", "paper")
+    page.wait_for_selector("#rigid-note:not([hidden])")
+    note = page.locator("#rigid-note").inner_text()
+    assert note.startswith("rigid: the paper model has no mechanics for rigid parts") and "\n" not in note
+    assert page.locator("#rigid .rigid-final").get_attribute("d")  # the part is still drawn
+    assert page.locator(f"{PART}.stale").count() == 1  # the figures on screen are not the paper model's: greyed
+    wait_for(page, "d.refusedSeq === d.pending")
+
+
+def test_an_edited_travel_survives_a_reload_of_the_tab(page):
+    """Never losing work: the edited travel is kept in the tab, and the reopened page solves it again."""
+    field = page.locator(f"{PART} .travel-input")
+    field.fill("1.4")
+    field.press("Enter")
+    before = solved(page, 1.4)
+    page.on("dialog", lambda d: d.accept())  # leaving with edits not saved as a case file: yes
+    page.reload()
+    page.wait_for_selector("#message[data-kind=info]")
+    after = solved(page, 1.4)
+    assert float(page.locator(f"{PART} .travel-input").input_value()) == 1.4
+    assert float(after["forceY"]) == pytest.approx(float(before["forceY"]), rel=1e-3)
+    assert page.locator("#rigid .rigid-final").get_attribute("d")  # drawn again, from the answer
