@@ -24,17 +24,27 @@ multiplier unknowns and changes the sparse pattern with the active set):
   that cell's element matrix: the sparse pattern is the one without contact.
 
 Coulomb friction (a part's ``friction`` μ_f > 0) is a regularised
-tangential penalty with a return mapping at the same Gauss points: each
-point has an anchor, the place along the part's outline (arc length ``s_a``)
-where it sticks; the trial tangential force per reference length is
-``q = −ε_t (s − s_a)`` (``ε_t`` = :data:`TANGENT_PENALTY` ε, ``s`` the
-point's closest place on the outline), kept if ``|q| ≤ μ_f p`` (stick),
-else ``q = −μ_f p sign(s − s_a)`` (slip). The force on the body is
-``p n + q τ`` (``τ`` the outline's tangent). The tangent gains
-``ε_t τ τᵀ`` in stick and ``−μ_f sign ε τ nᵀ`` in slip (not symmetric; the
-pattern is the same). The anchors are history: :meth:`ContactPhysics.commit`
-moves them after each converged load step (``s_a ← s + q / ε_t``). With
-μ_f = 0 none of this is computed: the frictionless result, exactly.
+tangential penalty at the same Gauss points: each point has an anchor, the
+place along the part's outline (arc length ``s_a``) it is held to; with
+``d = s − s_a`` (``s`` the point's closest place on the outline) the
+tangential force per reference length is
+
+    q = −μ_f p ψ(u),   u = d / (SLIP_MEMORY δ),   δ = max(μ_f p / ε_t, SLIP_FLOOR h),
+    ψ(u) = (3u − u³) / 2 for |u| ≤ 1, sign(u) beyond
+
+(``ε_t`` = :data:`TANGENT_PENALTY` ε, :data:`SLIP_MEMORY` = 1.5): the
+stick penalty ``−ε_t d`` at small slips, Coulomb's ``−μ_f p sign d``
+exactly from ``|d| = 1.5 δ`` on, and between them a cubic with a
+continuous slope. A stick/slip switch (``q = −ε_t d`` capped at ``μ_f p``)
+makes Newton cycle where a point sits at the switch, or where a point just
+touching (``p`` ≈ 0) slips back and forth about its anchor; this law has
+neither. The force on the body is ``p n + q τ`` (``τ`` the outline's
+tangent); the tangent gains ``−(∂q/∂d / ε) τ τᵀ + (∂q/∂p) ramp′ τ nᵀ``
+(not symmetric; the pattern is the same). The anchors are history:
+:meth:`ContactPhysics.commit` drags them after each converged load step so
+that no point is more than 1.5 δ from its anchor (the force unchanged), so
+a reversed slip turns the force round after a motion of 3 δ. With μ_f = 0
+none of this is computed: the frictionless result, exactly.
 
 For a body of revolution every integral is per radian, weighted by the
 initial distance from the axis (as :mod:`~sectiondeform.fem.axisymmetric`);
@@ -64,6 +74,11 @@ SMOOTHING = 1e-3
 """The ramp ``max(0, u)`` is rounded over ``|u| < SMOOTHING μ`` (a quadratic there), so Newton does not cycle on a point at the contact's edge."""
 TANGENT_PENALTY = 1.0
 """The tangential (stick) penalty in units of the normal penalty ε."""
+SLIP_MEMORY = 1.5
+"""The slip, in units of δ = μ_f p / ε_t, from which a point slides at Coulomb's force (the stick slope is then ε_t)."""
+SLIP_FLOOR = 1e-2
+"""The least δ, in units of the element size: a point barely pressed (``p`` → 0) would otherwise switch between
+slipping one way and the other over a vanishing slip; its stick is then softer than ``ε_t`` (its force is small)."""
 SMOOTH_DEG = 15.0
 """At a vertex of a part's outline turning by less than this, the normal turns continuously (a polygon drawn for a curve)."""
 
@@ -370,25 +385,39 @@ class ContactPhysics:
         return out
 
     def friction(self, k: int, idx: np.ndarray, p: np.ndarray, s: np.ndarray):
-        """Part ``k``'s tangential force per reference length at its contact points, and which of them slip.
+        """Part ``k``'s tangential force per reference length at its contact points and its derivatives.
 
         Returns
         -------
         q : (m,) float64 ndarray
             Along the outline's tangent ``τ = (−n_y, n_x)``, on the body.
-        slip : (m,) bool ndarray
-        sign : (m,) float64 ndarray
-            The sign of the slip ``s − s_a``.
+        dq_dd : (m,) float64 ndarray
+            Its derivative in the slip ``d = s − s_a`` (at most ``ε_t`` in size, at ``d = 0``).
+        dq_dp : (m,) float64 ndarray
+            Its derivative in the pressure ``p``.
+        d : (m,) float64 ndarray
+            The slip from the anchor, units.
         """
         obs = self.obstacles[k]
         anchor = self.anchor[k, idx]
         d = np.where(np.isnan(anchor), 0.0, s - anchor)
         d = d - obs.perimeter * np.round(d / obs.perimeter)  # the shorter way round a closed outline
-        trial = -TANGENT_PENALTY * self.boundary.penalty[idx] * d
         limit = obs.friction * p
-        slip = np.abs(trial) > limit
-        sign = np.sign(d)
-        return np.where(slip, -limit * sign, trial), slip, sign
+        delta, floor = self._slip_scale(idx, limit)
+        inside = np.abs(d) < SLIP_MEMORY * delta  # |u| < 1
+        u = np.where(inside, d / (SLIP_MEMORY * delta), 0.0)
+        psi = np.where(inside, 0.5 * (3.0 - u * u) * u, np.sign(d))
+        q = -limit * psi
+        dq_dd = np.where(inside, -limit * (1.0 - u * u) / delta, 0.0)
+        dq_dp = -obs.friction * np.where(inside, np.where(floor, psi, u**3), np.sign(d))
+        return q, dq_dd, dq_dp, d
+
+    def _slip_scale(self, idx: np.ndarray, limit: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``δ = max(μ_f p / ε_t, SLIP_FLOOR h)`` at the points ``idx``, and where the floor holds."""
+        b = self.boundary
+        floor = SLIP_FLOOR * b.size[idx]
+        delta = limit / (TANGENT_PENALTY * b.penalty[idx])
+        return np.maximum(delta, floor), delta <= floor
 
     def contact_residual(self, x: np.ndarray) -> np.ndarray:
         """The contact terms of the position residual, ``(2 N,)``."""
@@ -397,7 +426,7 @@ class ContactPhysics:
         for k, (idx, p, n, _, s, _) in enumerate(self.evaluate(x)):
             traction = p[:, None] * n
             if self.obstacles[k].friction > 0 and len(idx):
-                q, _, _ = self.friction(k, idx, p, s)
+                q = self.friction(k, idx, p, s)[0]
                 traction = traction + q[:, None] * np.column_stack((-n[:, 1], n[:, 0]))
             force = -b.weight[idx][:, None, None] * b.shape[idx][:, :, None] * traction[:, None, :]  # (m, 3, 2)
             np.add.at(r, b.nodes[idx], force)
@@ -418,11 +447,11 @@ class ContactPhysics:
             c = (b.penalty[idx] * b.weight[idx])[:, None, None, None, None]
             nn = slope[:, None, None] * n[:, :, None] * n[:, None, :]  # (m, 2, 2)
             if self.obstacles[k].friction > 0:
-                _, slip, sign = self.friction(k, idx, p, s)
+                _, dq_dd, dq_dp, _ = self.friction(k, idx, p, s)
                 tau = np.column_stack((-n[:, 1], n[:, 0]))
-                stick = TANGENT_PENALTY * tau[:, :, None] * tau[:, None, :]
-                sliding = -(self.obstacles[k].friction * sign * slope)[:, None, None] * tau[:, :, None] * n[:, None, :]
-                nn = nn + np.where(slip[:, None, None], sliding, stick)
+                along = (-dq_dd / b.penalty[idx])[:, None, None] * tau[:, :, None] * tau[:, None, :]
+                pressed = (dq_dp * slope)[:, None, None] * tau[:, :, None] * n[:, None, :]
+                nn = nn + along + pressed
             block = c * b.shape[idx][:, :, None, None, None] * b.shape[idx][:, None, :, None, None] * nn[:, None, None]
             # block[m, a, c, i, j] -> ke[cell, 2 local_a + i, 2 local_c + j]
             rows = 2 * b.local[idx][:, :, None, None, None] + np.arange(2)[None, None, None, :, None]
@@ -434,8 +463,9 @@ class ContactPhysics:
     def commit(self, x: np.ndarray) -> None:
         """Move the friction anchors to the converged state ``x`` (the return mapping's history).
 
-        A point in contact keeps its anchor in stick and drags it in slip
-        (``s_a ← s + q / ε_t``); a point not in contact is anchored where it is.
+        A point in contact keeps its anchor within :data:`SLIP_MEMORY` δ
+        (dragged along when it slid further); a point not in contact is
+        anchored where it is.
         """
         b = self.boundary
         if not any(obs.friction > 0 for obs in self.obstacles):
@@ -450,8 +480,9 @@ class ContactPhysics:
             anchor[k, near] = s_all
             idx, p, _, _, s, _ = contact[k]
             if len(idx):
-                q, _, _ = self.friction(k, idx, p, s)
-                anchor[k, idx] = (s + q / (TANGENT_PENALTY * b.penalty[idx])) % obs.perimeter
+                d = self.friction(k, idx, p, s)[3]
+                reach = SLIP_MEMORY * self._slip_scale(idx, obs.friction * p)[0]  # q unchanged
+                anchor[k, idx] = (s - np.clip(d, -reach, reach)) % obs.perimeter
         object.__setattr__(self, "anchor", anchor)
 
     def update(self, x: np.ndarray) -> float:
@@ -538,7 +569,7 @@ def contact_figures(physics: ContactPhysics, x: np.ndarray, names, ring: float =
         w = b.weight[idx]
         traction = p[:, None] * n
         if obs.friction > 0 and len(idx):
-            q, _, _ = physics.friction(k, idx, p, s)
+            q = physics.friction(k, idx, p, s)[0]
             traction = traction + q[:, None] * np.column_stack((-n[:, 1], n[:, 0]))
         force = -ring * w @ traction if len(idx) else np.zeros(2)
         xe = x[b.nodes[idx]]

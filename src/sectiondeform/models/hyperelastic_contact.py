@@ -223,8 +223,8 @@ class Contact:
                         raise self._refusal(cphys, state, t, t1, len(history), exc) from None
                     continue
                 t = t1
+                history.append(self._step(t, *self._forces(cphys, solver, state)))  # the forces before the anchors move
                 cphys.commit(cphys.positions(state.z))
-                history.append(self._step(t, *self._forces(cphys, solver, state)))
                 dt = min(dt0, 2.0 * dt)
         else:
             cphys.t = 1.0
@@ -233,9 +233,9 @@ class Contact:
             x = cphys.positions(state.z)
             if cphys.penetration(x) <= PENETRATION_FRACTION:
                 break
+            cphys.commit(x)
             cphys.update(x)
             state = run(1.0, state)
-            cphys.commit(cphys.positions(state.z))
         x = cphys.positions(state.z)
         parts, support = self._forces(cphys, solver, state)
         if warm is None:
@@ -250,7 +250,8 @@ class Contact:
         for label, part in zip(self.labels, parts):
             if part.length == 0.0:
                 warnings.append(f"{label}: touches no body from start to end; check its contour and travel")
-        cphys.update(x)  # the multipliers of this state, for the next warm start
+        cphys.commit(x)
+        cphys.update(x)  # the multipliers and anchors of this state, for the next warm start
         given.assemblies, given.factorisations = solver.assemblies, solver.factorisations  # the work counted as without contact
         out = type(state)(state.z, state.lz, state.tangent, tuple(totals), None)
         return out, ContactState(cphys.lam, tuple(parts), support, tuple(history), tuple(warnings), cphys.anchor)
