@@ -230,12 +230,14 @@ def _check_rigid_start(problem, polygons, tol: float) -> None:
                 )
 
 
-def check_holes(holes, contour, tol: float, name: str) -> list:
+def check_holes(holes, contour, tol: float, name: str, labels=None) -> list:
     """Check a body's holes against its contour polygon ``contour``; their polygons.
 
     Each hole must be a closed curve (its ends within ``tol``) that does not
     cross itself, lie strictly inside the contour, farther than ``tol``
-    from it and from every other hole.
+    from it and from every other hole. ``labels`` (one str per hole) name
+    the holes in messages instead of ``name: holes[k]`` (a drawing's reader
+    names the layer and entity).
 
     Raises
     ------
@@ -246,7 +248,7 @@ def check_holes(holes, contour, tol: float, name: str) -> list:
     polys = []
     outline = contour.boundary
     for k, hole in enumerate(holes):
-        what = f"{name}: holes[{k}]"
+        what = labels[k] if labels is not None else f"{name}: holes[{k}]"
         gap = float(np.hypot(*(hole.end - hole.start)))
         if gap > tol:
             raise GeometryError(f"{what}: the curve is open (its ends are {gap:.6g} apart, tolerance {tol:.3g}); "
@@ -271,7 +273,7 @@ def check_holes(holes, contour, tol: float, name: str) -> list:
             d = float(shapely.distance(other.exterior, line))
             if d <= tol or other.contains(poly.representative_point()) or poly.contains(other.representative_point()):
                 p = shapely.get_coordinates(shapely.shortest_line(line, other.exterior))[0]
-                raise GeometryError(f"{what}: it touches or overlaps holes[{j}] near {_where(p)}; holes stay apart "
+                raise GeometryError(f"{what}: it touches or overlaps {labels[j] if labels is not None else f'holes[{j}]'} near {_where(p)}; holes stay apart "
                                     "(draw one hole around both)")
         polys.append(poly)
     return polys

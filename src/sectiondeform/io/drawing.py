@@ -15,9 +15,13 @@ Both are read by :func:`case_from_drawing` along one path: the pieces are
 chained into the bodies' curves, the target is drawn or built
 (``target_arc``), each body's law is ``law=`` or the one the drawing
 stores, and ``units`` converts the problem at the end. The options are a
-:class:`DrawingOptions`. Entities no curve of the problem comes from are
-reported (how many, on which layers); a closed contour of them inside the
-bodies (a hole) is refused: holes are not supported yet.
+:class:`DrawingOptions`. A body's holes are the closed contours on its
+``BODY-<name>-HOLE`` layer, inside its contour on ``BODY-<name>``, or on a
+layer the case does not read lying inside it (:mod:`.holes`); they are
+reported per body, and a one-body drawing with holes becomes a
+``section-case/2`` problem. A closed contour crossing or touching a body's
+contour is refused. Entities no curve of the problem comes from are
+reported (how many, on which layers).
 """
 
 from __future__ import annotations
@@ -33,7 +37,8 @@ from ..laws import law_from_json
 from ..options import is_user_key, unknown_key
 from ..problem import V1, V2, Body, Problem, Revolution
 from .case import case_from_dict, load_case, material_from_json, read_json, revolution_from_json
-from .chaining import holes_inside, unused_summary
+from .chaining import unused_summary
+from .holes import body_holes
 from .layers import AXIS, SUPPORT, TARGET, is_bodies_drawing
 from .outline import (
     JSON_KEYS,
@@ -77,7 +82,8 @@ def convert_units(case: Problem, units: str, report=None) -> Problem:
     rev = case.revolution
     if rev is not None:
         rev = Revolution(tuple(tuple(float(v) * k for v in p) for p in rev.axis))
-    bodies = tuple(replace(b, lower=b.lower.scaled(k), upper=b.upper.scaled(k)) for b in case.bodies)
+    bodies = tuple(replace(b, lower=b.lower.scaled(k), upper=b.upper.scaled(k), holes=tuple(h.scaled(k) for h in b.holes))
+                   for b in case.bodies)
     say(report, f"units: {case.units} -> {units} (x {k:g})")
     return case.replace(support=case.support.scaled(k), target=case.target.scaled(k), bodies=bodies, units=units,
                         options=o.replace(**scaled) if scaled else o, revolution=rev)
@@ -130,9 +136,9 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
     else:
         roles = {"lower": "LOWER", "upper": "UPPER", "target": TARGET, "contour": "CONTOUR", **(o.layers or {})}
     pieces, ctx = _selection(drawing, o, roles, report)
-    revolution = None
+    revolution, own = None, {}
     if dialect == V2:
-        support, found = bodies_from_drawing(pieces, ctx, drawing, meta, report)
+        support, found, own = bodies_from_drawing(pieces, ctx, drawing, meta, report)
         revolution = revolution_from_drawing(pieces, ctx, meta, report)
     else:
         lower, upper = (curves_from_contour(pieces, ctx, report) if o.split is not None
@@ -142,15 +148,26 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
     support = found[0][1] if dialect == V1 else support
     target = find_target(pieces, support, [c for _, lo, up in found for c in (lo, up)], ctx, meta, drawing.path, report)
     unused = unused_pieces(pieces, ctx) if dialect == V1 else unused_body_pieces(pieces, ctx)
-    _check_unused(drawing, unused, ctx, found, report)
     name = o.name or meta.get("name") or drawing.path.stem
-    case_options = {**(meta.get("options") or {}), **({"chordal_error": o.chordal_error} if o.chordal_error else {})}
     if dialect == V1:
+        found = [(name, *found[0][1:])]
+    holes, unused = body_holes(found, own, unused, ctx, drawing.labels, report)
+    line = unused_summary(unused, drawing.ignored, drawing.labels, ctx.what)
+    if line is not None:
+        say(report, line)
+    case_options = {**(meta.get("options") or {}), **({"chordal_error": o.chordal_error} if o.chordal_error else {})}
+    if dialect == V1 and holes:
+        _, lower, upper = found[0]
+        body = Body(name=name, lower=lower, upper=upper, law=o.law or _stored_law(meta, "law", ""), holes=holes[name])
+        case = Problem(support=lower, target=target, bodies=(body,), name=name, units=drawing.units,
+                       options=case_options, dialect=V2)
+        say(report, "the section has holes: read as a section-case/2 problem (one body on the support)")
+    elif dialect == V1:
         _, lower, upper = found[0]
         case = Problem.single(lower, upper, target, o.law or _stored_law(meta, "law", ""), name=name,
                               units=drawing.units, options=case_options)
     else:
-        case = Problem(support=support, target=target, bodies=_bodies(found, meta, o, revolution), name=name,
+        case = Problem(support=support, target=target, bodies=_bodies(found, holes, meta, o, revolution), name=name,
                        units=drawing.units, options=case_options, revolution=revolution, dialect=V2,
                        rigid=rigid_from_drawing(pieces, ctx, drawing, meta, report))
         say(report, f"bodies: {len(found)} ({', '.join(b.name for b in case.bodies)}), resting order "
@@ -176,16 +193,6 @@ def _selection(drawing: Drawing, o: DrawingOptions, roles: dict, report) -> tupl
     return pieces, ctx
 
 
-def _check_unused(drawing: Drawing, unused: list, ctx: Context, found: list, report) -> None:
-    """Refuse a hole among the unused pieces (inside any body); report how many entities are unused, and where."""
-    rings = [np.vstack((lower.characteristic_points(ctx.chord), upper.characteristic_points(ctx.chord)[1:-1]))
-             for _, lower, upper in found]
-    holes_inside(unused, rings, ctx.tol, ctx.chord, drawing.labels, ctx.what)
-    line = unused_summary(unused, drawing.ignored, drawing.labels, ctx.what)
-    if line is not None:
-        say(report, line)
-
-
 def _simplified(found: tuple, tol: float, dialect: str, report) -> tuple:
     """A body's (name, lower, upper) with its curves simplified within ``tol``, reported."""
     name, lower, upper = found
@@ -205,8 +212,8 @@ def _stored_law(data: dict, field: str, who: str, axis=None):
     return law_from_json(data["law"], field, axis)
 
 
-def _bodies(found: list, meta: dict, o: DrawingOptions, revolution) -> tuple:
-    """The bodies of a ``section-case/2`` drawing: curves found, laws and materials given or stored."""
+def _bodies(found: list, holes: dict, meta: dict, o: DrawingOptions, revolution) -> tuple:
+    """The bodies of a ``section-case/2`` drawing: curves and holes found, laws and materials given or stored."""
     stored = stored_bodies(meta)
     axis = revolution.axis if revolution is not None else None
     out = []
@@ -214,7 +221,7 @@ def _bodies(found: list, meta: dict, o: DrawingOptions, revolution) -> tuple:
         data = stored.get(name.upper(), {})
         law = o.law or _stored_law(data, f"bodies[{i}].law", f"body {name!r}: ", axis)
         material = material_from_json(data.get("material"), f"bodies[{i}].material")
-        out.append(Body(name=name, lower=lower, upper=upper, law=law, material=material))
+        out.append(Body(name=name, lower=lower, upper=upper, law=law, material=material, holes=holes.get(name, ())))
     return tuple(out)
 
 
