@@ -175,7 +175,7 @@ def body_holes(found: list, own: dict, unused: list, ctx: Context, labels: dict,
                 d = float(shapely.distance(ring, outlines[i]))
                 if d <= tol:
                     p = shapely.get_coordinates(shapely.shortest_line(ring, outlines[i]))[0]
-                    raise CaseError(loop.where, f"a closed contour crossing or touching body {body!r}'s contour near "
+                    raise CaseError(loop.where, f"a closed contour crossing or touching the contour of body {body!r} near "
                                                 f"{fmt_point(p)} (gap {d:.3g}, tolerance {tol:.3g}); a hole lies strictly "
                                                 "inside its body: move it inside, or off the section")
             inside = [i for i in range(len(found)) if polygons[i].contains(poly.representative_point())]
