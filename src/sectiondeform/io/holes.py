@@ -158,7 +158,7 @@ def body_holes(found: list, own: dict, unused: list, ctx: Context, labels: dict,
     import shapely
 
     tol = max(ctx.tol, CONTACT_FRACTION * ctx.diag)
-    polygons = [_polygon_of(lower, upper, ctx.chord) for _, lower, upper in found]
+    polygons = [_polygon_of(lower, upper, 0.25 * tol) for _, lower, upper in found]
     outlines = [p.boundary for p in polygons]
     placed = {name: list(own.get(name, ())) for name, _, _ in found}
     groups: dict[frozenset, list] = {}
@@ -169,7 +169,7 @@ def body_holes(found: list, own: dict, unused: list, ctx: Context, labels: dict,
     for tags, group in groups.items():
         name = "/".join(sorted(labels.get(t, t) for t in tags)) or "(none)"
         for loop in closed_loops(group, f"{ctx.what} {name}", ctx, None, strict=False):
-            poly = _polygon(loop.curve, ctx.chord)
+            poly = _polygon(loop.curve, 0.25 * tol)  # fine enough to see it touch a contour within ``tol``
             ring = poly.exterior if hasattr(poly, "exterior") else poly.boundary
             for i, (body, *_) in enumerate(found):
                 d = float(shapely.distance(ring, outlines[i]))

@@ -366,7 +366,7 @@ def _spelled(n: str, found: dict, known: dict, labels: dict) -> str:
     """A body's name as the case or the drawing spells it (tags are upper-cased)."""
     if n in known:
         return known[n]
-    for role in ("contour", "lower", "upper"):
+    for role in ("contour", "lower", "upper", "hole"):
         tag = f"{BODY}{n}" + ("" if role == "contour" else f"-{role.upper()}")
         if role in found[n] and tag in labels:
             text = labels[tag]
