@@ -509,3 +509,24 @@ def test_a_drawing_of_bodies_whose_every_entity_is_used_reports_nothing_ignored(
     report = []
     read_case(tmp_path / "layup.dxf", law=AreaRatio(0.9), report=report)
     assert not [line for line in report if line.startswith("ignored")]
+
+
+@pytest.mark.parametrize("suffix", [".dxf", ".svg"])
+def test_the_public_hollow_profile_through_the_command_line_deforms_as_its_case_json(tmp_path, capsys, suffix):
+    """Convert JSON -> drawing, then deform the drawing with both models: the hole is read, the areas are the JSON's."""
+    drawing = tmp_path / f"hollow{suffix}"
+    assert main(["convert", str(HOLLOW), str(drawing)]) == 0
+    for model in ("paper", "hyperelastic"):
+        assert main(["deform", str(HOLLOW), "-o", str(tmp_path / "j.json"), "--model", model]) == 0
+        assert main(["deform", str(drawing), "-o", str(tmp_path / "d.json"), "--model", model]) == 0
+        assert "read 1 hole in body 'profile'" in capsys.readouterr().out
+        ref, got = (json.loads((tmp_path / f"{n}.json").read_text())["bodies"][0] for n in "jd")
+        for key in ("initial", "final"):
+            assert got["area"][key] == pytest.approx(ref["area"][key], rel=1e-9)
+        assert got["area"]["initial"] == pytest.approx(288 - 16 * math.pi, rel=1e-9)
+
+
+def test_a_drawing_s_holes_are_scaled_with_its_units(tmp_path):
+    write_case(tmp_path / "h.dxf", load_case(HOLLOW))
+    (hole,) = read_case(tmp_path / "h.dxf", units="cm").bodies[0].holes
+    assert hole.green() == pytest.approx(math.pi * 0.4**2, rel=1e-12)

@@ -107,14 +107,15 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
     Returns
     -------
     Problem
-        ``section-case/1`` from a one-body drawing, else ``section-case/2``.
+        ``section-case/1`` from a one-body drawing without holes, else
+        ``section-case/2``.
 
     Raises
     ------
     CaseError
         A missing layer, a gap, a branch, an unsupported entity, no law,
         no target, an unknown option; each names where. A closed contour
-        of unused pieces inside the bodies (a hole: not supported yet).
+        crossing or touching a body's contour, a bad hole (:mod:`.holes`).
     GeometryError
         If the bodies do not rest on each other as the format says.
 
