@@ -530,3 +530,21 @@ def test_a_drawing_s_holes_are_scaled_with_its_units(tmp_path):
     write_case(tmp_path / "h.dxf", load_case(HOLLOW))
     (hole,) = read_case(tmp_path / "h.dxf", units="cm").bodies[0].holes
     assert hole.green() == pytest.approx(math.pi * 0.4**2, rel=1e-12)
+
+
+def test_a_hole_drawn_on_the_upper_curve_s_layer_is_read_as_a_hole(tmp_path):
+    """On UPPER beside the upper curve, the hole made the layer 'form 2 separate chains', refused."""
+    doc, msp = bulb_seal(hole_center=(60.0, 10.0))
+    msp.add_circle((10, 10), 6, dxfattribs={"layer": "UPPER"})
+    doc.saveas(tmp_path / "seal.dxf")
+    report = []
+    (body,) = read_case(tmp_path / "seal.dxf", law=AreaRatio(0.9), report=report).bodies
+    assert [h.green() for h in body.holes] == pytest.approx([36 * math.pi], rel=1e-12)
+    assert polygon_area(np.vstack((body.lower.vertices, body.upper.characteristic_points(1e-3)[1:-1]))) \
+        == pytest.approx(200 + 50 * math.pi, rel=1e-4)  # the upper curve without the hole
+    assert any(line.startswith("read 1 hole in body 'seal' (layer UPPER: CIRCLE #6") for line in report)
+    doc, msp = two_bodies()
+    msp.add_circle((10, 2.5), 1, dxfattribs={"layer": "BODY-base-UPPER"})
+    doc.saveas(tmp_path / "layup.dxf")
+    base, top = read_case(tmp_path / "layup.dxf", law=AreaRatio(0.9)).bodies
+    assert [h.green() for h in base.holes] == pytest.approx([math.pi], rel=1e-12) and top.holes == ()

@@ -16,8 +16,9 @@ chained into the bodies' curves, the target is drawn or built
 (``target_arc``), each body's law is ``law=`` or the one the drawing
 stores, and ``units`` converts the problem at the end. The options are a
 :class:`DrawingOptions`. A body's holes are the closed contours on its
-``BODY-<name>-HOLE`` layer, inside its contour on ``BODY-<name>``, or on a
-layer the case does not read lying inside it (:mod:`.holes`); they are
+``BODY-<name>-HOLE`` layer, inside its contour on ``BODY-<name>``, beside
+its open curve on its curve layers, or on a layer the case does not read
+lying inside it (:mod:`.holes`); they are
 reported per body, and a one-body drawing with holes becomes a
 ``section-case/2`` problem. A closed contour crossing or touching a body's
 contour is refused. Entities no curve of the problem comes from are
@@ -38,7 +39,7 @@ from ..options import is_user_key, unknown_key
 from ..problem import V1, V2, Body, Problem, Revolution
 from .case import case_from_dict, load_case, material_from_json, read_json, revolution_from_json
 from .chaining import unused_summary
-from .holes import body_holes
+from .holes import body_holes, loops_beside
 from .layers import AXIS, SUPPORT, TARGET, is_bodies_drawing
 from .outline import (
     JSON_KEYS,
@@ -142,6 +143,9 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
         support, found, own = bodies_from_drawing(pieces, ctx, drawing, meta, report)
         revolution = revolution_from_drawing(pieces, ctx, meta, report)
     else:
+        if o.split is None:
+            pieces, beside = _loops_beside(pieces, ctx, ("lower", "upper"))
+            own = {o.name or meta.get("name") or drawing.path.stem: beside}
         lower, upper = (curves_from_contour(pieces, ctx, report) if o.split is not None
                         else curves_from_layers(pieces, ctx, meta, drawing.path, report))
         found = [(None, lower, upper)]
@@ -192,6 +196,21 @@ def _selection(drawing: Drawing, o: DrawingOptions, roles: dict, report) -> tupl
                   tol=o.join_tol if o.join_tol is not None else 1e-6 * diag,
                   chord=o.chordal_error or DEFAULT_CHORDAL_FRACTION * diag, diag=diag, options=o)
     return pieces, ctx
+
+
+def _loops_beside(pieces: list, ctx: Context, roles) -> tuple[list, list]:
+    """``pieces`` less the closed contours drawn beside the open curves of ``roles``' layers; those contours (:func:`.holes.loops_beside`)."""
+    loops = []
+    for role in roles:
+        if not ctx.has(pieces, role):
+            continue
+        chosen = ctx.select(pieces, role)
+        kept, found = loops_beside(chosen, ctx.where(role), ctx)
+        if found:
+            drop = {id(p) for p in chosen} - {id(p) for p in kept}
+            pieces = [p for p in pieces if id(p) not in drop]
+            loops += found
+    return pieces, loops
 
 
 def _simplified(found: tuple, tol: float, dialect: str, report) -> tuple:

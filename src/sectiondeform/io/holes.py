@@ -8,7 +8,8 @@ matched without regard to case; :mod:`.layers`):
 - on the body's hole layer ``BODY-<name>-HOLE`` (the layer the writers
   use): every closed contour there is a hole of body ``<name>``;
 - on the body's contour layer ``BODY-<name>``, beside its outer contour:
-  the contours inside the outer one;
+  the contours inside the outer one; on its curve layers (``UPPER``,
+  ``BODY-<name>-UPPER``, ...), beside the open curve: the closed contours;
 - on a layer the case does not read (``HOLE``, ``0``, ...): a closed
   contour lying inside a body's contour is a hole of that body. The paper's
   one body on ``LOWER`` and ``UPPER`` takes its holes this way, and is then
@@ -34,7 +35,7 @@ from ..layout import CONTACT_FRACTION, check_holes
 from .chaining import connect, fmt_point
 from .outline import Context, say
 
-__all__ = ["Loop", "closed_loops", "outer_and_holes", "body_holes"]
+__all__ = ["Loop", "closed_loops", "outer_and_holes", "loops_beside", "body_holes"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -120,6 +121,29 @@ def outer_and_holes(pieces, where: str, ctx: Context, report) -> tuple[Curve, li
     loops = closed_loops(pieces, where, ctx, report)
     k = int(np.argmax([abs(loop.curve.green()) for loop in loops]))
     return loops[k].curve, loops[:k] + loops[k + 1:]
+
+
+def loops_beside(pieces, where: str, ctx: Context) -> tuple[list, list[Loop]]:
+    """A curve's layer holding its open chain and closed contours beside it (a hole drawn on UPPER): split them.
+
+    Returns
+    -------
+    kept : list of Piece
+        ``pieces`` less those of the closed contours (all of them when the
+        layer holds no open chain, or no closed one, or branches: the
+        caller's chaining then says what is wrong).
+    loops : list of Loop
+    """
+    o = ctx.options
+    try:
+        paths, _ = connect(list(pieces), where, ctx.tol, o.snap, o.close_gap)
+    except CaseError:
+        return list(pieces), []
+    if all(p.closed for p in paths) or not any(p.closed for p in paths):
+        return list(pieces), []
+    closed = {s for p in paths if p.closed for s in p.sources}
+    loops = closed_loops([p for p in pieces if p.source in closed], where, ctx, None)
+    return [p for p in pieces if p.source not in closed], loops
 
 
 def body_holes(found: list, own: dict, unused: list, ctx: Context, labels: dict, report) -> tuple[dict, list]:

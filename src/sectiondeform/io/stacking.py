@@ -59,7 +59,7 @@ from ..layout import CONTACT_FRACTION
 from ..problem import Revolution
 from .case import revolution_from_json
 from .chaining import fmt_point
-from .holes import closed_loops, outer_and_holes
+from .holes import closed_loops, loops_beside, outer_and_holes
 from .layers import AXIS, BODY, HOLE_SUFFIX, ONE_BODY_LAYERS, RIGID, ROLE_SUFFIXES, SUPPORT
 from .outline import Context, curves_from_layers, say
 from .pieces import merge_runs
@@ -405,6 +405,9 @@ def _drawn(found: dict, order, names: dict, ctx: Context, stored: dict, path, re
                 other = "upper" if r == "lower" else "lower"
                 raise CaseError(f"{what} {lay(r)}", f"not found, though {lay(other)} is there; draw body {names[n]!r}'s "
                                 f"{r} curve on it, or the whole body as a closed contour on {lay('contour')}")
+        for r in ("lower", "upper"):  # a hole drawn beside the body's curve, on its layer
+            roles[r], beside = loops_beside(_checked(roles[r], f"{what} {lay(r)}"), f"{what} {lay(r)}", ctx)
+            holes[n] = holes.get(n, []) + beside
         body_ctx = replace(ctx, roles={"lower": lay("lower"), "upper": lay("upper")})
         hint = {"lower_start": stored[n]["lower_start"]} if "lower_start" in stored.get(n, {}) else {}
         curves_of[n] = curves_from_layers(_checked(roles["lower"] + roles["upper"], f"{what} {lay('lower')}"), body_ctx,
