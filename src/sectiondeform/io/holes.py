@@ -182,30 +182,33 @@ def body_holes(found: list, own: dict, unused: list, ctx: Context, labels: dict,
     import shapely
 
     tol = max(ctx.tol, CONTACT_FRACTION * ctx.diag)
-    polygons = [_polygon_of(lower, upper, 0.25 * tol) for _, lower, upper in found]
-    outlines = [p.boundary for p in polygons]
     placed = {name: list(own.get(name, ())) for name, _, _ in found}
     groups: dict[frozenset, list] = {}
     for p in unused:
         if p.curve is not None:
             groups.setdefault(p.tags, []).append(p)
+    candidates = [loop for tags, group in groups.items()
+                  for loop in closed_loops(group, f"{ctx.what} {'/'.join(sorted(labels.get(t, t) for t in tags)) or '(none)'}",
+                                           ctx, None, strict=False)]
+    if not candidates and not any(placed.values()):
+        return {}, unused
+    polygons = [_polygon_of(lower, upper, 0.25 * tol) for _, lower, upper in found]
+    outlines = [p.boundary for p in polygons]
     taken: set = set()
-    for tags, group in groups.items():
-        name = "/".join(sorted(labels.get(t, t) for t in tags)) or "(none)"
-        for loop in closed_loops(group, f"{ctx.what} {name}", ctx, None, strict=False):
-            poly = _polygon(loop.curve, 0.25 * tol)  # fine enough to see it touch a contour within ``tol``
-            ring = poly.exterior if hasattr(poly, "exterior") else poly.boundary
-            for i, (body, *_) in enumerate(found):
-                d = float(shapely.distance(ring, outlines[i]))
-                if d <= tol:
-                    p = shapely.get_coordinates(shapely.shortest_line(ring, outlines[i]))[0]
-                    raise CaseError(loop.where, f"a closed contour crossing or touching the contour of body {body!r} near "
-                                                f"{fmt_point(p)} (gap {d:.3g}, tolerance {tol:.3g}); a hole lies strictly "
-                                                "inside its body: move it inside, or off the section")
-            inside = [i for i in range(len(found)) if polygons[i].contains(poly.representative_point())]
-            if inside:
-                placed[found[inside[0]][0]].append(loop)
-                taken.update(loop.sources)
+    for loop in candidates:
+        poly = _polygon(loop.curve, 0.25 * tol)  # fine enough to see it touch a contour within ``tol``
+        ring = poly.exterior if hasattr(poly, "exterior") else poly.boundary
+        for i, (body, *_) in enumerate(found):
+            d = float(shapely.distance(ring, outlines[i]))
+            if d <= tol:
+                p = shapely.get_coordinates(shapely.shortest_line(ring, outlines[i]))[0]
+                raise CaseError(loop.where, f"a closed contour crossing or touching the contour of body {body!r} near "
+                                            f"{fmt_point(p)} (gap {d:.3g}, tolerance {tol:.3g}); a hole lies strictly "
+                                            "inside its body: move it inside, or off the section")
+        inside = [i for i in range(len(found)) if polygons[i].contains(poly.representative_point())]
+        if inside:
+            placed[found[inside[0]][0]].append(loop)
+            taken.update(loop.sources)
     out = {}
     for i, (body, _, _) in enumerate(found):
         loops = placed[body]
