@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import json
 import math
 import random
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,12 +14,15 @@ ezdxf = pytest.importorskip("ezdxf")
 
 from sectiondeform.cli import main  # noqa: E402
 from sectiondeform.deform import Deformer  # noqa: E402
-from sectiondeform.errors import CaseError  # noqa: E402
+from sectiondeform.errors import CaseError, SectionDeformError  # noqa: E402
 from sectiondeform.io import read_case, write_case, write_result  # noqa: E402
+from sectiondeform.io.case import load_case  # noqa: E402
 from sectiondeform.laws import AreaRatio  # noqa: E402
 from sectiondeform.section import polygon_area  # noqa: E402
 
 from io_helpers import SEAL, same_curve, shared_case  # noqa: E402
+
+HOLLOW = Path(__file__).parent / "data" / "cases" / "v2" / "hollow-on-arc.json"
 
 
 def new_doc(units=4):
@@ -332,17 +337,22 @@ def bulb_seal(hole_center=(10.0, 10.0)):
     return doc, msp
 
 
-def test_a_hole_on_a_layer_nobody_reads_is_refused_not_dropped(tmp_path, capsys):
-    """Read without its hole the seal's area was 46 % too large, without a word."""
+def test_a_hole_on_a_layer_nobody_reads_is_read_as_the_section_s_hole(tmp_path, capsys):
+    """Read without its hole the seal's area was 46 % too large, without a word; then the hole was refused."""
     doc, _ = bulb_seal()
     doc.saveas(tmp_path / "seal.dxf")
-    with pytest.raises(CaseError, match=r"^layer HOLE: a closed contour inside the section \(area 113\.\d+, 31\.7% of "
-                                        r"the section's\): holes are not supported yet"):
-        read_case(tmp_path / "seal.dxf", law=AreaRatio(0.9))
-    assert main(["convert", str(tmp_path / "seal.dxf"), str(tmp_path / "out.json"), "--area-ratio", "0.9"]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "holes are not supported yet" in err[0]
-    assert not (tmp_path / "out.json").exists()
+    report = []
+    case = read_case(tmp_path / "seal.dxf", law=AreaRatio(0.9), report=report)
+    (body,) = case.bodies
+    assert case.dialect == "section-case/2" and len(body.holes) == 1  # the paper's one-body dialect has no holes
+    assert body.lower.to_json() == case.support.to_json()
+    assert body.holes[0].green() == pytest.approx(36 * math.pi, rel=1e-12)
+    assert "read 1 hole in body 'seal' (layer HOLE: CIRCLE #5 (handle 34, layer HOLE))" in report
+    assert not [line for line in report if line.startswith("ignored")]
+    assert main(["convert", str(tmp_path / "seal.dxf"), str(tmp_path / "out.json"), "--area-ratio", "0.9"]) == 0
+    assert "read 1 hole in body 'seal'" in capsys.readouterr().out
+    out = json.loads((tmp_path / "out.json").read_text())
+    assert out["bodies"][0]["holes"] == [{"arc": {"center": [10.0, 10.0], "radius": 6.0, "start_deg": 0.0, "end_deg": 360.0}}]
 
 
 def test_entities_not_used_are_reported_with_their_layers(tmp_path, capsys):
@@ -381,18 +391,98 @@ def two_bodies(hole_center=None):
     return doc, msp
 
 
-@pytest.mark.parametrize("center", [(10, 7.5), (10, 5)], ids=["inside-a-body", "across-the-interface"])
-def test_a_hole_in_a_drawing_of_bodies_is_refused_not_dropped(tmp_path, capsys, center):
-    """A closed contour on a layer nobody reads, inside the bodies (also half in each): refused, naming its layer."""
+def test_a_hole_in_a_drawing_of_bodies_is_read_as_the_hole_of_the_body_round_it(tmp_path):
+    doc, _ = two_bodies((10, 7.5))
+    doc.saveas(tmp_path / "layup.dxf")
+    report = []
+    problem = read_case(tmp_path / "layup.dxf", law=AreaRatio(0.9), report=report)
+    base, top = problem.bodies
+    assert base.holes == () and len(top.holes) == 1 and top.holes[0].green() == pytest.approx(4 * math.pi, rel=1e-12)
+    assert "read 1 hole in body 'top' (layer HOLE: CIRCLE #5 (handle 34, layer HOLE))" in report
+    # the body's area less the hole's, as the deformer counts it
+    assert Deformer(problem).deform().bodies[1].area_initial == pytest.approx(100 - 4 * math.pi, rel=1e-9)
+
+
+@pytest.mark.parametrize("center", [(10, 5), (19, 7.5), (10, 12)], ids=["across-the-interface", "across-a-side",
+                                                                        "touching-the-top"])
+def test_a_closed_contour_crossing_or_touching_a_body_is_one_line_naming_its_layer_and_entity(tmp_path, capsys, center):
     doc, _ = two_bodies(center)
     doc.saveas(tmp_path / "layup.dxf")
-    with pytest.raises(CaseError, match=r"^layer HOLE: a closed contour inside the section \(area 12\.5\d*, 6\.3% of "
-                                        r"the section's\): holes are not supported yet"):
+    with pytest.raises(CaseError, match=r"^layer HOLE: CIRCLE #5 \(handle 34, layer HOLE\): a closed contour crossing "
+                                        r"or touching the contour of body '(base|top)' near"):
         read_case(tmp_path / "layup.dxf", law=AreaRatio(0.9))
     assert main(["convert", str(tmp_path / "layup.dxf"), str(tmp_path / "out.json"), "--area-ratio", "0.9"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "holes are not supported yet" in err[0]
+    assert len(err) == 1 and "CIRCLE #5 (handle 34, layer HOLE): a closed contour crossing" in err[0]
     assert not (tmp_path / "out.json").exists()
+
+
+def test_holes_on_a_body_s_hole_layer_and_inside_its_contour_layer(tmp_path):
+    """BODY-<name>-HOLE holds a body's holes; on BODY-<name>, the contours inside the outer one are its holes."""
+    doc, msp = two_bodies()
+    msp.add_circle((5, 7.5), 1, dxfattribs={"layer": "BODY-top"})
+    msp.add_lwpolyline([(13, 1), (17, 1), (17, 4), (13, 4)], close=True, dxfattribs={"layer": "BODY-base-HOLE"})
+    msp.add_circle((5, 2.5), 1, dxfattribs={"layer": "BODY-base-HOLE"})
+    doc.saveas(tmp_path / "layup.dxf")
+    report = []
+    base, top = read_case(tmp_path / "layup.dxf", law=AreaRatio(0.9), report=report).bodies
+    assert sorted(abs(h.green()) for h in base.holes) == pytest.approx([math.pi, 12.0], rel=1e-12)
+    assert [abs(h.green()) for h in top.holes] == pytest.approx([math.pi], rel=1e-12)
+    ring = np.vstack((top.lower.characteristic_points(1e-3), top.upper.characteristic_points(1e-3)[1:-1]))
+    assert polygon_area(ring) == pytest.approx(100.0, rel=1e-12)  # the outer contour stays the body's
+    assert any(line.startswith("read 2 holes in body 'base'") for line in report)
+    assert any(line.startswith("read 1 hole in body 'top' (layer BODY-top:") for line in report)
+
+
+@pytest.mark.parametrize("hole, message", [
+    (lambda msp: msp.add_lwpolyline([(13, 1), (17, 1), (17, 4)], dxfattribs={"layer": "BODY-base-HOLE"}),
+     r"^layer BODY-base-HOLE: LWPOLYLINE #5 \(handle \w+, layer BODY-base-HOLE\) is part of an open curve from "
+     r"\(1[37], 1\) to \(1[37], [14]\); a hole is a closed contour"),
+    (lambda msp: msp.add_circle((40, 2.5), 1, dxfattribs={"layer": "BODY-base-HOLE"}),
+     r"^layer BODY-base-HOLE: CIRCLE #5 \(handle \w+, layer BODY-base-HOLE\): it lies outside the body's contour"),
+    (lambda msp: msp.add_circle((10, 2.5), 1, dxfattribs={"layer": "BODY-nobody-HOLE"}),
+     r"^layer BODY-nobody-HOLE: holes of body 'nobody', which is not drawn"),
+], ids=["open", "outside", "no-body"])
+def test_a_bad_hole_layer_is_one_line_naming_it(tmp_path, hole, message):
+    doc, msp = two_bodies()
+    hole(msp)
+    doc.saveas(tmp_path / "layup.dxf")
+    with pytest.raises(SectionDeformError, match=message) as err:
+        read_case(tmp_path / "layup.dxf", law=AreaRatio(0.9))
+    assert "\n" not in str(err.value)
+
+
+@pytest.mark.parametrize("suffix", [".dxf", ".svg"])
+def test_the_hollow_profile_round_trips_through_a_drawing_with_its_hole(tmp_path, suffix):
+    """Case JSON -> drawing -> case -> drawing -> case: the same hole (to 1e-9) and the same area less the hole."""
+    case = load_case(HOLLOW)
+    first = tmp_path / f"a{suffix}"
+    write_case(first, case)
+    once = read_case(first)
+    write_case(tmp_path / f"b{suffix}", once)
+    twice = read_case(tmp_path / f"b{suffix}")
+    (hole,) = case.bodies[0].holes
+    for again in (once, twice):
+        (h,) = again.bodies[0].holes
+        assert h.green() == pytest.approx(hole.green(), rel=1e-12)
+        pts = h.at_fractions(np.linspace(0.0, 1.0, 97))
+        assert np.abs(np.hypot(*(pts - [12.0, 6.5]).T) - 4.0).max() < 1e-9  # every point on the drawn circle
+        assert same_curve(again.bodies[0].upper, case.bodies[0].upper) < 1e-9
+    # the deformer's area is the contour's less the hole's, as for the case JSON
+    areas = [Deformer(p).deform().bodies[0].area_initial for p in (case, twice)]
+    assert areas[1] == pytest.approx(areas[0], rel=1e-9) and areas[0] == pytest.approx(288 - 16 * math.pi, rel=1e-9)
+
+
+@pytest.mark.parametrize("model", ["paper", "hyperelastic"])
+def test_a_written_result_draws_the_holes_before_and_after(tmp_path, model):
+    case = load_case(HOLLOW)
+    result = Deformer(case, model=model).deform()
+    write_result(tmp_path / "r.dxf", result, case=case)
+    msp = ezdxf.readfile(tmp_path / "r.dxf").modelspace()
+    body = result.bodies[0]
+    for layer, ring in (("INITIAL-profile-HOLE", body.initial_holes[0]), ("DEFORMED-profile-HOLE", body.holes[0])):
+        (e,) = msp.query(f"LWPOLYLINE[layer=='{layer}']")
+        assert e.closed and np.array_equal(np.array(e.get_points("xy")), ring)
 
 
 def test_entities_a_drawing_of_bodies_does_not_use_are_reported_with_their_layers(tmp_path, capsys):
@@ -419,3 +509,42 @@ def test_a_drawing_of_bodies_whose_every_entity_is_used_reports_nothing_ignored(
     report = []
     read_case(tmp_path / "layup.dxf", law=AreaRatio(0.9), report=report)
     assert not [line for line in report if line.startswith("ignored")]
+
+
+@pytest.mark.parametrize("suffix", [".dxf", ".svg"])
+def test_the_public_hollow_profile_through_the_command_line_deforms_as_its_case_json(tmp_path, capsys, suffix):
+    """Convert JSON -> drawing, then deform the drawing with both models: the hole is read, the areas are the JSON's."""
+    drawing = tmp_path / f"hollow{suffix}"
+    assert main(["convert", str(HOLLOW), str(drawing)]) == 0
+    for model in ("paper", "hyperelastic"):
+        assert main(["deform", str(HOLLOW), "-o", str(tmp_path / "j.json"), "--model", model]) == 0
+        assert main(["deform", str(drawing), "-o", str(tmp_path / "d.json"), "--model", model]) == 0
+        assert "read 1 hole in body 'profile'" in capsys.readouterr().out
+        ref, got = (json.loads((tmp_path / f"{n}.json").read_text())["bodies"][0] for n in "jd")
+        for key in ("initial", "final"):
+            assert got["area"][key] == pytest.approx(ref["area"][key], rel=1e-9)
+        assert got["area"]["initial"] == pytest.approx(288 - 16 * math.pi, rel=1e-9)
+
+
+def test_a_drawing_s_holes_are_scaled_with_its_units(tmp_path):
+    write_case(tmp_path / "h.dxf", load_case(HOLLOW))
+    (hole,) = read_case(tmp_path / "h.dxf", units="cm").bodies[0].holes
+    assert hole.green() == pytest.approx(math.pi * 0.4**2, rel=1e-12)
+
+
+def test_a_hole_drawn_on_the_upper_curve_s_layer_is_read_as_a_hole(tmp_path):
+    """On UPPER beside the upper curve, the hole made the layer 'form 2 separate chains', refused."""
+    doc, msp = bulb_seal(hole_center=(60.0, 10.0))
+    msp.add_circle((10, 10), 6, dxfattribs={"layer": "UPPER"})
+    doc.saveas(tmp_path / "seal.dxf")
+    report = []
+    (body,) = read_case(tmp_path / "seal.dxf", law=AreaRatio(0.9), report=report).bodies
+    assert [h.green() for h in body.holes] == pytest.approx([36 * math.pi], rel=1e-12)
+    assert polygon_area(np.vstack((body.lower.vertices, body.upper.characteristic_points(1e-3)[1:-1]))) \
+        == pytest.approx(200 + 50 * math.pi, rel=1e-4)  # the upper curve without the hole
+    assert any(line.startswith("read 1 hole in body 'seal' (layer UPPER: CIRCLE #6") for line in report)
+    doc, msp = two_bodies()
+    msp.add_circle((10, 2.5), 1, dxfattribs={"layer": "BODY-base-UPPER"})
+    doc.saveas(tmp_path / "layup.dxf")
+    base, top = read_case(tmp_path / "layup.dxf", law=AreaRatio(0.9)).bodies
+    assert [h.green() for h in base.holes] == pytest.approx([math.pi], rel=1e-12) and top.holes == ()

@@ -149,16 +149,44 @@ BULB = ('<path id="lower" d="M0,0 L20,0"/><path id="upper" d="M20,0 L20,-10 A10,
         '<path id="target" d="M0,0 L20,0"/>')
 
 
-def test_an_svg_hole_is_refused_and_other_shapes_reported(tmp_path):
-    """A <circle id="hole"> inside the section was dropped without a word (the area 46 % too large)."""
+def test_an_svg_hole_is_read_and_other_shapes_reported(tmp_path):
+    """A <circle id="hole"> inside the section was dropped without a word (the area 46 % too large), then refused."""
     path = tmp_path / "seal.svg"
     path.write_text(_svg(BULB + '<circle id="hole" cx="10" cy="-10" r="6"/>'))
-    with pytest.raises(CaseError, match=r"^id/class hole: a closed contour inside the section .* holes are not "
-                                        r"supported yet"):
-        read_case(path, law=AreaRatio(0.9))
+    report = []
+    (body,) = read_case(path, law=AreaRatio(0.9), report=report).bodies
+    assert len(body.holes) == 1 and body.holes[0].green() == pytest.approx(36 * np.pi, rel=1e-12)
+    assert "read 1 hole in body 'seal' (id/class hole: <circle> #4 id='hole')" in report
     path.write_text(_svg(BULB + '<circle id="hole" cx="60" cy="-10" r="6"/><rect class="frame" x="-50" y="-80" '
                                 'width="200" height="130"/><line x1="0" y1="5" x2="20" y2="5"/>'))
     report = []
-    read_case(path, law=AreaRatio(0.9), report=report)
+    assert read_case(path, law=AreaRatio(0.9), report=report).bodies[0].holes == ()
     assert "ignored: 3 entities not used by the case: 1 on id/class frame, 1 on id/class hole, 1 without an id " \
            "or class" in report
+
+
+def test_an_svg_contour_across_the_section_s_is_one_line_naming_it(tmp_path):
+    path = tmp_path / "seal.svg"
+    path.write_text(_svg(BULB + '<circle id="hole" cx="20" cy="-10" r="3"/>'))
+    with pytest.raises(CaseError, match=r"^id/class hole: <circle> #4 id='hole': a closed contour crossing or touching "
+                                        r"the contour of body 'seal' near \(") as err:
+        read_case(path, law=AreaRatio(0.9))
+    assert "\n" not in str(err.value)
+
+
+def test_an_svg_body_s_holes_path_gives_one_hole_per_subpath(tmp_path):
+    """A writer puts a body's holes in one path BODY-<name>-HOLE, a subpath each; they read back one hole each."""
+    from sectiondeform.io.case import case_from_dict
+    from sectiondeform.problem import V2
+
+    data = {"format": V2, "support": {"polyline": [[0, 0], [20, 0]]}, "target": {"polyline": [[0, 0], [20, 0]]},
+            "bodies": [{"name": "s", "lower": {"polyline": [[0, 0], [20, 0]]},
+                        "upper": {"polyline": [[20, 0], [20, 10], [0, 10], [0, 0]]}, "law": {"area_ratio": 0.9},
+                        "holes": [{"arc": {"center": [5, 5], "radius": 2, "start_deg": 0, "end_deg": 360}},
+                                  {"polyline": [[12, 3], [16, 3], [16, 7], [12, 7], [12, 3]]}]}]}
+    case = case_from_dict(data)
+    write_case(tmp_path / "c.svg", case)
+    text = (tmp_path / "c.svg").read_text()
+    assert text.count('id="BODY-s-HOLE"') == 1
+    again = read_case(tmp_path / "c.svg")
+    assert sorted(abs(h.green()) for h in again.bodies[0].holes) == pytest.approx([4 * np.pi, 16.0], rel=1e-12)

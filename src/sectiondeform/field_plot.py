@@ -123,9 +123,9 @@ def draw_field(result, name: str, fig=None):
     """Draw the field ``name`` (one of :data:`PLOT_FIELDS`) on the deformed mesh; returns the figure."""
     from matplotlib.collections import PolyCollection
     from matplotlib.colors import Normalize
-    from matplotlib.patches import Polygon
+    from matplotlib.patches import PathPatch
 
-    from .plot import new_figure
+    from .plot import body_path, new_figure
 
     if fig is None:
         fig = new_figure(figsize=(11, 5), layout="constrained")
@@ -137,7 +137,7 @@ def draw_field(result, name: str, fig=None):
     collection = None
     for b, (body, v) in enumerate(zip(result.bodies, values)):
         final, contour = body.final_mesh, body.contour
-        outline = Polygon(contour, closed=True, facecolor="none", edgecolor="k", lw=0.8)
+        outline = PathPatch(body_path(contour, body.holes), facecolor="none", edgecolor="k", lw=0.8)  # holes left out
         if nodal is not None:  # smooth: the nodal values, linear on the four triangles of each P2 element
             triangles = np.asarray(final.cells)[:, _P2_SPLIT].reshape(-1, 3)
             collection = ax.tripcolor(final.points[:, 0], final.points[:, 1], triangles, nodal[b], cmap="viridis",

@@ -38,6 +38,8 @@ __all__ = ["Layout", "layout", "check_axis", "check_holes", "problem_size", "CON
 
 CONTACT_FRACTION = 1e-6
 """Default contact tolerance, as a fraction of the problem's bounding-box diagonal."""
+HOLE_TOLERANCES = 4.0
+"""A hole is more than this many contact tolerances across (its points closer than one tolerance are one point)."""
 SAMPLES = 1024
 """Points sampled evenly along every curve for the resting and sharing checks (besides its vertices)."""
 
@@ -230,27 +232,35 @@ def _check_rigid_start(problem, polygons, tol: float) -> None:
                 )
 
 
-def check_holes(holes, contour, tol: float, name: str) -> list:
+def check_holes(holes, contour, tol: float, name: str, labels=None) -> list:
     """Check a body's holes against its contour polygon ``contour``; their polygons.
 
-    Each hole must be a closed curve (its ends within ``tol``) that does not
-    cross itself, lie strictly inside the contour, farther than ``tol``
-    from it and from every other hole.
+    Each hole must be a closed curve (its ends within ``tol``), more than
+    :data:`HOLE_TOLERANCES` ``* tol`` across, that does not cross itself,
+    lie strictly inside the contour, farther than ``tol`` from it and from
+    every other hole. ``labels`` (one str per hole) name
+    the holes in messages instead of ``name: holes[k]`` (a drawing's reader
+    names the layer and entity).
 
     Raises
     ------
     GeometryError
-        One line naming the body (``name``) and the hole: open, crossing
-        itself, outside the body, touching its contour or another hole.
+        One line naming the body (``name``) and the hole: open, too small
+        for the tolerance (with the size it needs), crossing itself, outside the body, touching its contour or another hole.
     """
     polys = []
     outline = contour.boundary
     for k, hole in enumerate(holes):
-        what = f"{name}: holes[{k}]"
+        what = labels[k] if labels is not None else f"{name}: holes[{k}]"
         gap = float(np.hypot(*(hole.end - hole.start)))
         if gap > tol:
             raise GeometryError(f"{what}: the curve is open (its ends are {gap:.6g} apart, tolerance {tol:.3g}); "
                                 "a hole is a closed curve: end it where it starts")
+        size = float(np.hypot(*np.ptp(hole.at_fractions(np.linspace(0.0, 1.0, 65)), axis=0)))
+        if size <= HOLE_TOLERANCES * tol:
+            raise GeometryError(f"{what}: it is {size:.3g} across, too small for the contact tolerance {tol:.3g} (points "
+                                f"closer than it are one point); draw it more than {HOLE_TOLERANCES * tol:.3g} across, set a "
+                                "smaller options.contact_tolerance, or delete it (a hole this small changes nothing)")
         ring = _fine(hole, 0.25 * tol)
         line = shapely.LinearRing(ring)
         if not line.is_simple:
@@ -271,7 +281,7 @@ def check_holes(holes, contour, tol: float, name: str) -> list:
             d = float(shapely.distance(other.exterior, line))
             if d <= tol or other.contains(poly.representative_point()) or poly.contains(other.representative_point()):
                 p = shapely.get_coordinates(shapely.shortest_line(line, other.exterior))[0]
-                raise GeometryError(f"{what}: it touches or overlaps holes[{j}] near {_where(p)}; holes stay apart "
+                raise GeometryError(f"{what}: it touches or overlaps {labels[j] if labels is not None else f'holes[{j}]'} near {_where(p)}; holes stay apart "
                                     "(draw one hole around both)")
         polys.append(poly)
     return polys

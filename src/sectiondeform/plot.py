@@ -4,7 +4,9 @@ Four panels: (1) each body with its lower and upper curves, (2) the
 initial meshes, (3) the final meshes on the target (and on the deformed
 foundations), (4) the deformed bodies over the initial ones, with the
 areas written on them. One body is drawn in the paper's colours, several
-in one colour each; a revolution axis is drawn where it lies near.
+in one colour each; a revolution axis is drawn where it lies near. A
+body's holes are drawn as what they are, the inside of the body: outlined,
+never filled (:func:`body_path`), before and after.
 """
 
 from __future__ import annotations
@@ -19,7 +21,8 @@ from .io import check_figure_path
 from .models.base import MeshData
 from .result import RESULT_V1
 
-__all__ = ["save_figure", "write_figure", "draw_result", "draw_mesh", "new_figure", "body_colours", "PAPER_COLOURS"]
+__all__ = ["save_figure", "write_figure", "draw_result", "draw_mesh", "new_figure", "body_colours", "body_path",
+           "PAPER_COLOURS"]
 
 def new_figure(**kw):
     """A matplotlib figure of its own (not pyplot's), so the user's backend is left alone.
@@ -48,6 +51,47 @@ def draw_mesh(ax, mesh: MeshData, **style) -> None:
 
 def _closed(points: np.ndarray) -> np.ndarray:
     return np.vstack((points, points[:1]))
+
+
+def body_path(contour: np.ndarray, holes=()):
+    """A body as a matplotlib path: its contour, and its holes run the other way, so a fill leaves them empty.
+
+    Parameters
+    ----------
+    contour : (N, 2) float64 ndarray
+        The body's contour, closed (the first point not repeated), units.
+    holes : sequence of (k, 2) float64 ndarray
+        Its holes, the same way.
+
+    Returns
+    -------
+    matplotlib.path.Path
+        One closed subpath per ring: a fill (nonzero winding, as
+        :class:`~matplotlib.patches.PathPatch` draws) covers the body less
+        its holes; a clip path clips to it.
+    """
+    from matplotlib.path import Path
+
+    from .section import polygon_area
+
+    sign = np.sign(polygon_area(np.asarray(contour)))
+    rings = [np.asarray(contour)] + [np.asarray(h) if np.sign(polygon_area(np.asarray(h))) != sign else np.asarray(h)[::-1]
+                                     for h in holes]
+    codes = np.concatenate([[Path.MOVETO] + [Path.LINETO] * (len(r) - 1) + [Path.CLOSEPOLY] for r in rings])
+    return Path(np.concatenate([_closed(r) for r in rings]), codes.astype(Path.code_type))
+
+
+def _fill(ax, contour: np.ndarray, holes, **style) -> None:
+    """Fill a body less its holes (:func:`body_path`)."""
+    from matplotlib.patches import PathPatch
+
+    ax.add_patch(PathPatch(body_path(contour, holes), **{"edgecolor": "none", **style}))
+
+
+def _outline(ax, contour: np.ndarray, holes, **style) -> None:
+    """Draw a body's contour and its holes' outlines."""
+    for ring in (contour, *holes):
+        ax.plot(*_closed(np.asarray(ring)).T, **style)
 
 
 PAPER_COLOURS = {"lower": "tab:blue", "upper": "tab:red", "target": "tab:green", "outline": "k", "initial_mesh": "0.55",
@@ -155,7 +199,7 @@ def draw_result(result, fig=None):
     u = result.units
     bodies = result.bodies
     for body in bodies:  # every initial body first, so none hides a deformed one
-        axes[3].fill(*body.initial_contour.T, color="0.85")
+        _fill(axes[3], body.initial_contour, body.initial_holes, facecolor="0.85")
     area0 = sum(b.area_initial for b in bodies)
     axes[3].fill([], [], color="0.85", label=f"initial  {area0:.1f} {u}²")
     for body, c in zip(bodies, body_colours(result)):
@@ -164,12 +208,14 @@ def draw_result(result, fig=None):
         axes[0].plot(*body.initial_upper.T, color=c["upper"], lw=1.5, label=labels[1])
         axes[0].plot(*body.initial_upper.T, ".", color=c["upper"], ms=2)
         axes[0].plot(*body.lower.T, "--", color=c["target"], lw=1.2, label=labels[2])
+        for hole in body.initial_holes:
+            axes[0].plot(*_closed(hole).T, color=c["upper"], lw=1.5)
         draw_mesh(axes[1], body.initial_mesh, edgecolors=c["initial_mesh"])
-        axes[1].plot(*_closed(body.initial_contour).T, color=c["outline"], lw=1.2)
+        _outline(axes[1], body.initial_contour, body.initial_holes, color=c["outline"], lw=1.2)
         draw_mesh(axes[2], body.final_mesh, edgecolors=c["mesh"])
         axes[2].plot(*body.lower.T, color=c["target"], lw=2)
-        axes[3].fill(*body.contour.T, color=c["deformed"], alpha=0.6, label=_deformed_label(result, body))
-        axes[3].plot(*_closed(body.contour).T, color=c["deformed"], lw=1.2)
+        _fill(axes[3], body.contour, body.holes, facecolor=c["deformed"], alpha=0.6, label=_deformed_label(result, body))
+        _outline(axes[3], body.contour, body.holes, color=c["deformed"], lw=1.2)
     draw_rigid(axes[2:], result)
     note = ""
     if result.axis is not None:

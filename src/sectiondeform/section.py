@@ -358,7 +358,7 @@ def build_section(case, element_size: float | None = None) -> Section:
     for arr in (lower, s, upper):
         arr.setflags(write=False)
     orientation = 1 if signed > 0 else -1
-    holes, hole_area, hole_exact = hole_rings(case.holes, tol, origin, orientation, element_size)
+    holes, hole_area, hole_exact = hole_rings(case.holes, tol, orientation, element_size)
     return Section(
         lower=lower,
         fractions=s,
@@ -373,7 +373,7 @@ def build_section(case, element_size: float | None = None) -> Section:
     )
 
 
-def hole_rings(holes, tol: float, origin: np.ndarray, orientation: int, element_size: float) -> tuple[tuple, float, float]:
+def hole_rings(holes, tol: float, orientation: int, element_size: float) -> tuple[tuple, float, float]:
     """Each hole's points within the chordal error and its area's, oriented against the contour, an element apart at most.
 
     Parameters
@@ -381,10 +381,11 @@ def hole_rings(holes, tol: float, origin: np.ndarray, orientation: int, element_
     holes : sequence of Curve
         Closed curves (checked by the layout).
     tol : float
-        Chordal error, units; divided by 4 until the hole's polygon misses
-        its exact area by at most ``AREA_FRACTION`` of it.
-    origin : (2,) float64 ndarray
-        Where the areas are integrated about.
+        Chordal error, units, at most 1e-3 of the hole's length (a hole
+        smaller than the chordal error is drawn within its own size); divided
+        by 4 until the hole's polygon misses its exact area by at most
+        ``AREA_FRACTION`` of it. The areas are integrated about each hole's
+        own start (its digits kept however far the hole lies from the origin).
     orientation : int
         The contour's: +1 counter-clockwise. Each hole runs the other way.
     element_size : float
@@ -401,11 +402,14 @@ def hole_rings(holes, tol: float, origin: np.ndarray, orientation: int, element_
     """
     rings, area, exact = [], 0.0, 0.0
     for k, hole in enumerate(holes):
-        green = local_green(hole, origin)
+        # A closed curve's area is the same about any point; about its own start it keeps its digits (about a far
+        # origin, a hole 1e-5 of the section's size across lost its area to the cross products' rounding).
+        own = np.asarray(hole.start, dtype=np.float64)
+        green = local_green(hole, own)
         pts = None
-        for pts in itertools.islice(hole.characteristic_refinements(tol, 4.0), AREA_REFINEMENTS):
+        for pts in itertools.islice(hole.characteristic_refinements(min(tol, 1e-3 * hole.length), 4.0), AREA_REFINEMENTS):
             bounded(len(pts), MAX_UPPER_POINTS, "hole points", "raise options.chordal_error or simplify the hole")
-            if len(pts) >= 4 and abs(open_green(pts, origin) - green) <= AREA_FRACTION * abs(green):
+            if len(pts) >= 4 and abs(open_green(pts, own) - green) <= AREA_FRACTION * abs(green):
                 break
         else:
             raise GeometryError(f"holes[{k}]: its points miss the curve's exact area {abs(green):.9g} by more than "

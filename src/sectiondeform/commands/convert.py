@@ -5,8 +5,10 @@ writes OUT (.json, .dxf, .svg). The output file is written whole or not at all.
 
 A case of several bodies (section-case/2) converts the same way: its drawing
 has the layers SUPPORT, TARGET and one per body (BODY-<name>-LOWER and
--UPPER, or BODY-<name> as one closed contour); --area-ratio then sets every
-body's law (a JSON case of several bodies keeps each body's own).
+-UPPER, or BODY-<name> as one closed contour, and BODY-<name>-HOLE for its
+holes: closed contours inside a body on any layer are its holes, reported);
+--area-ratio then sets every body's law (a JSON case of several bodies keeps
+each body's own).
 
 Examples
 --------

@@ -280,8 +280,16 @@ def union_mesh(rings, fixed, h, tol: float, holes=None) -> UnionMesh:
     bounded(estimate, MAX_FE_VERTICES, "mesh vertices",
             "lower options.elements_through_thickness, or simplify the bodies' small features", MeshError)
     hole_owner = [b for b, hb in enumerate(holes) for _ in hb]
-    points, all_ids = _merge(rings + [r for hb in holes for r in hb], tol)
-    ids, hole_ids = all_ids[: len(rings)], all_ids[len(rings):]
+    # Holes lie apart from every contour and from each other (the layout checks it): their points are vertices of
+    # their own, never merged. Merged within ``tol`` like the contours', the ~1000 points of a small circle (1e-4 of
+    # the bodies' size across) would run together into one vertex, and the hole would vanish from the mesh.
+    points, ids = _merge(rings, tol)
+    hole_ids, start = [], len(points)
+    for r in (r for hb in holes for r in hb):
+        hole_ids.append(np.arange(start, start + len(r)))
+        start += len(r)
+    points = np.concatenate([points] + [r for hb in holes for r in hb])
+    all_ids = list(ids) + hole_ids
     fixed_v = np.concatenate([ids[b][np.asarray(f, dtype=np.int64)] for b, f in enumerate(fixed)])
     paths, corners = _chains(points, all_ids, fixed_v)
     edge_size = {}  # graph edge -> the smallest size of the bodies it bounds

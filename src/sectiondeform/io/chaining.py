@@ -31,7 +31,7 @@ from ..curves import Chain, Curve, Polyline
 from ..errors import CaseError
 from .pieces import Piece, merge_runs
 
-__all__ = ["ChainReport", "Path", "connect", "one_chain", "fmt_point", "holes_inside", "unused_summary"]
+__all__ = ["ChainReport", "Path", "connect", "one_chain", "fmt_point", "unused_summary"]
 
 
 def fmt_point(p) -> str:
@@ -445,54 +445,3 @@ def unused_summary(pieces, annotation, labels: dict, what: str) -> str | None:
     where = ", ".join(f"{n} {key}" for key, n in sorted(counts.items(), key=lambda kv: (-kv[1], kv[0])))
     note = f" (annotation: {', '.join(kinds)})" if kinds else ""
     return f"ignored: {total} {'entity' if total == 1 else 'entities'} not used by the case: {where}{note}"
-
-
-def holes_inside(pieces, rings, tol: float, chord: float, labels: dict, what: str) -> None:
-    """Refuse a closed contour among unused ``pieces`` that lies inside the section (the bodies' ``rings``).
-
-    A section with a hole (a seal's bulb) is not supported: read without it,
-    its area would be too large, silently. A contour counts as a hole when
-    at least half of its area lies inside the section (the union of the
-    bodies); a frame drawn round the whole drawing does not.
-
-    Parameters
-    ----------
-    pieces : sequence of Piece
-        Pieces the case does not use (with curves).
-    rings : sequence of (n, 2) float64 ndarray
-        Each body's contour, lower then upper points.
-    tol, chord : float
-        Join tolerance and chordal error, drawing units.
-    labels : dict
-    what : str
-
-    Raises
-    ------
-    CaseError
-        Naming the layer (id/class) of the contour, its area and the share
-        of the section's.
-    """
-    import shapely
-
-    section = shapely.union_all([shapely.make_valid(shapely.Polygon(ring)) for ring in rings])
-    if section.area <= 0:
-        return
-    groups: dict[frozenset, list] = {}
-    for p in pieces:
-        if p.curve is not None:
-            groups.setdefault(p.tags, []).append(p)
-    for tags, group in groups.items():
-        try:
-            paths, _ = connect(group, "unused", tol)
-        except CaseError:  # a branching set of unused pieces is no closed contour
-            continue
-        for path in paths:
-            if not path.closed:
-                continue
-            loop = shapely.make_valid(shapely.Polygon(path.curve.characteristic_points(chord)))
-            if loop.area > 0 and shapely.intersection(loop, section).area >= 0.5 * loop.area:
-                name = "/".join(sorted(labels.get(t, t) for t in tags)) or "(none)"
-                raise CaseError(f"{what} {name}", f"a closed contour inside the section (area {loop.area:.6g}, "
-                                                  f"{loop.area / section.area:.1%} of the section's): holes are not "
-                                                  "supported yet; delete the contour (the section is then read as "
-                                                  "solid) or move it out of the section")

@@ -15,9 +15,14 @@ Both are read by :func:`case_from_drawing` along one path: the pieces are
 chained into the bodies' curves, the target is drawn or built
 (``target_arc``), each body's law is ``law=`` or the one the drawing
 stores, and ``units`` converts the problem at the end. The options are a
-:class:`DrawingOptions`. Entities no curve of the problem comes from are
-reported (how many, on which layers); a closed contour of them inside the
-bodies (a hole) is refused: holes are not supported yet.
+:class:`DrawingOptions`. A body's holes are the closed contours on its
+``BODY-<name>-HOLE`` layer, inside its contour on ``BODY-<name>``, beside
+its open curve on its curve layers, or on a layer the case does not read
+lying inside it (:mod:`.holes`); they are
+reported per body, and a one-body drawing with holes becomes a
+``section-case/2`` problem. A closed contour crossing or touching a body's
+contour is refused. Entities no curve of the problem comes from are
+reported (how many, on which layers).
 """
 
 from __future__ import annotations
@@ -33,7 +38,8 @@ from ..laws import law_from_json
 from ..options import is_user_key, unknown_key
 from ..problem import V1, V2, Body, Problem, Revolution
 from .case import case_from_dict, load_case, material_from_json, read_json, revolution_from_json
-from .chaining import holes_inside, unused_summary
+from .chaining import unused_summary
+from .holes import body_holes, loops_beside
 from .layers import AXIS, SUPPORT, TARGET, is_bodies_drawing
 from .outline import (
     JSON_KEYS,
@@ -77,7 +83,8 @@ def convert_units(case: Problem, units: str, report=None) -> Problem:
     rev = case.revolution
     if rev is not None:
         rev = Revolution(tuple(tuple(float(v) * k for v in p) for p in rev.axis))
-    bodies = tuple(replace(b, lower=b.lower.scaled(k), upper=b.upper.scaled(k)) for b in case.bodies)
+    bodies = tuple(replace(b, lower=b.lower.scaled(k), upper=b.upper.scaled(k), holes=tuple(h.scaled(k) for h in b.holes))
+                   for b in case.bodies)
     say(report, f"units: {case.units} -> {units} (x {k:g})")
     return case.replace(support=case.support.scaled(k), target=case.target.scaled(k), bodies=bodies, units=units,
                         options=o.replace(**scaled) if scaled else o, revolution=rev)
@@ -101,14 +108,15 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
     Returns
     -------
     Problem
-        ``section-case/1`` from a one-body drawing, else ``section-case/2``.
+        ``section-case/1`` from a one-body drawing without holes, else
+        ``section-case/2``.
 
     Raises
     ------
     CaseError
         A missing layer, a gap, a branch, an unsupported entity, no law,
         no target, an unknown option; each names where. A closed contour
-        of unused pieces inside the bodies (a hole: not supported yet).
+        crossing or touching a body's contour, a bad hole (:mod:`.holes`).
     GeometryError
         If the bodies do not rest on each other as the format says.
 
@@ -130,11 +138,14 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
     else:
         roles = {"lower": "LOWER", "upper": "UPPER", "target": TARGET, "contour": "CONTOUR", **(o.layers or {})}
     pieces, ctx = _selection(drawing, o, roles, report)
-    revolution = None
+    revolution, own = None, {}
     if dialect == V2:
-        support, found = bodies_from_drawing(pieces, ctx, drawing, meta, report)
+        support, found, own = bodies_from_drawing(pieces, ctx, drawing, meta, report)
         revolution = revolution_from_drawing(pieces, ctx, meta, report)
     else:
+        if o.split is None:
+            pieces, beside = _loops_beside(pieces, ctx, ("lower", "upper"))
+            own = {o.name or meta.get("name") or drawing.path.stem: beside}
         lower, upper = (curves_from_contour(pieces, ctx, report) if o.split is not None
                         else curves_from_layers(pieces, ctx, meta, drawing.path, report))
         found = [(None, lower, upper)]
@@ -142,15 +153,26 @@ def case_from_drawing(drawing: Drawing, options: DrawingOptions | None = None, *
     support = found[0][1] if dialect == V1 else support
     target = find_target(pieces, support, [c for _, lo, up in found for c in (lo, up)], ctx, meta, drawing.path, report)
     unused = unused_pieces(pieces, ctx) if dialect == V1 else unused_body_pieces(pieces, ctx)
-    _check_unused(drawing, unused, ctx, found, report)
     name = o.name or meta.get("name") or drawing.path.stem
-    case_options = {**(meta.get("options") or {}), **({"chordal_error": o.chordal_error} if o.chordal_error else {})}
     if dialect == V1:
+        found = [(name, *found[0][1:])]
+    holes, unused = body_holes(found, own, unused, ctx, drawing.labels, report)
+    line = unused_summary(unused, drawing.ignored, drawing.labels, ctx.what)
+    if line is not None:
+        say(report, line)
+    case_options = {**(meta.get("options") or {}), **({"chordal_error": o.chordal_error} if o.chordal_error else {})}
+    if dialect == V1 and holes:
+        _, lower, upper = found[0]
+        body = Body(name=name, lower=lower, upper=upper, law=o.law or _stored_law(meta, "law", ""), holes=holes[name])
+        case = Problem(support=lower, target=target, bodies=(body,), name=name, units=drawing.units,
+                       options=case_options, dialect=V2)
+        say(report, "the section has holes: read as a section-case/2 problem (one body on the support)")
+    elif dialect == V1:
         _, lower, upper = found[0]
         case = Problem.single(lower, upper, target, o.law or _stored_law(meta, "law", ""), name=name,
                               units=drawing.units, options=case_options)
     else:
-        case = Problem(support=support, target=target, bodies=_bodies(found, meta, o, revolution), name=name,
+        case = Problem(support=support, target=target, bodies=_bodies(found, holes, meta, o, revolution), name=name,
                        units=drawing.units, options=case_options, revolution=revolution, dialect=V2,
                        rigid=rigid_from_drawing(pieces, ctx, drawing, meta, report))
         say(report, f"bodies: {len(found)} ({', '.join(b.name for b in case.bodies)}), resting order "
@@ -176,14 +198,19 @@ def _selection(drawing: Drawing, o: DrawingOptions, roles: dict, report) -> tupl
     return pieces, ctx
 
 
-def _check_unused(drawing: Drawing, unused: list, ctx: Context, found: list, report) -> None:
-    """Refuse a hole among the unused pieces (inside any body); report how many entities are unused, and where."""
-    rings = [np.vstack((lower.characteristic_points(ctx.chord), upper.characteristic_points(ctx.chord)[1:-1]))
-             for _, lower, upper in found]
-    holes_inside(unused, rings, ctx.tol, ctx.chord, drawing.labels, ctx.what)
-    line = unused_summary(unused, drawing.ignored, drawing.labels, ctx.what)
-    if line is not None:
-        say(report, line)
+def _loops_beside(pieces: list, ctx: Context, roles) -> tuple[list, list]:
+    """``pieces`` less the closed contours drawn beside the open curves of ``roles``' layers; those contours (:func:`.holes.loops_beside`)."""
+    loops = []
+    for role in roles:
+        if not ctx.has(pieces, role):
+            continue
+        chosen = ctx.select(pieces, role)
+        kept, found = loops_beside(chosen, ctx.where(role), ctx)
+        if found:
+            drop = {id(p) for p in chosen} - {id(p) for p in kept}
+            pieces = [p for p in pieces if id(p) not in drop]
+            loops += found
+    return pieces, loops
 
 
 def _simplified(found: tuple, tol: float, dialect: str, report) -> tuple:
@@ -205,8 +232,8 @@ def _stored_law(data: dict, field: str, who: str, axis=None):
     return law_from_json(data["law"], field, axis)
 
 
-def _bodies(found: list, meta: dict, o: DrawingOptions, revolution) -> tuple:
-    """The bodies of a ``section-case/2`` drawing: curves found, laws and materials given or stored."""
+def _bodies(found: list, holes: dict, meta: dict, o: DrawingOptions, revolution) -> tuple:
+    """The bodies of a ``section-case/2`` drawing: curves and holes found, laws and materials given or stored."""
     stored = stored_bodies(meta)
     axis = revolution.axis if revolution is not None else None
     out = []
@@ -214,7 +241,7 @@ def _bodies(found: list, meta: dict, o: DrawingOptions, revolution) -> tuple:
         data = stored.get(name.upper(), {})
         law = o.law or _stored_law(data, f"bodies[{i}].law", f"body {name!r}: ", axis)
         material = material_from_json(data.get("material"), f"bodies[{i}].material")
-        out.append(Body(name=name, lower=lower, upper=upper, law=law, material=material))
+        out.append(Body(name=name, lower=lower, upper=upper, law=law, material=material, holes=holes.get(name, ())))
     return tuple(out)
 
 

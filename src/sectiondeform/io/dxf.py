@@ -28,14 +28,16 @@ Writing
 -------
 :func:`write_case` puts a problem's curves on the layers of its dialect
 (:mod:`.layers`: LOWER, UPPER, TARGET for the paper's one body; SUPPORT,
-TARGET, BODY-<name>-LOWER, -UPPER and AXIS otherwise) as native entities
+TARGET, BODY-<name>-LOWER, -UPPER, -HOLE and AXIS otherwise) as native entities
 (polylines as LWPOLYLINE, arcs as ARC or CIRCLE, B-splines as SPLINE with
 their knots), and the laws, name, options and start points in the header
 custom property ``sectiondeform``, so DXF -> case -> DXF loses nothing.
 :func:`write_result` writes the result's layers: deformed and initial
 curves as LWPOLYLINEs (the deformed ones as SPLINEs fitted within the
-chordal error with ``spline=True``) and each mesh as one closed
-LWPOLYLINE per element, in element order.
+chordal error with ``spline=True``), the holes as closed LWPOLYLINEs on
+INITIAL-<name>-HOLE and DEFORMED-<name>-HOLE, and each mesh as one closed
+LWPOLYLINE per element, in element order. Holes are read from
+BODY-<name>-HOLE, or found inside a body's contour (:mod:`.holes`).
 """
 
 from __future__ import annotations
@@ -326,7 +328,7 @@ def write_case(path, case) -> None:
     path : str or Path
     case : Problem
         Layers LOWER, UPPER, TARGET for ``section-case/1``; SUPPORT, TARGET,
-        BODY-<name>-LOWER, -UPPER (and AXIS) for ``section-case/2``
+        BODY-<name>-LOWER, -UPPER (-HOLE, AXIS) for ``section-case/2``
         (:func:`sectiondeform.io.layers.case_layers`).
 
     Raises
@@ -340,7 +342,8 @@ def write_case(path, case) -> None:
     tol = tolerance(case)
     for layer in case_layers(case):
         _layer(doc, layer.name, layer.dxf_color)
-        _add_curve(msp, layer.data, layer.name, tol)
+        for curve in (layer.data if layer.kind == "curves" else (layer.data,)):
+            _add_curve(msp, curve, layer.name, tol)
     doc.header.custom_vars.append(META_KEY, json.dumps(case_meta(case), separators=(",", ":")))
     atomic_write(path, lambda tmp: doc.saveas(str(tmp)))
 
@@ -404,6 +407,9 @@ def _add_layer(msp, layer: Layer, spline_tol: float | None) -> None:
     """One layer of a result; its deformed curves as fitted SPLINEs when ``spline_tol`` is given."""
     if layer.kind == "mesh":
         _add_mesh(msp, layer.data, layer.name)
+    elif layer.kind == "rings":
+        for ring in layer.data:
+            _add_points(msp, ring, layer.name, True)
     elif spline_tol is not None and layer.splines:
         for part in layer.splines:
             cp, knots, k = fit_spline(part, spline_tol)
@@ -421,7 +427,9 @@ def write_result(path, result, spline: bool = False, chordal_error: float | None
     MESH_INITIAL and MESH_FINAL (one closed LWPOLYLINE per element, in
     element order); for a ``section-result/2`` one, per body
     DEFORMED-<name>-LOWER/-UPPER, INITIAL-<name>-LOWER/-UPPER,
-    MESH-INITIAL-<name> and MESH-FINAL-<name>.
+    MESH-INITIAL-<name> and MESH-FINAL-<name>, and for a body with holes
+    INITIAL-<name>-HOLE and DEFORMED-<name>-HOLE (one closed LWPOLYLINE per
+    hole, never a spline).
 
     Parameters
     ----------

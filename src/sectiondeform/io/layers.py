@@ -16,7 +16,15 @@ curve)                                                        ``DEFORMED`` (SVG 
                                                               ``SUPPORT`` and ``TARGET`` when the case is given
 ``/2`` with       ``RIGID-<name>``: each rigid part's         ``RIGID-<name>``: each rigid part's outline at
 rigid parts       contour (where it ends up)                  its end position
+``/2`` with       ``BODY-<name>-HOLE``: the body's holes,     ``INITIAL-<name>-HOLE``, ``DEFORMED-<name>-HOLE``:
+holes             one closed curve each                       the holes before and after, one closed polyline
+                                                              each
 ================  ==========================================  ==============================================
+
+A hole layer holds all the body's holes (DXF: one closed entity or chain
+each; SVG: one path, a subpath each); the readers find holes there, inside
+a body's contour on ``BODY-<name>``, or on a layer they do not read
+(:mod:`.holes`).
 
 The case data (:func:`case_meta`: name, units, options, laws, materials,
 start points, the rigid parts' travel and friction) is stored as JSON in the DXF header property or SVG root
@@ -38,10 +46,12 @@ from ..result import RESULT_V1
 
 __all__ = [
     "Layer", "case_layers", "result_layers", "case_meta", "read_meta", "check_layer_names", "check_case",
-    "is_bodies_drawing", "tolerance", "SUPPORT", "TARGET", "AXIS", "BODY", "RIGID", "ROLE_SUFFIXES", "ONE_BODY_LAYERS",
+    "is_bodies_drawing", "tolerance", "SUPPORT", "TARGET", "AXIS", "BODY", "RIGID", "ROLE_SUFFIXES", "HOLE_SUFFIX",
+    "ONE_BODY_LAYERS",
 ]
 
 SUPPORT, TARGET, AXIS, BODY, RIGID = "SUPPORT", "TARGET", "AXIS", "BODY-", "RIGID-"
+HOLE_SUFFIX = "-HOLE"
 DARK = (250, "#333333")
 ROLE_SUFFIXES = ("-LOWER", "-UPPER")
 ONE_BODY_LAYERS = ("LOWER", "UPPER", "CONTOUR")
@@ -66,7 +76,10 @@ class Layer:
     svg_color : str
     kind : str
         ``"curve"`` (a :class:`~sectiondeform.curves.Curve`, written natively),
-        ``"open"`` or ``"closed"`` (an ``(N, 2)`` polyline, units) or
+        ``"curves"`` (a tuple of them: a body's holes),
+        ``"open"`` or ``"closed"`` (an ``(N, 2)`` polyline, units),
+        ``"rings"`` (a tuple of ``(k, 2)`` closed polylines, the first point
+        not repeated: a body's holes in a result) or
         ``"mesh"`` (a :class:`~sectiondeform.models.base.MeshData`, one closed
         polyline per element).
     data : object
@@ -106,6 +119,8 @@ def case_layers(problem: Problem) -> list[Layer]:
         dxf, svg = _style(i)
         out += [Layer(f"{BODY}{b.name}{s}", f"{BODY}{b.name}{s}", dxf, svg, "curve", c)
                 for s, c in zip(ROLE_SUFFIXES, (b.lower, b.upper))]
+        if b.holes:
+            out.append(Layer(f"{BODY}{b.name}{HOLE_SUFFIX}", f"{BODY}{b.name}{HOLE_SUFFIX}", dxf, svg, "curves", b.holes))
     if problem.revolution is not None:
         out.append(Layer(AXIS, AXIS, 9, "#999999", "curve", Polyline(np.array(problem.revolution.axis, dtype=np.float64))))
     out += [Layer(f"{RIGID}{r.name}", f"{RIGID}{r.name}", *DARK, "curve", r.contour) for r in problem.rigid]
@@ -141,6 +156,9 @@ def result_layers(result, case: Problem | None = None) -> list[Layer]:
             Layer(f"DEFORMED-{b.name}-LOWER", f"DEFORMED-{b.name}-LOWER", *style, "open", b.lower, splines=(b.lower,)),
             Layer(f"DEFORMED-{b.name}-UPPER", f"DEFORMED-{b.name}-UPPER", *style, "open", b.upper, splines=(b.upper,)),
         ]
+        if b.holes:
+            out += [Layer(f"INITIAL-{b.name}{HOLE_SUFFIX}", f"INITIAL-{b.name}{HOLE_SUFFIX}", *GREY, "rings", b.initial_holes),
+                    Layer(f"DEFORMED-{b.name}{HOLE_SUFFIX}", f"DEFORMED-{b.name}{HOLE_SUFFIX}", *style, "rings", b.holes)]
     out += [Layer(f"{RIGID}{p.name}", f"{RIGID}{p.name}", *DARK, "closed", np.asarray(p.outline))
             for p in result.rigid if p.outline is not None]
     return out

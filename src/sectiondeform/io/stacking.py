@@ -14,7 +14,11 @@ without regard to case):
 ``BODY-<name>-UPPER``       exactly as a one-body drawing's LOWER and UPPER
 ``BODY-<name>``             a body as one closed contour; its lower curve is
                             the stretch of the contour lying on the support or
-                            on the upper curves of bodies already found
+                            on the upper curves of bodies already found (closed
+                            contours inside it are its holes)
+``BODY-<name>-HOLE``        optional: the body's holes, closed contours inside
+                            it (:mod:`.holes`; so are the closed contours of a
+                            layer the case does not read lying inside a body)
 ``AXIS``                    optional: a straight line, the axis of revolution
 ==========================  ==================================================
 
@@ -55,7 +59,8 @@ from ..layout import CONTACT_FRACTION
 from ..problem import Revolution
 from .case import revolution_from_json
 from .chaining import fmt_point
-from .layers import AXIS, BODY, ONE_BODY_LAYERS, RIGID, ROLE_SUFFIXES, SUPPORT
+from .holes import closed_loops, loops_beside, outer_and_holes
+from .layers import AXIS, BODY, HOLE_SUFFIX, ONE_BODY_LAYERS, RIGID, ROLE_SUFFIXES, SUPPORT
 from .outline import Context, curves_from_layers, say
 from .pieces import merge_runs
 
@@ -73,11 +78,11 @@ SAMPLES = 1024
 
 
 def _body_tags(pieces, known: dict) -> dict:
-    """Body name (upper-cased) -> role (``lower``, ``upper``, ``contour``) -> pieces.
+    """Body name (upper-cased) -> role (``lower``, ``upper``, ``hole``, ``contour``) -> pieces.
 
     ``known`` maps the upper-cased names the drawing stores to their spelling;
     a tag is first matched against those, then read as ``BODY-<name>-LOWER``,
-    ``-UPPER``, or ``BODY-<name>``.
+    ``-UPPER``, ``-HOLE``, or ``BODY-<name>``.
     """
     found: dict[str, dict[str, list]] = {}
     for p in pieces:
@@ -87,7 +92,7 @@ def _body_tags(pieces, known: dict) -> dict:
                 continue
             rest = t[len(BODY):]
             role = None
-            for suffix in ROLE_SUFFIXES:
+            for suffix in (*ROLE_SUFFIXES, HOLE_SUFFIX):
                 if rest.endswith(suffix) and (rest[: -len(suffix)] in known or rest not in known) and len(rest) > len(suffix):
                     role = (rest[: -len(suffix)], suffix[1:].lower())
             roles.append(role or (rest, "contour"))
@@ -262,6 +267,10 @@ def bodies_from_drawing(pieces, ctx: Context, drawing, meta: dict, report=None) 
         Oriented so that the bodies lie on its left.
     bodies : list of (str, Curve, Curve)
         Each body's name, lower and upper curves, in the stored order, then the drawing's.
+    holes : dict
+        Body name -> list of :class:`~.holes.Loop`, the holes drawn on the
+        body's own layers (``BODY-<name>-HOLE``, or inside its contour on
+        ``BODY-<name>``), not yet checked against the body.
 
     Raises
     ------
@@ -286,10 +295,10 @@ def bodies_from_drawing(pieces, ctx: Context, drawing, meta: dict, report=None) 
     first_piece = {n: min(pieces.index(p) for ps in found[n].values() for p in ps) for n in found}
     order = [n for n in known if n in found] + sorted((n for n in found if n not in known), key=first_piece.get)
     names = {n: _spelled(n, found, known, drawing.labels) for n in order}
-    curves_of, contours = _drawn(found, order, names, ctx, stored, drawing.path, report)
+    curves_of, contours, holes = _drawn(found, order, names, ctx, stored, drawing.path, report)
     _rest(support, curves_of, contours, order, names, ctx, meta, report)
     support = _orient_support(support, [curves_of[n] for n in order], meta.get("support_start"))
-    return support, [(names[n], *curves_of[n]) for n in order]
+    return support, [(names[n], *curves_of[n]) for n in order], {names[n]: h for n, h in holes.items()}
 
 
 def _check_tags(found: dict, known: dict, tags, ctx: Context, drawing) -> None:
@@ -304,7 +313,7 @@ def _check_tags(found: dict, known: dict, tags, ctx: Context, drawing) -> None:
             stem, suffix = rest.rsplit("-", 1)
             missing = [r.upper() for r in ("lower", "upper") if r not in found.get(stem, {})] or ["LOWER", "UPPER"]
             close = difflib.get_close_matches(suffix, ["LOWER", "UPPER"], n=1, cutoff=0.6)
-            if close and suffix not in ("LOWER", "UPPER") and stem in found and rest not in known:
+            if close and suffix not in ("LOWER", "UPPER", HOLE_SUFFIX[1:]) and stem in found and rest not in known:
                 text = drawing.labels.get(tag, tag)
                 raise CaseError(f"{what} {text}", f"matches no layer of the convention; did you mean "
                                                   f"{text[: len(text) - len(suffix)]}{missing[0] if len(missing) == 1 else close[0]}?")
@@ -357,7 +366,7 @@ def _spelled(n: str, found: dict, known: dict, labels: dict) -> str:
     """A body's name as the case or the drawing spells it (tags are upper-cased)."""
     if n in known:
         return known[n]
-    for role in ("contour", "lower", "upper"):
+    for role in ("contour", "lower", "upper", "hole"):
         tag = f"{BODY}{n}" + ("" if role == "contour" else f"-{role.upper()}")
         if role in found[n] and tag in labels:
             text = labels[tag]
@@ -366,30 +375,44 @@ def _spelled(n: str, found: dict, known: dict, labels: dict) -> str:
 
 
 def _drawn(found: dict, order, names: dict, ctx: Context, stored: dict, path, report) -> tuple[dict, dict]:
-    """The bodies drawn on their -LOWER and -UPPER layers (their curves), and those drawn as contours (their rings)."""
+    """The bodies drawn on their -LOWER and -UPPER layers (their curves), those drawn as contours (their rings), their holes."""
     what = ctx.what
     curves_of: dict[str, tuple] = {}
     contours: dict[str, Curve] = {}
+    holes: dict[str, list] = {}
     for n in order:
-        roles = found[n]
+        roles = dict(found[n])
         lay = lambda r, n=n: f"{BODY}{names[n]}" + ("" if r == "contour" else f"-{r.upper()}")  # noqa: E731
+        if "hole" in roles:
+            hole_pieces = roles.pop("hole")
+            if not roles:
+                raise CaseError(f"{what} {lay('hole')}", f"holes of body {names[n]!r}, which is not drawn; draw it on "
+                                f"{lay('contour')} (a closed contour) or on {lay('lower')} and {lay('upper')}")
+            holes[n] = closed_loops(_checked(hole_pieces, f"{what} {lay('hole')}"), f"{what} {lay('hole')}", ctx, report)
         if "contour" in roles and ("lower" in roles or "upper" in roles):
             raise CaseError(f"{what} {lay('contour')}", f"body {names[n]!r} is also drawn on {lay('lower' if 'lower' in roles else 'upper')}; "
                             "give a body either as one closed contour or as its lower and upper curves")
         if "contour" in roles:
             where = f"{what} {lay('contour')}"
-            contours[n] = _oriented_ccw(ctx.chain(_checked(roles["contour"], where), where, True, report))
+            split = outer_and_holes(_checked(roles["contour"], where), where, ctx, report)
+            if split is not None:
+                holes[n] = split[1] + holes.get(n, [])
+            ring = split[0] if split is not None else ctx.chain(roles["contour"], where, True, report)
+            contours[n] = _oriented_ccw(ring)
             continue
         for r in ("lower", "upper"):
             if r not in roles:
                 other = "upper" if r == "lower" else "lower"
                 raise CaseError(f"{what} {lay(r)}", f"not found, though {lay(other)} is there; draw body {names[n]!r}'s "
                                 f"{r} curve on it, or the whole body as a closed contour on {lay('contour')}")
+        for r in ("lower", "upper"):  # a hole drawn beside the body's curve, on its layer
+            roles[r], beside = loops_beside(_checked(roles[r], f"{what} {lay(r)}"), f"{what} {lay(r)}", ctx)
+            holes[n] = holes.get(n, []) + beside
         body_ctx = replace(ctx, roles={"lower": lay("lower"), "upper": lay("upper")})
         hint = {"lower_start": stored[n]["lower_start"]} if "lower_start" in stored.get(n, {}) else {}
         curves_of[n] = curves_from_layers(_checked(roles["lower"] + roles["upper"], f"{what} {lay('lower')}"), body_ctx,
                                           hint, path, report)
-    return curves_of, contours
+    return curves_of, contours, holes
 
 
 def _rest(support: Curve, curves_of: dict, contours: dict, order, names: dict, ctx: Context, meta: dict, report) -> None:

@@ -29,8 +29,11 @@ Writing
 dialect (:mod:`.layers`; ``lower``, ``upper``, ``target`` for the paper's
 one body), arcs as ``A``, cubic and quadratic B-splines as Bézier segments,
 others flattened within the chordal error, one user unit = one case unit,
-plus the case data in the root's ``data-sectiondeform`` attribute.
-:func:`write_result` writes one group per layer of the result.
+plus the case data in the root's ``data-sectiondeform`` attribute; a
+body's holes are one path ``BODY-<name>-HOLE``, a subpath per hole.
+:func:`write_result` writes one group per layer of the result (the holes
+on ``INITIAL-<name>-HOLE`` and ``DEFORMED-<name>-HOLE``). Holes are read
+from ``BODY-<name>-HOLE``, or found inside a body's contour (:mod:`.holes`).
 """
 
 from __future__ import annotations
@@ -455,9 +458,11 @@ def write_case(path, case) -> None:
     tol = tolerance(case)
     body, pts = [], []
     for layer in case_layers(case):
+        curves = layer.data if layer.kind == "curves" else (layer.data,)
         if layer.name != "AXIS":
-            pts.append(layer.data.discretise(tol)[0])
-        body.append(f'<path id={quoteattr(layer.svg)} stroke="{layer.svg_color}" d="{_curve_d(layer.data, tol)}"/>')
+            pts += [c.discretise(tol)[0] for c in curves]
+        d = " ".join(_curve_d(c, tol) for c in curves)
+        body.append(f'<path id={quoteattr(layer.svg)} stroke="{layer.svg_color}" d="{d}"/>')
     text = _svg(np.concatenate(pts), case.units, body, case_meta(case))
     atomic_write(path, lambda tmp: tmp.write_text(text, encoding="utf-8"))
 
@@ -470,6 +475,8 @@ def _layer_d(layer) -> str:
     if layer.kind == "mesh":
         corners = {"quad": 4, "triangle": 3, "triangle6": 3}[layer.data.kind]
         return " ".join(_poly_d(layer.data.points[c[:corners]], True) for c in layer.data.cells)
+    if layer.kind == "rings":
+        return " ".join(_poly_d(np.asarray(r), True) for r in layer.data)
     return _poly_d(np.asarray(layer.data), layer.kind == "closed")
 
 
@@ -491,7 +498,9 @@ def write_result(path, result, case=None) -> None:
     check_layer_names(result, dxf=False)
     body, pts = [], []
     for layer in result_layers(result, case):
-        if layer.kind != "mesh":
+        if layer.kind == "rings":
+            pts += [np.asarray(r) for r in layer.data]
+        elif layer.kind != "mesh":
             pts.append(np.asarray(layer.data))
         body.append(f'<g id={quoteattr(layer.svg)} stroke="{layer.svg_color}"><path d="{_layer_d(layer)}"/></g>')
     meta = {"units": result.units, "name": result.name, "format": result.dialect}
