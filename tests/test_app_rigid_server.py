@@ -23,7 +23,7 @@ from test_app_server import ORIGIN, receive  # noqa: E402
 
 from sectiondeform import CaseError  # noqa: E402
 from sectiondeform.app import engine  # noqa: E402
-from sectiondeform.app.server import create_app  # noqa: E402
+from sectiondeform.app.server import create_app, one_line  # noqa: E402
 from sectiondeform.deform import Deformer  # noqa: E402
 from sectiondeform.io.case import case_from_dict  # noqa: E402
 
@@ -117,7 +117,9 @@ def test_the_paper_model_refuses_rigid_parts_with_the_librarys_line(client, bump
     with client.websocket_connect("/ws", headers=ORIGIN) as ws:
         ws.send_text(request(bumper, 1, model="paper"))
         r = receive(ws)
-    assert r == {"type": "refused", "seq": 1, "message": str(refused.value)}
+    # the library's line, with the option named as the page names it (its model control)
+    assert r == {"type": "refused", "seq": 1, "message": one_line(str(refused.value))}
+    assert r["message"].endswith("use model hyperelastic")
     assert r["message"].startswith("rigid: ")
 
 
