@@ -358,7 +358,8 @@ class HyperelasticPrepared(Prepared):
         kappa = np.array([m.kappa for m in materials])[mesh.body]
         self.physics = self._physics(cells, geom, kappa, mu)
         n = len(mesh.nodes)
-        fixed = (2 * ids[:, None] + np.arange(2)).ravel()
+        axis_dofs, self.axis_values, self.axis_vertices = self._on_axis(mesh, ids)
+        fixed = np.concatenate(((2 * ids[:, None] + np.arange(2)).ravel(), axis_dofs))
         pattern = Pattern(self.physics.edofs, 2 * n + mesh.n_pressures, fixed)
         bounded(len(pattern.free), MAX_FE_UNKNOWNS, "unknowns",  # each factorisation grows faster than the unknowns
                 "lower options.elements_through_thickness, or simplify the bodies' thin or small features", MeshError, "mesh")
@@ -382,6 +383,14 @@ class HyperelasticPrepared(Prepared):
 
     plane = True
     """Plane sections: ``stretches`` are the bodies' out-of-plane stretches (else growths, reported as 1)."""
+
+    def _on_axis(self, mesh, support_ids: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The dofs held on a revolution axis, their values and the contour vertices there: none for a plane section."""
+        return np.zeros(0, np.int64), np.zeros(0), np.zeros(0, np.int64)
+
+    def _data(self, xd: np.ndarray) -> np.ndarray:
+        """The prescribed dofs' values: the support nodes at ``xd`` ``(k, 2)``, then the nodes held on the axis."""
+        return np.concatenate((xd.ravel(), self.axis_values))
 
     def _physics(self, cells, geom, kappa, mu):
         """The mixed problem on the union mesh, per cell its body's moduli and out-of-plane stretch; sets ``stretches``."""
@@ -478,9 +487,13 @@ class HyperelasticPrepared(Prepared):
             if (start.guess or start.stretches) == stretches:
                 return start.state
         mesh = self.mesh
-        q, t = rigid_fit(mesh.nodes[self.fixed_ids], xd)
+        q, t = self._start_motion(mesh.nodes[self.fixed_ids], xd)
         z0 = np.concatenate(((mesh.nodes @ q.T + t).ravel(), np.zeros(mesh.n_pressures)))
         return State(z0, 1.0, self.reference.tangent.rotated(q))
+
+    def _start_motion(self, points: np.ndarray, targets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The rigid motion ``(Q, t)`` that best takes the support nodes ``points`` onto ``targets``."""
+        return rigid_fit(points, targets)
 
     def place(self, curve, laws: tuple, start: HyperelasticState | None = None) -> Placed:
         """Solve the bodies on the target ``curve``; per body its lower nodes, upper points and placement.
@@ -529,9 +542,9 @@ class HyperelasticPrepared(Prepared):
         contact = None
         if self.contact is not None:  # rigid parts: loaded with the support, the contact carried by the state
             warm = start.contact if start is not None and base is start.state else None
-            state, contact = self.contact.solve(physics, solver, base, xd.ravel(), math.e, warm)
+            state, contact = self.contact.solve(physics, solver, base, self._data(xd), math.e, warm)
         else:
-            state = solver.solve(base, xd.ravel(), math.e)
+            state = solver.solve(base, self._data(xd), math.e)
         f = state.fields if state.fields is not None else physics.fields(state.z, state.lz)
         if self.plane and len(stretches) > len(laws):  # growing extruded bodies: the axial stretch with no axial force
             stretches, state, f, physics, solver = self._free_extrusion(stretches, state, f, physics, solver, xd)
@@ -581,7 +594,7 @@ class HyperelasticPrepared(Prepared):
             ln[growing] -= np.clip(force[growing] / slope[growing], -0.2, 0.2)
             stretches = tuple(float(v) for v in np.exp(ln)) + tuple(stretches[n:])
             physics, solver = self._problem(stretches)
-            state = solver.solve(state, xd.ravel(), math.e)
+            state = solver.solve(state, self._data(xd), math.e)
             f = state.fields if state.fields is not None else physics.fields(state.z, state.lz)
         raise ConvergenceError(f"{self.problem.label(int(growing[0])) or 'body'}: the axial stretch of the growing extruded "
                                f"body leaves an axial force after {AXIAL_STEPS} solves; the growth is too severe for it")
@@ -603,7 +616,7 @@ class HyperelasticPrepared(Prepared):
         base = self._base(xd, start, guess)
         stretches = start.stretches if start is not None and base is start.state else guess
         physics, solver = self._problem(stretches)
-        z = solver.predict(base, xd.ravel(), math.e)
+        z = solver.predict(base, self._data(xd), math.e)
         f = physics.fields(z, math.e)
         if f is None:
             raise MeshError("preview: an element is inverted in the linear step; the target moved too far from the "
@@ -620,6 +633,7 @@ class HyperelasticPrepared(Prepared):
         img[self.support_vertices] = curve.at_fractions(self.support_fractions)
         fixed = np.zeros(len(img), bool)
         fixed[self.support_vertices] = True
+        fixed[self.axis_vertices] = True  # held on the axis: the law's offset does not move them off it
         corrections = [0.0] * len(self.sections)
         targets = [None] * len(self.sections)
         for b in self.layout.order:

@@ -30,8 +30,9 @@ import copy
 
 import numpy as np
 
-from ..errors import LawError
+from ..errors import CaseError, LawError
 from ..fem.axisymmetric import AxisymmetricNeoHooke, AxisymmetricRubber
+from ..fem.mapping import rigid_fit
 from ..materials import NeoHookean
 from ..pappus import axis_frame, signed_distance
 
@@ -141,6 +142,40 @@ class RevolutionPhysics:
         the warm start (a start solved under other growths is no path).
         """
         return tuple(float(law.ratio) if law.measure == "volume" else 1.0 for law in laws)
+
+    def _on_axis(self, mesh, support_ids: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The nodes on the axis (a solid body of revolution) held there: their radial dofs, values and contour vertices.
+
+        A body of revolution that reaches its axis (a ball, a bump stop)
+        keeps the points there on it: their distance from the axis is held
+        at 0 (a node on the support is held already). The radial dof is one
+        coordinate, so the axis must be drawn along x or y.
+
+        Raises
+        ------
+        CaseError
+            If bodies reach an axis that is drawn along neither x nor y.
+        """
+        axis = self.problem.revolution.axis
+        tol = self.layout.tolerance
+        on = np.flatnonzero(np.abs(signed_distance(mesh.nodes, axis)) <= tol)
+        on = on[~np.isin(on, support_ids)]
+        vertices = np.flatnonzero(np.abs(signed_distance(mesh.points, axis)) <= tol)
+        if not len(on):
+            return np.zeros(0, np.int64), np.zeros(0), vertices
+        origin, rot = axis_frame(axis)
+        radial = int(np.argmax(np.abs(rot[1])))  # the coordinate the normal to the axis runs along
+        if abs(rot[1][radial]) < 1.0 - 1e-12:
+            raise CaseError("revolution.axis", f"{len(on)} mesh nodes lie on the axis, which is drawn at an angle; draw it "
+                            "along x or y so that their distance from it can be held at 0")
+        return 2 * on + radial, np.full(len(on), origin[radial]), vertices
+
+    def _start_motion(self, points: np.ndarray, targets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The best rigid motion of the support nodes; for bodies held on the axis, a translation along it."""
+        if not len(self.axis_values):
+            return rigid_fit(points, targets)
+        e = axis_frame(self.problem.revolution.axis)[1][0]
+        return np.eye(2), e * float(np.mean((targets - points) @ e))
 
     def _physics(self, cells, geom, kappa, mu):
         """The axisymmetric problem: neo-Hookean bodies in closed form, any other rubber through the materials."""
