@@ -15,6 +15,9 @@ from pathlib import Path
 
 import pytest
 
+from sectiondeform.commands._common import OPTION_FLAGS
+from sectiondeform.errors import spelled
+
 CASES = Path(__file__).parent / "data" / "cases"
 
 
@@ -34,9 +37,11 @@ def test_each_warning_is_one_stderr_line_and_in_the_result(tmp_path, name, model
     assert run.returncode == 0, run.stderr
     warnings = json.loads(out.read_text())["warnings"]
     lines = [line for line in run.stderr.splitlines() if line.strip()]
-    assert lines == [f"warning: {' '.join(w.split())}" for w in warnings]
+    # each the result's warning, with the options it names spelled as the command line's flags
+    assert lines == [f"warning: {spelled(' '.join(w.split()), OPTION_FLAGS)}" for w in warnings]
     assert "warning:" not in run.stdout
     if name == "grooved-tread":  # the height-change warning, with its number
         assert len(lines) == 1 and "heights change" in lines[0] and "%" in lines[0]
+        assert "(--model hyperelastic)" in lines[0] and "option model" in warnings[0]
     if name == "paper-example":
         assert lines == []
