@@ -7,6 +7,8 @@ runs them; a missing fixture is an error, never a skip.
 
 from __future__ import annotations
 
+import os
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -124,3 +126,16 @@ def chord_offset(result) -> float:
         exact = body.area_target if body.area_target is not None else polygon
         out = max(out, 3.0 * abs(exact - polygon) / upper)
     return out
+
+
+@pytest.fixture(scope="session")
+def ccx():
+    """CalculiX's ``ccx`` (``SECTIONDEFORM_CCX`` or on the PATH): a skip with the reason on a developer's machine
+    without it, a failure when ``SECTIONDEFORM_REQUIRE_CCX=1`` (CI).
+    """
+    exe = os.environ.get("SECTIONDEFORM_CCX") or shutil.which("ccx")
+    if exe is None or shutil.which(exe) is None:
+        if os.environ.get("SECTIONDEFORM_REQUIRE_CCX") == "1":
+            pytest.fail("SECTIONDEFORM_REQUIRE_CCX=1 but CalculiX's ccx is not installed (apt-get install calculix-ccx)")
+        pytest.skip("CalculiX's ccx is not installed (apt-get install calculix-ccx)")
+    return exe

@@ -8,14 +8,10 @@ two-layer strip.
 from __future__ import annotations
 
 import json
-import os
-import re
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
-from test_app_browser import LAUNCH_ARGS, _missing, centre, chromium_path, shown, wait_for
+from test_app_browser import centre, chromium, open_page, serve, shown, wait_for
 
 from sectiondeform.errors import SectionDeformError
 from sectiondeform.io.case import case_from_dict
@@ -27,44 +23,17 @@ DRUM = CASES / "tread-on-drum.json"
 
 @pytest.fixture(scope="module")
 def server():
-    why = _missing()
-    if why:
-        if os.environ.get("SECTIONDEFORM_REQUIRE_BROWSER") == "1":
-            pytest.fail(f"browser tests required but cannot run: {why}")
-        pytest.skip(why)
-    proc = subprocess.Popen([sys.executable, "-m", "sectiondeform", "serve", str(STRIP), "--port", "0", "--no-browser"],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    line = proc.stdout.readline()
-    match = re.search(r"(http://\S+/\?token=\S+)", line)
-    if not match:
-        proc.kill()
-        pytest.fail(f"the server did not start: {line}{proc.stdout.read()}")
-    yield match.group(1)
-    proc.terminate()
-    proc.wait(timeout=10)
+    yield from serve(str(STRIP))
 
 
 @pytest.fixture(scope="module")
 def browser(server):
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as p:
-        b = p.chromium.launch(executable_path=chromium_path(), args=LAUNCH_ARGS)
-        yield b
-        b.close()
+    yield from chromium()
 
 
 @pytest.fixture()
 def page(browser, server):
-    context = browser.new_context(viewport={"width": 1200, "height": 700})
-    page = context.new_page()
-    errors = []
-    page.on("pageerror", lambda e: errors.append(str(e)))
-    page.goto(server)
-    page.wait_for_selector("#view[data-final='1']", timeout=60_000)
-    yield page
-    context.close()
-    assert not errors, errors
+    yield from open_page(browser, server, "#view[data-final='1']", timeout=60_000)
 
 
 def bodies(d: dict) -> list[dict]:

@@ -41,14 +41,18 @@ def chromium_path() -> str | None:
     return path if path and os.path.isfile(path) else None
 
 
-@pytest.fixture(scope="module")
-def server():
+def serve(*args: str):
+    """Run ``sectiondeform serve ARGS`` on a free port; yield the page's address with its token, then stop it.
+
+    Skips with the reason where Chromium or Playwright is missing, unless
+    ``SECTIONDEFORM_REQUIRE_BROWSER=1``: then it fails.
+    """
     why = _missing()
     if why:
         if os.environ.get("SECTIONDEFORM_REQUIRE_BROWSER") == "1":
             pytest.fail(f"browser tests required but cannot run: {why}")
         pytest.skip(why)
-    proc = subprocess.Popen([sys.executable, "-m", "sectiondeform", "serve", "--port", "0", "--no-browser"],
+    proc = subprocess.Popen([sys.executable, "-m", "sectiondeform", "serve", *args, "--port", "0", "--no-browser"],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     line = proc.stdout.readline()
     match = re.search(r"(http://\S+/\?token=\S+)", line)
@@ -60,8 +64,8 @@ def server():
     proc.wait(timeout=10)
 
 
-@pytest.fixture(scope="module")
-def browser(server):
+def chromium():
+    """Yield the system Chromium driven by Playwright, then close it."""
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as p:
@@ -70,17 +74,32 @@ def browser(server):
         b.close()
 
 
-@pytest.fixture()
-def page(browser, server):
+def open_page(browser, address: str, ready: str = "#view[data-final='1']", timeout: float = 30_000):
+    """Yield a new page at ``address`` once ``ready`` (a selector) shows; after the test, no script error on it."""
     context = browser.new_context(viewport={"width": 1200, "height": 700}, accept_downloads=True)
     page = context.new_page()
     errors = []
     page.on("pageerror", lambda e: errors.append(str(e)))
-    page.goto(server)
-    page.wait_for_selector("#view[data-final='1']")
+    page.goto(address)
+    page.wait_for_selector(ready, timeout=timeout)
     yield page
     context.close()
     assert not errors, errors
+
+
+@pytest.fixture(scope="module")
+def server():
+    yield from serve()
+
+
+@pytest.fixture(scope="module")
+def browser(server):
+    yield from chromium()
+
+
+@pytest.fixture()
+def page(browser, server):
+    yield from open_page(browser, server)
 
 
 def shown(page) -> dict:

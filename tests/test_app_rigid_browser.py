@@ -9,15 +9,12 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
-from test_app_browser import LAUNCH_ARGS, _missing, chromium_path, wait_for
+from test_app_browser import chromium, open_page, serve, wait_for
 
 from sectiondeform.deform import Deformer
 from sectiondeform.io import read_case
@@ -29,44 +26,17 @@ PART = ".rigid-part[data-part='0']"
 
 @pytest.fixture(scope="module")
 def server():
-    why = _missing()
-    if why:
-        if os.environ.get("SECTIONDEFORM_REQUIRE_BROWSER") == "1":
-            pytest.fail(f"browser tests required but cannot run: {why}")
-        pytest.skip(why)
-    proc = subprocess.Popen([sys.executable, "-m", "sectiondeform", "serve", str(BUMPER), "--port", "0", "--no-browser"],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    line = proc.stdout.readline()
-    match = re.search(r"(http://\S+/\?token=\S+)", line)
-    if not match:
-        proc.kill()
-        pytest.fail(f"the server did not start: {line}{proc.stdout.read()}")
-    yield match.group(1)
-    proc.terminate()
-    proc.wait(timeout=10)
+    yield from serve(str(BUMPER))
 
 
 @pytest.fixture(scope="module")
 def browser(server):
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as p:
-        b = p.chromium.launch(executable_path=chromium_path(), args=LAUNCH_ARGS)
-        yield b
-        b.close()
+    yield from chromium()
 
 
 @pytest.fixture()
 def page(browser, server):
-    context = browser.new_context(viewport={"width": 1200, "height": 700}, accept_downloads=True)
-    page = context.new_page()
-    errors = []
-    page.on("pageerror", lambda e: errors.append(str(e)))
-    page.goto(server)
-    page.wait_for_selector(f"{PART}[data-seq]", timeout=60_000)  # the first full deformation's figures
-    yield page
-    context.close()
-    assert not errors, errors
+    yield from open_page(browser, server, f"{PART}[data-seq]", timeout=60_000)
 
 
 def solved(page, travel: float) -> dict:

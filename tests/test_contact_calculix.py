@@ -3,9 +3,7 @@
 from __future__ import annotations
 
 import json
-import os
 import re
-import shutil
 
 import numpy as np
 import pytest
@@ -25,16 +23,6 @@ BUMPER = CASES_DIR / "v2" / "bumper-under-plate.json"
 SLEEVE = CASES_DIR / "v2" / "sleeve-on-shaft.json"
 ORING = CASES_DIR / "v2" / "o-ring-squeeze-20.json"
 ORING_K100 = CASES_DIR / "v2" / "o-ring-squeeze-20-k100.json"
-
-
-@pytest.fixture(scope="module")
-def ccx():
-    exe = os.environ.get("SECTIONDEFORM_CCX") or shutil.which("ccx")
-    if exe is None or shutil.which(exe) is None:
-        if os.environ.get("SECTIONDEFORM_REQUIRE_CCX") == "1":
-            pytest.fail("SECTIONDEFORM_REQUIRE_CCX=1 but CalculiX's ccx is not installed (apt-get install calculix-ccx)")
-        pytest.skip("CalculiX's ccx is not installed (apt-get install calculix-ccx)")
-    return exe
 
 
 def _cards(text: str) -> list[str]:

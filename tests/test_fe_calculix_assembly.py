@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import json
-import os
-import shutil
 import sys
 from pathlib import Path
 
@@ -21,16 +19,6 @@ sys.path.insert(0, str(Path(__file__).parent))
 from test_fe_assembly_decks import small_strip  # noqa: E402
 
 RI, RO, HEIGHT, RI_FINAL = 20.0, 22.0, 20.0, 22.0
-
-
-@pytest.fixture(scope="module")
-def ccx():
-    exe = os.environ.get("SECTIONDEFORM_CCX") or shutil.which("ccx")
-    if exe is None or shutil.which(exe) is None:
-        if os.environ.get("SECTIONDEFORM_REQUIRE_CCX") == "1":
-            pytest.fail("SECTIONDEFORM_REQUIRE_CCX=1 but CalculiX's ccx is not installed (apt-get install calculix-ccx)")
-        pytest.skip("CalculiX's ccx is not installed (apt-get install calculix-ccx)")
-    return exe
 
 
 def ring_case() -> dict:

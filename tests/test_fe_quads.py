@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import os
-import shutil
 from pathlib import Path
 
 import numpy as np
@@ -13,16 +11,6 @@ import sectiondeform as sd
 from sectiondeform.compare import compare_curves
 
 DATA = Path(__file__).parent / "data" / "fe"
-
-
-@pytest.fixture(scope="module")
-def ccx():
-    exe = os.environ.get("SECTIONDEFORM_CCX") or shutil.which("ccx")
-    if exe is None or shutil.which(exe) is None:
-        if os.environ.get("SECTIONDEFORM_REQUIRE_CCX") == "1":
-            pytest.fail("SECTIONDEFORM_REQUIRE_CCX=1 but CalculiX's ccx is not installed (apt-get install calculix-ccx)")
-        pytest.skip("CalculiX's ccx is not installed (apt-get install calculix-ccx)")
-    return exe
 
 
 @pytest.fixture(scope="module")

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import shutil
 from pathlib import Path
 
@@ -251,19 +250,10 @@ def test_validate_measures_every_body_against_the_reference(kind, model, tmp_pat
     assert len(rows) == len(load_case(KINDS[kind]).bodies)
 
 
-def _ccx() -> bool:
-    if shutil.which("ccx"):
-        return True
-    if os.environ.get("SECTIONDEFORM_REQUIRE_CCX"):
-        pytest.fail("ccx (CalculiX) is required here (SECTIONDEFORM_REQUIRE_CCX) but is not on PATH")
-    pytest.skip("ccx (CalculiX) is not installed")
-
-
 # Several bodies and bodies of revolution through CalculiX: tests/test_fe_calculix_assembly.py (coarse decks of a
 # two-layer strip and a small axisymmetric tube; the shared assemblies at solve-fe's default mesh take CalculiX minutes).
 @pytest.mark.parametrize("kind", ["v1"])
-def test_solve_fe_reads_calculix_back_into_a_result_of_every_body(kind, tmp_path):
-    _ccx()
+def test_solve_fe_reads_calculix_back_into_a_result_of_every_body(kind, tmp_path, ccx):
     out = tmp_path / "fe.json"
     assert main(["solve-fe", str(KINDS[kind]), "-o", str(out), "-q"]) == 0
     data = json.loads(out.read_text())
