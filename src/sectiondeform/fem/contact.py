@@ -330,8 +330,9 @@ class ContactPhysics:
         object.__setattr__(self, "lam", np.zeros(shape) if lam is None else np.array(lam, dtype=np.float64))
         object.__setattr__(self, "anchor", np.full(shape, np.nan) if anchor is None else np.array(anchor, dtype=np.float64))
         object.__setattr__(self, "_cache", [])
+        object.__setattr__(self, "_memo", [])
 
-    _own = ("_inner", "boundary", "obstacles", "t", "lam", "anchor", "_cache")
+    _own = ("_inner", "boundary", "obstacles", "t", "lam", "anchor", "_cache", "_memo")
 
     def __getattr__(self, name):
         return getattr(self._inner, name)
@@ -419,11 +420,25 @@ class ContactPhysics:
         delta = limit / (TANGENT_PENALTY * b.penalty[idx])
         return np.maximum(delta, floor), delta <= floor
 
-    def contact_residual(self, x: np.ndarray) -> np.ndarray:
-        """The contact terms of the position residual, ``(2 N,)``."""
+    def _contact_of(self, f) -> list:
+        """:meth:`evaluate` at the positions of the fields ``f``, once for the residual and the tangent alike.
+
+        Kept for the last two fields, with the load fraction, multipliers and
+        anchors it was computed under (each replaced, never changed in place).
+        """
+        key = (f, self.t, self.lam, self.anchor)
+        for memo, out in self._memo:
+            if all(a is b for a, b in zip(memo[:1] + memo[2:], key[:1] + key[2:])) and memo[1] == key[1]:
+                return out
+        out = self.evaluate(self._x(f))
+        object.__setattr__(self, "_memo", [*self._memo[-1:], (key, out)])
+        return out
+
+    def contact_residual(self, x: np.ndarray, contact: list | None = None) -> np.ndarray:
+        """The contact terms of the position residual, ``(2 N,)`` (``contact``: :meth:`evaluate` at ``x``, if known)."""
         b = self.boundary
         r = np.zeros((self._inner.n_nodes, 2))
-        for k, (idx, p, n, _, s, _) in enumerate(self.evaluate(x)):
+        for k, (idx, p, n, _, s, _) in enumerate(self.evaluate(x) if contact is None else contact):
             traction = p[:, None] * n
             if self.obstacles[k].friction > 0 and len(idx):
                 q = self.friction(k, idx, p, s)[0]
@@ -435,13 +450,13 @@ class ContactPhysics:
     def residual(self, f) -> np.ndarray:
         r = self._inner.residual(f)
         n2 = 2 * self._inner.n_nodes
-        r[:n2] += self.contact_residual(self._x(f))
+        r[:n2] += self.contact_residual(self._x(f), self._contact_of(f))
         return r
 
     def element_matrices(self, f) -> np.ndarray:
         ke = self._inner.element_matrices(f)
         b = self.boundary
-        for k, (idx, p, n, _, s, slope) in enumerate(self.evaluate(self._x(f))):
+        for k, (idx, p, n, _, s, slope) in enumerate(self._contact_of(f)):
             if not len(idx):
                 continue
             c = (b.penalty[idx] * b.weight[idx])[:, None, None, None, None]

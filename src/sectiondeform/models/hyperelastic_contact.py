@@ -59,7 +59,7 @@ COLAMD a factorisation of 16,000 unknowns takes about 0.05 s, so 600,000 is a fe
 
 class _LoadingBound(ConvergenceError):
     """The contact loading reached :data:`MAX_LOADING_WORK`: refused as it is, no smaller step tried."""
-MIN_STEPS, MAX_STEPS = 4, 32
+MIN_STEPS, MAX_STEPS = 2, 32
 STEP_FRACTION = 0.25
 """A load step moves a part by at most this fraction of the smallest element size (within MIN_STEPS..MAX_STEPS steps)."""
 
