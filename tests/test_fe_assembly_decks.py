@@ -193,11 +193,13 @@ def test_export_fe_cli_writes_v2_decks_and_refuses_area_ratio(tmp_path, capsys):
     assert "ELSET=COVER" in out.read_text() and len(captured.err.strip().splitlines()) == 2
     assert main(["export-fe", str(path), "-o", str(tmp_path / "x.inp"), "--area-ratio", "1"]) == 2
     assert "--area-ratio" in capsys.readouterr().err and not (tmp_path / "x.inp").exists()
-    # Without an axis a volume ratio is the growth of an extruded body: no deck expresses it, written and warned.
+    # Without an axis a volume ratio is the growth of an extruded body: an in-plane *EXPANSION, the extrusion held
+    # at a free body's stretch (no generalised plane strain element in CalculiX), written and warned in one line.
     grown = copy.deepcopy(small_strip())
     grown["bodies"][0]["law"] = {"volume_ratio": 1.2}
     path.write_text(json.dumps(grown))
     assert main(["export-fe", str(path), "-o", str(out)]) == 0
     (growth,) = [line for line in capsys.readouterr().err.splitlines() if "'backing'" in line]
-    assert "volume ratio 1.2: volumetric growth has no place" in growth and "area ratio" not in growth
-    assert "law volume ratio 1.2" in out.read_text()
+    assert "grows by volume ratio 1.2: this plane-strain deck" in growth and "area ratio" not in growth
+    text = out.read_text()
+    assert "law volume ratio 1.2" in text and "*EXPANSION, TYPE=ORTHO" in text

@@ -2,8 +2,10 @@
 
 Runs the fast model (the case's, or --model) and a finite-element solution
 of the same physics on CASE: a nearly incompressible neo-Hookean section in
-generalised plane strain (out-of-plane stretch 1/r), bonded to the target,
-solved on fine P2/P1 triangles. Prints both areas, the Hausdorff distance
+generalised plane strain (out-of-plane stretch 1/r; a body grown by
+volume_ratio r grows by r^(1/3) in every direction, its extrusion free),
+bonded to the target, solved on fine P2/P1 triangles; a body's holes are
+free boundaries of the mesh. Prints both areas, the Hausdorff distance
 between the two deformed upper curves (absolute and over the mean thickness
 T), the largest gap between corresponding upper points, both times and
 their ratio. Progress of the reference goes to stderr.
@@ -13,7 +15,8 @@ checked body by body against one solve of all of them (one mesh of the
 union, shared nodes on the shared pieces, each body's material and law):
 per body its Hausdorff distance over its mean thickness and over the
 case's height, and its law's relative error (area, or volume for a body of
-revolution), fast and reference. --reference calculix solves the same
+revolution), fast and reference, and each hole's distance over the
+height. --reference calculix solves the same
 problem with CalculiX instead (needs ccx). A model that refuses the case
 exits 2 with one line.
 

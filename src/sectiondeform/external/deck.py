@@ -14,7 +14,26 @@ writes it in the keyword syntax both Abaqus/Standard and CalculiX read:
   step): the node at arc-length fraction s of the lower curve goes to the
   point of the target at the same fraction s, the rule of every model of
   the project;
-* ``*NODE FILE`` U and ``*EL FILE`` S (CalculiX's ``.frd``, Abaqus's ``.fil``).
+* ``*NODE FILE`` U and ``*EL FILE`` S (CalculiX's ``.frd``, Abaqus's ``.fil``);
+* growth (``{"volume_ratio": r}``: cure shrinkage, swelling) as a thermal
+  expansion: per growing body an ``*EXPANSION`` with α = r^(1/3) − 1, every
+  node at temperature 0 initially (``*INITIAL CONDITIONS``) and 1 at the
+  end of the step (``*TEMPERATURE``, ramped with the support). The linear
+  thermal strain α ΔT = r^(1/3) − 1, not ln(r) / 3: CalculiX makes the
+  thermal deformation gradient (1 + α ΔT) I for a hyperelastic material
+  (a free block comes back stretched by exactly 1 + α ΔT, stress free), so
+  only this value gives the growth stretch r^(1/3) whatever the growth;
+  ln(r) / 3 would be short by r^(1/3) − 1 − ln(r) / 3 (5e-4 at r = 1.1,
+  0.17 at r = 3). A body of revolution expands isotropically (CAX: r, z and
+  the hoop). An extruded body cannot be free along its length in a plane
+  strain element (CalculiX has no generalised plane strain element): its
+  deck expands in the plane only (``TYPE=ORTHO``, α, α, 0), which is plane
+  strain about the extrusion stretched by a free body's r^(1/3) — exact for
+  a free body, a bonded body's axial force left in (a warning says so).
+
+The bodies' holes are holes of the mesh (:func:`~sectiondeform.reference.mesh.triangulate`):
+no element inside, their faces free and unloaded; their nodes are the set
+``HOLES``.
 
 Every real is written in at most 20 characters (:func:`.inp_number.inp_real`):
 CalculiX reads no more of a field and drops the rest without a word.
@@ -127,12 +146,16 @@ class Body:
         Its rubber (:mod:`sectiondeform.materials.models`).
     law : str
         The case's law, for the comment block (``"area ratio 0.9"``).
+    expansion : tuple of float
+        The thermal expansion coefficients of its growth, (α,) isotropic or
+        (α, α, 0) in the plane only (an extruded body); empty: no growth.
     """
 
     name: str
     elements: np.ndarray
     material: object
     law: str = ""
+    expansion: tuple = ()
 
     @property
     def shear_modulus(self) -> float:
@@ -316,8 +339,28 @@ def _law_text(law) -> str:
     return f"{law.key.replace('_', ' ')} {law.ratio:.6g}"
 
 
+def growth_note(who: str, ratio: float) -> str:
+    """The warning of an extruded body's growth in a plane-strain deck."""
+    g = ratio ** (1.0 / 3.0)
+    return (f"{who} grows by volume ratio {ratio:.6g}: this plane-strain deck expands the section in its plane by "
+            f"{g:.6g} and holds the extrusion at a free body's stretch {g:.6g} (CalculiX has no generalised plane strain "
+            "element): exact for a free body; a bonded body's axial force is not released, so its section may differ "
+            "from the models' free extrusion")
+
+
+def _expansion(law, axisymmetric: bool) -> tuple:
+    """The thermal expansion coefficients that express a law's growth (empty: none): α = r^(1/3) − 1."""
+    if axisymmetric:
+        ratio = law.ratio if law.measure == "volume" else 1.0
+        return () if abs(ratio - 1.0) <= 1e-12 else (ratio ** (1.0 / 3.0) - 1.0,)
+    if law.growth is None or law.measure != "area" or abs(law.growth - 1.0) <= 1e-12:
+        return ()
+    alpha = law.growth ** (1.0 / 3.0) - 1.0
+    return (alpha, alpha, 0.0)
+
+
 def _bodies(problem, body_of: np.ndarray, areas: np.ndarray, axisymmetric: bool):
-    """Each body of the deck (set, elements, rubber, law), what the deck cannot say, and the sum of the targets."""
+    """Each body of the deck (set, elements, rubber, law, growth), its warnings, and the sum of the targets."""
     k = dict(problem.options.model_values).get("bulk_to_shear", DEFAULT_BULK_TO_SHEAR)
     bodies, unexpressed, used, target = [], [], set(), 0.0
     for i, b in enumerate(problem.bodies):
@@ -326,16 +369,16 @@ def _bodies(problem, body_of: np.ndarray, areas: np.ndarray, axisymmetric: bool)
         material = material_from_json(b.material_data, f"{where}material", default_bulk_to_shear=k)
         name = "BODY" if problem.dialect == V1 else _set_name(b.name, used)
         law = b.law
-        bodies.append(Body(name, elements, material, _law_text(law)))
+        expansion = _expansion(law, axisymmetric)
+        bodies.append(Body(name, elements, material, _law_text(law), expansion))
         area = float(areas[elements].sum())
         target += law.target_area(area) if law.measure == "area" else area
         if abs(law.ratio - 1.0) > 1e-12:
             who = problem.label(i) or "the law"
             if law.growth is None and law.measure == "area" and not axisymmetric:  # not an extruded body's growth
                 unexpressed.append(_area_note(who, law.ratio))
-            else:
-                unexpressed.append(f"{who} asks for {_law_text(law)}: volumetric growth has no place in a "
-                                   "hyperelastic deck; the rubber keeps its volume up to compressibility")
+            elif len(expansion) == 3:
+                unexpressed.append(growth_note(who, law.ratio))
     return tuple(bodies), unexpressed, target
 
 
@@ -346,8 +389,10 @@ def build_deck(problem, element: str | None = None, mesh_size: float = DEFAULT_M
     Shared pieces are bonded (the bodies share their nodes there); the
     support's nodes go onto the target by the arc-length rule; a body of
     revolution is written in the solver's (r, z) (see :mod:`.axis`).
-    What the solver cannot express (an area ratio other than 1 on a plane
-    body, a volume ratio other than 1: growth) is in :attr:`Deck.unexpressed`.
+    Growth (a volume ratio other than 1) is a thermal expansion (see the
+    module). What the solver cannot express (an area ratio other than 1 on
+    a plane body) or expresses only in part (an extruded body's growth, its
+    extrusion not freed) is in :attr:`Deck.unexpressed`.
 
     Parameters
     ----------
@@ -461,6 +506,9 @@ def deck_text(deck: Deck) -> str:
         law = f", law {body.law}" if body.law else ""
         out.append(f"** Body {body.name}: {len(body.elements)} elements, {material_summary(body.material)}{law}.")
     out.append("** Material: the Abaqus forms, e.g. neo-Hookean C10 = mu/2, D1 = 2/kappa.")
+    if any(body.expansion for body in deck.bodies):
+        out.append("** Growth: *EXPANSION alpha = r^(1/3) - 1 with the temperature from 0 to 1 over the step (thermal "
+                   "stretch 1 + alpha = r^(1/3)); an extruded body expands in its plane only (TYPE=ORTHO).")
     if deck.unexpressed:
         out.append("** NOT EXPRESSED BY THIS DECK:")
         out += [f"**   - {line}" for line in deck.unexpressed]
@@ -475,11 +523,20 @@ def deck_text(deck: Deck) -> str:
     if len(m.upper_nodes):
         out.append("*NSET, NSET=UPPER")
         out += _id_lines(np.unique(m.upper_nodes) + 1)
+    if len(m.hole_nodes):
+        out.append("*NSET, NSET=HOLES")  # free faces: nothing loads them
+        out += _id_lines(np.unique(m.hole_nodes) + 1)
+    growing = any(body.expansion for body in deck.bodies)
     for body in deck.bodies:
         out.append(f"*SOLID SECTION, ELSET={body.name}, MATERIAL=RUBBER_{body.name}")
         if not el.axisymmetric:
             out.append("1.0")  # unit thickness: plane strain per unit length
         out += [f"*MATERIAL, NAME=RUBBER_{body.name}", *hyperelastic_card(body.material)]
+        if growing:  # every material of a deck at temperature: those that do not grow expand by nothing
+            kind = ", TYPE=ORTHO" if len(body.expansion) == 3 else ""
+            out += [f"*EXPANSION{kind}, ZERO=0.", ", ".join(inp_real(a) for a in (body.expansion or (0.0,)))]
+    if growing:
+        out += ["*INITIAL CONDITIONS, TYPE=TEMPERATURE", "ALL_NODES, 0."]
     moves = []
     if deck.rigid:
         from .contact_deck import contact_cards, free_faces
@@ -516,6 +573,8 @@ def deck_text(deck: Deck) -> str:
         out.append(f"{node}, 1, 1, {inp_real(ux)}")
         out.append(f"{node}, 2, 2, {inp_real(uy)}")
     out += moves
+    if growing:  # the growth: temperature 1 at the end of the step (alpha = r^(1/3) - 1), ramped with the support
+        out += ["*TEMPERATURE", "ALL_NODES, 1."]
     if deck.rigid:  # every increment (one frequency for all output in CalculiX): the load-deflection curve
         for part in deck.rigid:  # the part's nodes' reactions (the reference node's, through MPCs, are not computed)
             out += [f"*NODE PRINT, NSET={part.name}_NODES, TOTALS=ONLY, FREQUENCY=1", "RF"]

@@ -19,6 +19,7 @@ lower curve carries the fraction at which it goes onto the target.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -53,6 +54,9 @@ class FeMesh:
         Nodes of the upper curves' characteristic points kept as mesh
         nodes (:func:`~sectiondeform.reference.mesh.thin_polyline`), body
         by body, each B to A.
+    hole_nodes : (h,) int64 ndarray
+        Nodes of the bodies' holes' points (free faces, not loaded), body
+        by body, hole by hole.
     """
 
     points: np.ndarray
@@ -61,6 +65,7 @@ class FeMesh:
     lower_nodes: np.ndarray
     lower_fractions: np.ndarray
     upper_nodes: np.ndarray
+    hole_nodes: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(0, dtype=np.int64))
 
     @property
     def corners(self) -> int:
@@ -231,9 +236,11 @@ def fe_mesh(problem, mesh_size: float, family: str, nodes: int) -> tuple[FeMesh,
     if nodes in (6, 8):
         p, c, ln, lf = add_mid_nodes(p, c, ln, lf)
     upper = np.concatenate(tri.upper_nodes)
+    holes = [h for hb in tri.hole_nodes for h in hb]  # corners: the first nodes of every kind of mesh
     out = FeMesh(points=p, cells=c.astype(np.int64), kind=KINDS[(family, nodes)], lower_nodes=ln.astype(np.int64),
-                 lower_fractions=lf, upper_nodes=upper[np.sort(np.unique(upper, return_index=True)[1])])
+                 lower_fractions=lf, upper_nodes=upper[np.sort(np.unique(upper, return_index=True)[1])],
+                 hole_nodes=np.concatenate(holes).astype(np.int64) if holes else np.zeros(0, dtype=np.int64))
     body = body.astype(np.int64)
-    for arr in (out.points, out.cells, out.lower_nodes, out.lower_fractions, out.upper_nodes, body):
+    for arr in (out.points, out.cells, out.lower_nodes, out.lower_fractions, out.upper_nodes, out.hole_nodes, body):
         arr.setflags(write=False)
     return out, body

@@ -133,7 +133,8 @@ def _body(problem, deck: Deck, i: int, final: np.ndarray, info: CalculixInfo) ->
     contour0 = _contour_points(section, resting, problem.layout.tolerance)
     upper0 = np.asarray(section.upper, dtype=np.float64)
     lower0 = np.asarray(section.lower, dtype=np.float64)
-    mapped = [map_points(m.points, final, cells, m.kind, p) for p in (lower0, upper0, contour0)]
+    holes0 = tuple(np.asarray(h, dtype=np.float64) for h in section.holes)
+    mapped = [map_points(m.points, final, cells, m.kind, p) for p in (lower0, upper0, contour0, *holes0)]
     p0, c = _compact(m.points, cells)
     p1, _ = _compact(final, cells)
     area0 = float(element_areas(p0, c, m.corners).sum())
@@ -154,7 +155,7 @@ def _body(problem, deck: Deck, i: int, final: np.ndarray, info: CalculixInfo) ->
         area_initial=area0, area_target=law.target_area(area0) if law.measure == "area" else None,
         area_final=area1, initial_mesh=MeshData(p0, c, m.kind), final_mesh=MeshData(p1, c, m.kind),
         quality=ResultQuality(MeshQuality(elements=len(c), element_size=float(np.sqrt(area0 / max(len(c), 1))))),
-        info=info, **volumes,
+        info=info, holes=tuple(mapped[3:]), initial_holes=holes0, **volumes,
     )
 
 

@@ -60,7 +60,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..checks import positive
-from ..errors import CaseError, ConvergenceError, LawError, MeshError
+from ..errors import CaseError, LawError, MeshError
+from ..extrusion import free_axial_stretch
 from ..fem.elements import geometry
 from ..fem.mapping import offset_root, rigid_fit
 from ..fem.neohooke import Fields, MixedNeoHooke, Pattern
@@ -82,9 +83,6 @@ DEFAULT_THROUGH_THICKNESS = 4.0
 DEFAULT_BULK_TO_SHEAR = 1000.0
 DEFAULT_TOLERANCE = 1e-7
 CORRECTION_WARNING = 0.02
-AXIAL_TOLERANCE = 1e-8
-"""A growing extruded body's axial force is zero when below this times its shear modulus x area."""
-AXIAL_STEPS = 30
 
 
 
@@ -565,39 +563,34 @@ class HyperelasticPrepared(Prepared):
     def _free_extrusion(self, stretches, state, f, physics, solver, xd):
         """Solve each growing extruded body's axial stretch so that its axial force vanishes.
 
-        A scalar condition per body, ``∫ P_zz dA = 0``, met by secant steps
-        on ``ln lz`` (the first from the stiffness of a free bar, ``3 mu A``),
-        each a Newton solve continued from the last; a free body starts at
-        its root (the growth's cube root) and stops at once.
+        A scalar condition per body, ``∫ P_zz dA = 0``, met by
+        :func:`~sectiondeform.extrusion.free_axial_stretch` (secant steps on
+        ``ln lz``, each a Newton solve continued from the last); a free body
+        starts at its root (the growth's cube root) and stops at once.
 
         Raises
         ------
         ConvergenceError
-            If the axial forces do not vanish within :data:`AXIAL_STEPS` solves.
+            If the axial forces do not vanish within :data:`~sectiondeform.extrusion.AXIAL_STEPS` solves.
         """
         n = len(self.sections)
         growing = np.flatnonzero(np.asarray(stretches[n:]) != 1.0)
         mu = np.array([m.shear_modulus for m in self.materials])
         scale = mu * np.array([s.area for s in self.sections])
-        ln = np.log(np.asarray(stretches[:n], dtype=np.float64))
-        previous = None
-        for _ in range(AXIAL_STEPS):
-            force = physics.axial_force(f, self.mesh.body, n)
-            if (np.abs(force[growing]) <= AXIAL_TOLERANCE * scale[growing]).all():
-                return stretches, state, f, physics, solver
-            if previous is None:
-                slope = 3.0 * scale
-            else:
-                d_ln, d_force = ln - previous[0], force - previous[1]
-                slope = np.where(np.abs(d_ln) > 0, d_force / np.where(d_ln == 0, 1.0, d_ln), 3.0 * scale)
-            previous = (ln.copy(), force)
-            ln[growing] -= np.clip(force[growing] / slope[growing], -0.2, 0.2)
-            stretches = tuple(float(v) for v in np.exp(ln)) + tuple(stretches[n:])
-            physics, solver = self._problem(stretches)
-            state = solver.solve(state, self._data(xd), math.e)
-            f = state.fields if state.fields is not None else physics.fields(state.z, state.lz)
-        raise ConvergenceError(f"{self.problem.label(int(growing[0])) or 'body'}: the axial stretch of the growing extruded "
-                               f"body leaves an axial force after {AXIAL_STEPS} solves; the growth is too severe for it")
+        now = {"stretches": stretches, "state": state, "f": f, "physics": physics, "solver": solver}
+
+        def solve(ln):
+            now["stretches"] = tuple(float(v) for v in np.exp(ln)) + tuple(stretches[n:])
+            now["physics"], now["solver"] = self._problem(now["stretches"])
+            now["state"] = now["solver"].solve(now["state"], self._data(xd), math.e)
+            st = now["state"]
+            now["f"] = st.fields if st.fields is not None else now["physics"].fields(st.z, st.lz)
+            return now["physics"].axial_force(now["f"], self.mesh.body, n)
+
+        free_axial_stretch(np.log(np.asarray(stretches[:n], dtype=np.float64)),
+                           physics.axial_force(f, self.mesh.body, n), solve, growing, scale,
+                           self.problem.label(int(growing[0])) or "body")
+        return now["stretches"], now["state"], now["f"], now["physics"], now["solver"]
 
     def preview(self, curve, laws: tuple, start: HyperelasticState | None = None) -> Placed:
         """Drag preview: one linear step from ``start`` (or the undeformed bodies), no new factorisation.

@@ -11,14 +11,19 @@ nodes, a pressure field per body), full Newton with incremental loading
 (:mod:`sectiondeform.reference.solver`). Two kinematics:
 
 - generalised plane strain: each body's out-of-plane stretch λz = 1 / r,
-  so its area ratio r comes out of its volume constraint;
+  so its area ratio r comes out of its volume constraint; a body whose
+  material grows isotropically by v (``{"volume_ratio": v}`` without an
+  axis: curing, swelling) has F = Fe · v^(1/3) I and its λz solved so that
+  the extrusion is free along its length, no axial force (the hyperelastic
+  model's formulation, :mod:`sectiondeform.extrusion`);
 - bodies of revolution about an axis in the section's plane (hoop stretch
   r / R at each point, integrals weighted by the radius), each body's
   volume ratio v an isotropic growth (v = 1: plain near-incompressibility).
 
 Every body's load parameter is ramped together with the support motion. A
 node on the support at arc-length fraction s goes to the target at s; the
-rest is free. See ``docs/validation.md`` for the verification.
+rest is free, a body's holes too (the mesh follows them, no element inside).
+See ``docs/validation.md`` for the verification.
 
 >>> import sectiondeform as sd
 >>> from sectiondeform.reference import solve_reference
@@ -150,9 +155,12 @@ def body_ratio(law: Law, *, revolution: bool, area: float, field: str = "law") -
         if not low <= v <= high:
             raise CaseError(f"{field}.volume_ratio", f"must be between {low:g} and {high:g}, got {v!r}")
         return v
-    if key == "volume_ratio":
-        raise CaseError(f"{field}.volume_ratio", "a volume law needs a body of revolution: give the case a revolution axis")
-    return float(law.area_ratio(area))
+    return float(law.area_ratio(area))  # an extruded body's growth: a free body's, r^(2/3), until its λz is solved
+
+
+def body_growth(law: Law, *, revolution: bool) -> float:
+    """The isotropic growth v of an extruded body's material (``volume_ratio`` without an axis), else 1."""
+    return float(law.growth) if not revolution and law.growth is not None and law.measure == "area" else 1.0
 
 
 def solve_reference(
@@ -229,6 +237,8 @@ def solve_reference(
     prefix = "" if problem.dialect == "section-case/1" else "bodies[{}]."
     ratios = np.array([body_ratio(body.law, revolution=ax is not None, area=sec.area, field=prefix.format(b) + "law")
                        for b, (body, sec) in enumerate(zip(problem.bodies, sections))])
+    growths = np.array([body_growth(body.law, revolution=ax is not None) for body in problem.bodies])
+    growing = np.flatnonzero(growths != 1.0)
     mesh = triangulate(problem, mesh_size, sections)
     t1 = time.perf_counter()
     mixed = MixedProblem(mesh, rubbers, axis=ax)
@@ -240,10 +250,43 @@ def solve_reference(
                  f"{mesh_size:g} x mesh scale), {mixed.n_u + mixed.n_p} unknowns, {names} rubber, {kind}")
     support = np.asarray(target.at_fractions(mixed.dirichlet_fractions), dtype=np.float64)
     load = ratios if ax is not None else 1.0 / ratios
+    if len(growing):  # λz then the growth; a growing body starts at a free body's axial stretch v^(1/3)
+        load = np.stack((np.where(growths != 1.0, np.cbrt(growths), load), growths))
     scale = min(s.mesh_scale for s in sections)
     t2 = time.perf_counter()
     x, report = solve_mixed(mixed, support, load, length_scale=scale, tol=tol, initial_step=initial_step,
                             progress=progress)
+    if len(growing):
+        x, load, report = _free_extrusion(problem, mixed, sections, x, load, growing, report, scale, tol, progress)
+        ratios = np.where(growths != 1.0, growths / load[0], ratios)  # the volume grown over the axial stretch
     t3 = time.perf_counter()
     return solution(problem, mixed, mesh, sections, x, report, ratios, load,
                     {"mesh_s": t1 - t0, "setup_s": t2 - t1, "solve_s": t3 - t2}, t3 - t0)
+
+
+def _free_extrusion(problem, mixed, sections, x, load, growing, report, scale, tol, progress):
+    """The growing extruded bodies' axial stretches with no axial force (:func:`~sectiondeform.extrusion.free_axial_stretch`).
+
+    Returns the solved state, the load (λz then v per body) and the Newton report with the extra iterations.
+    """
+    from ..extrusion import free_axial_stretch
+    from .solver import NewtonReport, continue_mixed
+
+    now = {"x": x, "load": np.array(load, dtype=np.float64), "its": 0}
+
+    def solve(ln):
+        trial = now["load"].copy()
+        trial[0] = np.exp(ln)
+        now["x"], its = continue_mixed(mixed, now["x"], trial, length_scale=scale, tol=tol)
+        now["load"], now["its"] = trial, now["its"] + its
+        if progress is not None:
+            progress("reference: axial stretch " + ", ".join(f"{v:.9g}" for v in trial[0][growing])
+                     + f" of the growing bod{'y' if len(growing) == 1 else 'ies'}, {its} Newton iterations")
+        return mixed.axial_forces(now["x"], trial)
+
+    scale_force = np.array([r.shear_modulus * s.area for r, s in zip(mixed.rubbers, sections)])
+    free_axial_stretch(np.log(now["load"][0]), mixed.axial_forces(x, now["load"]), solve, growing, scale_force,
+                       problem.label(int(growing[0])) or "body")
+    report = NewtonReport(iterations=report.iterations + now["its"], steps=report.steps, cuts=report.cuts,
+                          residual=report.residual)
+    return now["x"], now["load"], report

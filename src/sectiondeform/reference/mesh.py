@@ -12,7 +12,11 @@ licence forbids commercial use without permission) meshes the graph with one
 region per body (its own largest triangle) and a minimum angle of 30 degrees;
 every triangle carries its body. A shared piece is a chain of segments with
 one set of nodes, interior to the mesh: the bodies are bonded by
-construction. One body is the same mesh with one region.
+construction. One body is the same mesh with one region. A body's holes
+(its section's hole rings) are rings of their own vertices, never merged
+with another contour's (a small hole's points are closer than the
+tolerance), split to the body's element size and left empty: a hole's
+boundary is a free boundary of the mesh, and no triangle lies inside it.
 
 The element size is per body: ``mesh_size`` x the body's mesh scale (its
 mean thickness, or the square root of its area if smaller). A node on the
@@ -65,6 +69,9 @@ class ReferenceMesh:
         Element size of each body, units.
     sections : tuple of Section
         The bodies' sections as meshed (their upper points, thinned for a deck).
+    hole_nodes : tuple of tuple of (k_h,) int64 ndarray
+        Per body, the vertex of each point of each of its holes (the
+        section's ``holes``, in order): free boundaries.
     """
 
     points: np.ndarray
@@ -76,6 +83,7 @@ class ReferenceMesh:
     contour_nodes: tuple
     sizes: np.ndarray
     sections: tuple = ()
+    hole_nodes: tuple = ()
 
     @property
     def size(self) -> float:
@@ -189,7 +197,8 @@ def _thinned(sections, sizes, tol: float) -> list:
         if others:
             keep |= cKDTree(np.concatenate(others)).query(upper)[0] <= tol
         thin = dataclasses.replace(sec, upper=upper[keep])
-        out.append(dataclasses.replace(thin, area=abs(polygon_area(thin.contour))))
+        holes = sum(abs(polygon_area(h)) for h in sec.holes)
+        out.append(dataclasses.replace(thin, area=abs(polygon_area(thin.contour)) - holes))
     return out
 
 
@@ -209,8 +218,11 @@ def _support_fractions(problem, sections, points, ids, tol):
     return on, frac, line
 
 
-def _graph(problem, points, ids, sizes, on, frac, line, tol):
-    """The split edges of the planar graph: vertices, segments, markers, support segments and the support's sag."""
+def _graph(problem, points, ids, sizes, on, frac, line, tol, hole_ids=()):
+    """The split edges of the planar graph: vertices, segments, markers, support segments and the support's sag.
+
+    ``hole_ids`` are each body's hole rings as vertex indices: their edges as they are (nothing lies on them).
+    """
     import shapely
 
     edge_size: dict[tuple[int, int], float] = {}
@@ -218,6 +230,10 @@ def _graph(problem, points, ids, sizes, on, frac, line, tol):
         for u, w in _node_edges(points, ring, tol):
             key = (min(u, w), max(u, w))
             edge_size[key] = min(edge_size.get(key, math.inf), float(sizes[b]))
+    for b, hb in enumerate(hole_ids):
+        for ring in hb:
+            for u, w in zip(ring.tolist(), np.roll(ring, -1).tolist()):
+                edge_size[(min(u, w), max(u, w))] = float(sizes[b])
     vertices, segments, marks, sub_support = [points], [], [], []
     k, sag = len(points), 0.0
     for (u, w), h in edge_size.items():
@@ -244,11 +260,14 @@ def _graph(problem, points, ids, sizes, on, frac, line, tol):
     return np.concatenate(vertices), segments, marks, sub_support, sag
 
 
-def _regions(rings, sizes):
-    """Triangle's regions (a point inside each body, its attribute b + 1 and largest area) and the union's holes."""
+def _regions(rings, sizes, holes):
+    """Triangle's regions (a point inside each body, its attribute b + 1 and largest area) and the union's holes.
+
+    ``holes`` are each body's hole rings: a hole is a hole of the union, so Triangle leaves it empty.
+    """
     import shapely
 
-    polys = [shapely.Polygon(r) for r in rings]
+    polys = [shapely.Polygon(r, list(hb)) for r, hb in zip(rings, holes)]
     regions = []
     for b, p in enumerate(polys):
         q = p.point_on_surface()
@@ -367,20 +386,32 @@ def triangulate(problem, mesh_size: float, sections=None, thin: bool = False) ->
     rings = [np.asarray(s.contour, dtype=np.float64) for s in sections]
     points, ids = _merge(rings, tol)
     on, frac, line = _support_fractions(problem, sections, points, ids, tol)
-    vertices, segments, marks, sub_support, sag = _graph(problem, points, ids, sizes, on, frac, line, tol)
-    pts, tri, body, vmarks = _triangle(vertices, segments, marks, sub_support, *_regions(rings, sizes))
+    holes = [[np.asarray(h, dtype=np.float64) for h in s.holes] for s in sections]
+    # A hole's points are vertices of their own (the layout keeps holes apart from every contour and each other).
+    hole_ids, start = [], len(points)
+    for hb in holes:
+        hole_ids.append([])
+        for h in hb:
+            hole_ids[-1].append(np.arange(start, start + len(h), dtype=np.int64))
+            start += len(h)
+    points = np.concatenate([points, *(h for hb in holes for h in hb)])
+    on = np.concatenate((on, np.zeros(len(points) - len(on), dtype=bool)))
+    frac = np.concatenate((frac, np.full(len(points) - len(frac), np.nan)))
+    vertices, segments, marks, sub_support, sag = _graph(problem, points, ids, sizes, on, frac, line, tol, hole_ids)
+    pts, tri, body, vmarks = _triangle(vertices, segments, marks, sub_support, *_regions(rings, sizes, holes))
     lower_nodes, lower_fractions = _lower(pts, len(vertices), vmarks, sub_support)
     upper_nodes = [np.concatenate(([ring[len(sec.lower) - 1]], ring[len(sec.lower):], [ring[0]])).astype(np.int64)
                    for sec, ring in zip(sections, ids)]
     mesh = ReferenceMesh(points=pts, triangles=tri, body=body, lower_nodes=lower_nodes, lower_fractions=lower_fractions,
                          upper_nodes=tuple(upper_nodes), contour_nodes=tuple(r.astype(np.int64) for r in ids),
-                         sizes=sizes, sections=tuple(sections))
+                         sizes=sizes, sections=tuple(sections),
+                         hole_nodes=tuple(tuple(h for h in hb) for hb in hole_ids))
     for b, sec in enumerate(sections):
         got, want = mesh.body_area(b), sec.area
         # Support nodes sit on the support curve, not on its chords: allow the area between them.
         if not abs(got - want) <= 1e-9 * want + sec.lower_length * sag:
             where = problem.label(b) or "the section"
             raise MeshError(f"reference mesh: the triangles of {where} cover {got:.9g} for its area {want:.9g}")
-    for arr in (pts, tri, body, lower_nodes, lower_fractions, *upper_nodes):
+    for arr in (pts, tri, body, lower_nodes, lower_fractions, *upper_nodes, *(h for hb in hole_ids for h in hb)):
         arr.setflags(write=False)
     return mesh

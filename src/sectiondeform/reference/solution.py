@@ -29,7 +29,9 @@ class BodyReference:
         Area of the body's triangles before, and ∫ det F2D dA after
         (exact for the deformed quadratic triangles), units².
     area_target : float or None
-        r × initial area under an area law; None for a body of revolution.
+        r × initial area under an area law (an extruded body grown by v:
+        v / λz × initial area, λz its solved axial stretch); None for a body
+        of revolution.
     volume_initial, volume_target, volume_final : float or None
         2π ∫ R dA, v × initial and 2π ∫ r dA of the deformed body (a body
         of revolution), units³; None in plane strain.
@@ -47,6 +49,11 @@ class BodyReference:
         The body's rubber.
     mesh_size : float
         The body's element size h, units.
+    growth : float
+        The isotropic growth v of an extruded body's material (1: none; a
+        body of revolution's is ``load``).
+    holes, initial_holes : tuple of (k_h, 2) float64 ndarray
+        Each hole's points (the section's ``holes``), deformed and initial, units.
     """
 
     name: str
@@ -64,6 +71,9 @@ class BodyReference:
     elements: int
     material: object
     mesh_size: float
+    growth: float = 1.0
+    holes: tuple = ()
+    initial_holes: tuple = ()
 
     @property
     def measure(self) -> str:
@@ -100,6 +110,8 @@ class BodyReference:
                "mesh_size": self.mesh_size, "elements": self.elements, "load": self.load,
                "relative_area_error": None if revolution else self.relative_error,
                "relative_error": self.relative_error}
+        if self.growth != 1.0:
+            out["growth"] = self.growth
         out["material"] = self.material.to_json()
         out["material"].setdefault("model", self.material.model)
         if revolution:
@@ -190,7 +202,7 @@ class Reference:
         return out
 
 
-def _body(b, body, sec, mixed, mesh, mat, p1, pressure, ratio, load) -> BodyReference:
+def _body(b, body, sec, mixed, mesh, mat, p1, pressure, ratio, load, growth) -> BodyReference:
     """The figures of body ``b`` from the solved state ``mat`` (the material at every quadrature point)."""
     on = mesh.body == b
     dx, wdx = mixed.dx[on], mixed.wdx[on]
@@ -216,6 +228,9 @@ def _body(b, body, sec, mixed, mesh, mat, p1, pressure, ratio, load) -> BodyRefe
         elements=int(on.sum()),
         material=rubber,
         mesh_size=float(mesh.sizes[b]),
+        growth=1.0 if revolution else float(growth),
+        holes=tuple(p1[h].copy() for h in mesh.hole_nodes[b]) if mesh.hole_nodes else (),
+        initial_holes=tuple(np.array(h, dtype=np.float64) for h in sec.holes),
     )
 
 
@@ -233,7 +248,9 @@ def solution(problem, mixed, mesh, sections, x, report, ratios, load, timings, s
     pressure[mixed.pressure_vertex[::-1]] = dofs_p[::-1]
     dx = mixed.dx
     cauchy = np.einsum("eqij,eq->eij", mat["cauchy"], dx) / dx.sum(axis=1)[:, None, None]
-    bodies = tuple(_body(b, body, sec, mixed, mesh, mat, p1, dofs_p, ratios[b], load[b])
+    stretch, growth = mixed.split(load)
+    per_body = growth if mixed.revolution else np.broadcast_to(np.asarray(stretch, dtype=np.float64), growth.shape)
+    bodies = tuple(_body(b, body, sec, mixed, mesh, mat, p1, dofs_p, ratios[b], per_body[b], growth[b])
                    for b, (body, sec) in enumerate(zip(problem.bodies, sections)))
     corner_pressure = dofs_p[mixed.pdofs.T]
     for arr in (p0, p1, cells, pressure, cauchy, corner_pressure):

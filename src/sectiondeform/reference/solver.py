@@ -10,7 +10,10 @@ with two kinematics:
 
 - generalised plane strain (a long extruded body): F₃₃ = λz prescribed, so
   the section may change area while the body keeps its volume: with
-  λz = 1 / r an incompressible section ends with area r × A0, the law;
+  λz = 1 / r an incompressible section ends with area r × A0, the law; a
+  body that grows isotropically by v (F = Fe · v^(1/3) I, as for bodies of
+  revolution) has its λz solved so that its extrusion is free, no axial
+  force (:mod:`sectiondeform.extrusion`, :meth:`MixedProblem.axial_forces`);
 - a body of revolution about an axis of the section's plane: F₃₃ = r / R,
   the hoop stretch, the current distance of the point from the axis over
   its initial one, and every integral weighted by R (the volume is
@@ -63,7 +66,7 @@ from .revolution import Axis
 #: The components (i, J) of F that vary: the in-plane block, then the out-of-plane (hoop) stretch.
 COMPONENTS = np.array([[0, 0], [0, 1], [1, 0], [1, 1], [2, 2]])
 
-__all__ = ["MixedProblem", "NewtonReport", "neo_hookean", "kabsch", "solve_mixed"]
+__all__ = ["MixedProblem", "NewtonReport", "neo_hookean", "kabsch", "solve_mixed", "continue_mixed"]
 
 
 def neo_hookean(grad_u: np.ndarray, stretch_z: float, p: np.ndarray, mu: float, kappa: float, tangent: bool = True):
@@ -337,18 +340,37 @@ class MixedProblem:
         strain = np.einsum("ae,aeqm->eqm", x[: self.n_u][self.udofs], self.B)
         F = np.zeros(self.dx.shape + (3, 3))
         F[..., :2, :2] = strain[..., :4].reshape(self.dx.shape + (2, 2)) + np.eye(2)
-        F[..., 2, 2] = 1.0 + strain[..., 4] if self.revolution else self.per_cell(load)
+        F[..., 2, 2] = 1.0 + strain[..., 4] if self.revolution else self.per_cell(self.split(load)[0])
         return F
 
+    def split(self, load) -> tuple:
+        """The out-of-plane stretch λz and the growth of each body, ``(λz, (bodies,) v)``, from a load parameter.
+
+        ``load`` is the growth v (body of revolution: λz is None), λz
+        (plane, no growth: v = 1), or a ``(2, bodies)`` array of λz then v
+        (plane bodies of which some grow).
+        """
+        n = len(self.rubbers)
+        if self.revolution:
+            return None, np.broadcast_to(np.asarray(load, dtype=np.float64), (n,))
+        if np.ndim(load) == 2:
+            return load[0], np.asarray(load[1], dtype=np.float64)
+        return load, np.ones(n)
+
+    def axial_forces(self, x: np.ndarray, load) -> np.ndarray:
+        """Each body's axial force ``∫ P_zz dA`` in generalised plane strain, ``(bodies,)``, moduli x units² (per unit depth).
+
+        ``P_zz`` is the nominal stress along the extrusion, conjugate to λz:
+        the derivative of the body's energy by λz. Zero for a free extrusion.
+        """
+        mat = self.material(x, load, tangent=False, extras=False)
+        per_cell = (mat["P5"][..., 4] * self.dx).sum(axis=1)
+        return np.bincount(self.groups, weights=per_cell, minlength=len(self.rubbers))
     def per_cell(self, load):
         """``load`` as the value of each triangle, ``(nel, 1)``, for a load per body; a scalar as it is."""
         if np.ndim(load) == 0:
             return load
         return np.asarray(load, dtype=np.float64)[self.groups][:, None]
-
-    def growth(self, load: float) -> float:
-        """Volume ratio of the isotropic growth at ``load`` (1 in plane strain)."""
-        return float(load) if self.revolution else 1.0
 
     def material(self, x: np.ndarray, load: float, tangent: bool = True, extras: bool = True) -> dict:
         """The mixed rubber (:func:`~sectiondeform.reference.mixed.mixed_state`) at every quadrature point.
@@ -380,7 +402,7 @@ class MixedProblem:
         out = {"det2": det2, "stretch3": F[..., 2, 2], "valid": bool(np.all(det2 > 0) and np.all(F[..., 2, 2] > 0))}
         if not out["valid"]:
             return out
-        if self._closed_form and not extras:
+        if self._closed_form and not extras and np.ndim(load) < 2:
             return self._neo_hookean(x, load, tangent, out)
         s = self._grouped_state(F, self.pressure(x[self.n_u:]), load, tangent, extras)
         out.update(s)
@@ -394,13 +416,13 @@ class MixedProblem:
 
     def _grouped_state(self, F: np.ndarray, p: np.ndarray, load, tangent: bool, extras: bool) -> dict:
         """:func:`~sectiondeform.reference.mixed.mixed_state` of each body's rubber on its triangles, gathered."""
-        loads = np.broadcast_to(np.asarray(load, dtype=np.float64), (len(self.rubbers),))
+        growths = self.split(load)[1]
         out: dict = {}
         kpp = np.empty(len(self.groups))
         for g, (rubber, cells) in enumerate(zip(self.rubbers, self._members)):
             if not len(cells):
                 continue
-            s = mixed_state(rubber, F[cells], p[cells], self.growth(loads[g]), tangent,
+            s = mixed_state(rubber, F[cells], p[cells], float(growths[g]), tangent,
                             components=COMPONENTS, extras=extras)
             kpp[cells] = s.pop("kpp")
             for key, value in s.items():
@@ -488,11 +510,12 @@ def solve_mixed(
     problem : MixedProblem
     support : (d / 2, 2) float64 ndarray
         Final position of each Dirichlet node (``problem.dirichlet_points``).
-    load : float or (bodies,) float64 ndarray
+    load : float or (bodies,) or (2, bodies) float64 ndarray
         Final load parameter, ramped from 1 with the support: the
         out-of-plane stretch λz (generalised plane strain), or the growth
         volume ratio v (body of revolution, ``problem.axis`` set); one per
-        body (all ramped together).
+        body (all ramped together); in plane strain with growing bodies,
+        λz then v per body (:meth:`MixedProblem.split`).
     length_scale : float
         Length for the convergence test (the mean thickness T), units.
     tol : float
@@ -582,6 +605,37 @@ def solve_mixed(
                     f"residual stalls); the target or the law is too severe for this section, or refine the mesh"
                 )
     return x, NewtonReport(iterations=iterations, steps=steps, cuts=cuts, residual=residual)
+
+
+def continue_mixed(problem: MixedProblem, x: np.ndarray, load, *, length_scale: float, tol: float = 1e-8,
+                   max_iterations: int = 25) -> tuple[np.ndarray, int]:
+    """Newton from a solved state ``x`` to the solution at a nearby ``load``, the support where ``x`` has it.
+
+    Parameters
+    ----------
+    problem : MixedProblem
+    x : (n_u + n_p,) float64 ndarray
+        A solved state (its Dirichlet values are kept).
+    load
+        The new load parameter (as :func:`solve_mixed`'s).
+    length_scale, tol, max_iterations
+        As :func:`solve_mixed`'s.
+
+    Returns
+    -------
+    x : (n_u + n_p,) float64 ndarray
+    iterations : int
+
+    Raises
+    ------
+    ConvergenceError
+        If Newton does not converge from ``x``.
+    """
+    ok, its, _, out = _newton(problem, x, load, np.zeros_like(x), problem.free, length_scale, tol, max_iterations)
+    if not ok:
+        raise ConvergenceError("reference: Newton did not converge at a new axial stretch of a growing extruded body; "
+                               "the growth is too severe for this section, or refine the mesh")
+    return out, its
 
 
 def _newton(pr: MixedProblem, x, load, lift, free, length_scale, tol, max_iterations):

@@ -113,7 +113,11 @@ class BodyValidation:
         Their relative errors, each against its own target.
     area_polygon : float
         Area of the polygon of the fast lower nodes and the reference's
-        upper points (the polygon the fast area is measured on), units².
+        upper points (the polygon the fast area is measured on), less the
+        reference's holes, units².
+    holes : tuple of CurveComparison
+        Per hole of the body, its fast deformed points against the
+        reference's (closed curves), relative figures over ``thickness``.
     """
 
     name: str
@@ -126,6 +130,7 @@ class BodyValidation:
     fast_error: float
     reference_error: float
     area_polygon: float
+    holes: tuple = ()
 
 
 @dataclass(frozen=True, eq=False)
@@ -357,8 +362,19 @@ class Validation:
             "fast": {"final": bv.fast_final, "relative_error": bv.fast_error, "upper": fb.upper.tolist()},
             "reference": {"final": bv.reference_final, "relative_error": bv.reference_error,
                           "load": getattr(rb, "load", None), "upper": np.asarray(rb.upper).tolist()},
+            **self._holes_json(i),
             **self._stress_json(i),
         }
+
+    def _holes_json(self, i: int) -> dict:
+        """``{"holes": [...]}`` of body ``i``, each hole's distances fast to reference, or nothing."""
+        bv = self.bodies[i]
+        if not bv.holes:
+            return {}
+        return {"holes": [{"hausdorff": h.hausdorff, "hausdorff_over_height": h.hausdorff / self.height,
+                           "max_pointwise": h.max_pointwise, "max_pointwise_over_height": h.max_pointwise / self.height,
+                           "fast": np.asarray(f).tolist(), "reference": np.asarray(r).tolist()}
+                          for h, f, r in zip(bv.holes, self.fast.bodies[i].holes, self.reference.bodies[i].holes)]}
 
     def _stress_json(self, i: int) -> dict:
         """``{"stresses": ...}`` of body ``i``, or nothing."""
@@ -409,6 +425,9 @@ class Validation:
                 f"    max pointwise    {s.max_pointwise:12.4f} {u}    {s.max_pointwise / height:.2%} of the height, "
                 f"{s.max_pointwise / bv.thickness:.2%} of the mean thickness (upper point {s.max_pointwise_index})",
             ]
+            out += [f"    hole {k} Hausdorff {h.hausdorff:11.4f} {u}    {h.hausdorff / height:.2%} of the height, "
+                    f"max pointwise {h.max_pointwise:.4f} {u} ({h.max_pointwise / height:.2%})"
+                    for k, h in enumerate(bv.holes)]
             sd = self.stresses[i] if i < len(self.stresses) else None
             if sd is not None:
                 out += [
@@ -457,11 +476,21 @@ def _row(problem, i: int, fb, rb) -> BodyValidation:
         raise CaseError(f"bodies[{i}]", f"the fast model gives {len(fb.upper)} upper points and the reference "
                         f"{len(upper)}; they cannot be compared point by point")
     thickness = fb.area_initial / problem.bodies[i].lower.length
+    fast_holes, ref_holes = tuple(getattr(fb, "holes", ())), tuple(np.asarray(h) for h in getattr(rb, "holes", ()))
+    if len(fast_holes) != len(ref_holes) or any(a.shape != b.shape for a, b in zip(fast_holes, ref_holes)):  # pragma: no cover
+        raise CaseError(f"bodies[{i}].holes", "the fast model's holes and the reference's differ in number or points; "
+                        "they cannot be compared point by point")
+
+    def closed(h):
+        return np.concatenate((h, h[:1]))
+
     return BodyValidation(
         name=fb.name, shape=compare_curves(fb.upper, upper, scale=thickness), thickness=thickness,
         measure=fb.measure, target=fb.target, fast_final=fb.final, reference_final=rb.final,
         fast_error=fb.relative_error, reference_error=rb.relative_error,
-        area_polygon=abs(polygon_area(np.concatenate((fb.lower, upper[1:-1])))),
+        area_polygon=abs(polygon_area(np.concatenate((fb.lower, upper[1:-1])))) - sum(abs(polygon_area(h))
+                                                                                        for h in ref_holes),
+        holes=tuple(compare_curves(closed(a), closed(b), scale=thickness) for a, b in zip(fast_holes, ref_holes)),
     )
 
 
