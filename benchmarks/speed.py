@@ -633,6 +633,54 @@ def hyperelastic_markdown(rows: list[dict]) -> list[str]:
     return lines
 
 
+CONTACT_TARGET = 3.0
+"""A contact case costs at most this many times the same case without its rigid parts (full solve and again)."""
+
+
+def bench_contact(cfg: dict, paths=None) -> list[dict]:
+    """Each shared case with rigid parts against the same case without them (hyperelastic), CPU-time medians, seconds.
+
+    ``full`` and ``again`` as :func:`bench_hyperelastic_cases`: the peer is
+    the same problem, mesh and target with ``rigid`` emptied, in the same
+    run. The ratios are what contact costs.
+    """
+    import dataclasses
+
+    from sectiondeform import load_case
+    from sectiondeform.deform import Deformer
+
+    rows = []
+    reps = max(3, cfg["repeats"] // 4)
+    for path in paths or shared_case_paths():
+        case = load_case(path)
+        if not case.rigid or path.stem.startswith("o-ring"):  # the O-rings take seconds a solve: docs/contact.md
+            continue
+        row = {"case": path.stem, "parts": len(case.rigid)}
+        for label, problem in (("contact", case), ("without", dataclasses.replace(case, rigid=()))):
+            deformer = Deformer(problem, "hyperelastic")
+            first = deformer.deform()
+            thickness = min(sec.thickness for sec in deformer.stack.sections)
+            moved = bumped(problem.target, BUMP * thickness)
+            row[f"{label}_full_s"] = cpu_median(lambda p=problem: Deformer(p, "hyperelastic").deform(), reps, 1)
+            row[f"{label}_again_s"] = cpu_median(lambda d=deformer, m=moved, f=first: d.deform(m, start=f), 3 * reps, 1)
+        row["ratio_full"] = row["contact_full_s"] / row["without_full_s"]
+        row["ratio_again"] = row["contact_again_s"] / row["without_again_s"]
+        rows.append(row)
+    return rows
+
+
+def contact_markdown(rows: list[dict]) -> list[str]:
+    """Section 9's table: each contact case against itself without its parts."""
+    lines = [f"Target: a contact case at most {CONTACT_TARGET:g}× the same case without its rigid parts; **bold** a miss. "
+             "CPU-time medians, the same run.", "",
+             "| case | parts | full with / without | ratio | again with / without | ratio |", "|---|---:|---|---:|---|---:|"]
+    for r in rows:
+        cells = [(f"{r[k]:.2f}×" if r[k] <= CONTACT_TARGET else f"**{r[k]:.2f}×**") for k in ("ratio_full", "ratio_again")]
+        lines.append(f"| {r['case']} | {r['parts']} | {_fmt(r['contact_full_s'])} / {_fmt(r['without_full_s'])} | {cells[0]} | "
+                     f"{_fmt(r['contact_again_s'])} / {_fmt(r['without_again_s'])} | {cells[1]} |")
+    return lines
+
+
 # --------------------------------------------------------------------------
 # The run
 
@@ -704,6 +752,8 @@ def run_benchmark(cases_dir=None, quick: bool = False, profile: bool = True, log
     report["bodies"] = bench_bodies(cfg)
     log("hyperelastic on every shared case ...")
     report["hyperelastic"] = bench_hyperelastic_cases(cfg)
+    log("contact against the same cases without their parts ...")
+    report["contact"] = bench_contact(cfg)
     report["targets"] = check_targets(report)
     if profile and not quick:
         report["profile"] = profile_text(ref)
@@ -858,6 +908,9 @@ def to_markdown(report: dict, changes: str = "") -> str:
     if report.get("hyperelastic"):
         lines += ["", "## 8. The hyperelastic model on every shared case", ""]
         lines += hyperelastic_markdown(report["hyperelastic"])
+    if report.get("contact"):
+        lines += ["", "## 9. Contact (each case with rigid parts against itself without them)", ""]
+        lines += contact_markdown(report["contact"])
     if changes:
         lines += ["", changes.strip()]
     if report.get("profile"):
