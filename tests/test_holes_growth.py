@@ -72,6 +72,42 @@ def test_a_bonded_thin_layer_grown_builds_the_closed_form_in_plane_stress():
     assert body.info.out_of_plane_stretch == pytest.approx(r ** 0.5, rel=3e-3)  # the layer's ends relax it a little
 
 
+MOONEY = {"model": "mooney-rivlin", "c10": 0.6, "c01": 0.3}
+YEOH = {"model": "yeoh", "c10": 0.5, "c20": -0.05, "c30": 0.01}
+
+
+@pytest.mark.parametrize("material", [MOONEY, YEOH], ids=["mooney-rivlin", "yeoh"])
+def test_any_rubber_grown_free_scales_every_length_by_the_cube_root(material):
+    r = 1.1
+    g = r ** (1.0 / 3.0)
+    problem = case_from_dict(_case([[0, 0], [4 * g, 0]], {"volume_ratio": r}, [_circle(2.0, 1.5, 0.6)], "hyperelastic",
+                                   material=material))
+    body = sd.Deformer(problem).deform().bodies[0]
+    assert np.abs(body.upper - g * body.initial_upper).max() < 1e-5 * 3.0
+    assert np.abs(body.holes[0] - g * body.initial_holes[0]).max() < 1e-5 * 3.0
+    assert body.info.out_of_plane_stretch == pytest.approx(g, rel=1e-6)
+
+
+def test_a_bonded_mooney_rivlin_layer_grown_builds_the_closed_form_stress():
+    """As the neo-Hookean layer above: sigma_xx - sigma_yy = 2 (lx^2 - ly^2)(c10 + c01 lz^2), elastic stretches
+    lx = r^(-1/3), ly = lz = r^(1/6), sigma_yy = sigma_zz = 0; the thickness r^(1/2) whatever the rubber.
+    """
+    r, length = 1.2, 40.0
+    c10, c01 = MOONEY["c10"], MOONEY["c01"]
+    upper = [[length, 0], [length, 1], [0, 1], [0, 0]]
+    problem = case_from_dict(_case([[0, 0], [length, 0]], {"volume_ratio": r}, model="hyperelastic", length=length,
+                                   upper=upper, material=MOONEY))
+    result = sd.Deformer(problem).deform()
+    body = result.bodies[0]
+    fields = result.to_json(meshes=False, fields=True)["bodies"][0]["fields"]
+    centre = body.initial_mesh.points[body.initial_mesh.cells[:, :3]].mean(axis=1)
+    middle = np.abs(centre[:, 0] - length / 2) < 5
+    von_mises = np.asarray(fields["von_mises_stress"])[middle]
+    assert von_mises == pytest.approx(abs(2 * (r ** (-2 / 3) - r ** (1 / 3)) * (c10 + c01 * r ** (1 / 3))), rel=3e-3)
+    top = body.contour[np.abs(body.contour[:, 0] - length / 2) < 2, 1].max()
+    assert top == pytest.approx(r ** 0.5, rel=3e-3)
+
+
 @pytest.mark.parametrize("model", MODELS)
 def test_a_hole_of_radius_going_to_zero_gives_the_solid_body(model):
     target, law = [[0, 0], [2, 0.1], [4, 0]], {"area_ratio": 0.98}

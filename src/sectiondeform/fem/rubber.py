@@ -107,6 +107,11 @@ class MixedRubber(MixedNeoHooke):
             P[idx] = mat.first_piola(F3, volumetric=False)[..., :2, :2]
             if tangent:
                 A[idx] = mat.tangent(F3, volumetric=False)[..., :2, :2, :2, :2]
+        scale = self._iso_scale(f)
+        if scale is not None:
+            P *= scale[..., None, None]
+            if tangent:
+                A *= scale[..., None, None, None, None]
         fit = np.empty_like(F)
         fit[..., 0, 0], fit[..., 1, 1] = F[..., 1, 1] / det, F[..., 0, 0] / det
         fit[..., 0, 1], fit[..., 1, 0] = -F[..., 1, 0] / det, -F[..., 0, 1] / det
@@ -116,6 +121,10 @@ class MixedRubber(MixedNeoHooke):
             A += pJ[..., None, None, None, None] * (np.einsum("...ij,...kl->...ijkl", fit, fit)
                                                     - np.einsum("...il,...kj->...ijkl", fit, fit))
         return P, A, fit
+
+    def _iso_scale(self, f: Fields) -> np.ndarray | None:
+        """A factor of the isochoric stress per cell, ``(E, 1)``, or None (1): a growth's, in a subclass."""
+        return None
 
     def _constraint(self, f: Fields) -> np.ndarray:
         return (f.J - 1.0 - f.p / self._kappa_e) * self.geom.weight

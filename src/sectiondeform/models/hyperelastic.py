@@ -70,6 +70,7 @@ from ..fem.rubber import MixedRubber
 from ..fem.union_mesh import union_mesh
 from ..limits import MAX_FE_UNKNOWNS, bounded
 from ..materials import NeoHookean, material_from_json
+from ..materials.models import gradient_3d
 from ..stack import SUPPORT, Stack, renamed
 from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions, Placed, Placement, Prepared
 from .hyperelastic_revolution import RevolutionPhysics
@@ -197,6 +198,45 @@ class _Stretches(MixedNeoHooke):
         """
         lz = np.sqrt(np.maximum(f.i1 - np.einsum("eqij,eqij->eq", f.F, f.F), 0.0))
         pzz = self._shear(f) * (lz - f.i1 / (3.0 * lz)) + f.p * f.det
+        return np.bincount(body, weights=(pzz * self.geom.weight).sum(axis=1), minlength=n_bodies)
+
+
+class _GrownRubber(MixedRubber):
+    """:class:`~sectiondeform.fem.rubber.MixedRubber` with one volumetric growth per body, as :class:`_Stretches`.
+
+    A growth ``c`` (``F = Fe c^(1/3)``) leaves the isochoric part of any
+    rubber unchanged (``Fe`` and ``F`` have the same isochoric part), so the
+    energy per unit initial volume is ``c W_iso(F3) + p (J - c) - c p² / (2 kappa)``:
+    the isochoric stress and tangent times ``c``, the constraint ``J - c - c p / kappa``.
+    """
+
+    def __init__(self, cells, n_nodes, geom, materials, body, ln_stretch, pressure_cells, ln_growth):
+        super().__init__(cells, n_nodes, geom, materials, body, ln_stretch, pressure_cells)
+        self.ln_growth = np.asarray(ln_growth, np.float64).reshape(-1, 1)
+
+    def fields(self, z, lz):
+        f = super().fields(z, lz)
+        if f is None:
+            return None
+        return _GrownFields(f.F, f.det, f.J, f.i1, f.p, np.exp(math.log(lz) * self.ln_growth))
+
+    def _iso_scale(self, f):
+        return f.c
+
+    def _constraint(self, f):
+        return (f.J - f.c - f.c * f.p / self._kappa_e) * self.geom.weight
+
+    def element_matrices(self, f):
+        out = super().element_matrices(f)
+        out[:, 12:, 12:] *= f.c[:, :, None]
+        return out
+
+    def axial_force(self, f, body: np.ndarray, n_bodies: int) -> np.ndarray:
+        """Each body's axial force ``∫ P_zz dA``, ``(B,)``: ``P_zz = c P_iso,zz(F3) + p det F``."""
+        pzz = f.p * f.det
+        lz = f.J / f.det
+        for mat, idx in self._groups:
+            pzz[idx] += f.c[idx] * mat.first_piola(gradient_3d(f.F[idx], lz[idx]), volumetric=False)[..., 2, 2]
         return np.bincount(body, weights=(pzz * self.geom.weight).sum(axis=1), minlength=n_bodies)
 
 
@@ -398,10 +438,9 @@ class HyperelasticPrepared(Prepared):
         ln_growth = np.log(self.growths_of(laws))[self.mesh.body]
         if all(type(m) is NeoHookean for m in self.materials):  # the closed form, else any rubber
             return _Stretches(cells, len(self.mesh.nodes), geom, kappa, mu, ln_stretch, self.mesh.pressure_cells, ln_growth)
-        for i, growth in enumerate(self.growths_of(laws)):
-            if growth != 1.0:
-                raise CaseError(f"bodies[{i}].law.volume_ratio", "the growth of an extruded body takes a neo-Hookean rubber "
-                                "for now; give the body a neo-Hookean material (shear_modulus only)")
+        if any(g != 1.0 for g in self.growths_of(laws)):
+            return _GrownRubber(cells, len(self.mesh.nodes), geom, self.materials, self.mesh.body, ln_stretch,
+                                self.mesh.pressure_cells, ln_growth)
         return MixedRubber(cells, len(self.mesh.nodes), geom, self.materials, self.mesh.body, ln_stretch,
                            self.mesh.pressure_cells)
 
@@ -466,7 +505,7 @@ class HyperelasticPrepared(Prepared):
     def _dres_dlns(self, physics: _Stretches) -> np.ndarray:
         """The derivative d R_free / d ln s at J = 1: each cell's pressure rows times its body's ln lz."""
         mesh, pattern = self.mesh, self.solver.pattern
-        ln = physics.ln_stretch - physics.ln_growth if isinstance(physics, _Stretches) else physics.ln_stretch  # R_p: J - c
+        ln = physics.ln_stretch - physics.ln_growth if hasattr(physics, "ln_growth") else physics.ln_stretch  # R_p: J - c
         wm = (physics._wM * ln[:, :, None]).sum(axis=1)
         full = np.zeros(pattern.n_dofs)
         full[2 * len(mesh.nodes) :] = np.bincount(mesh.pressure_cells.ravel(), weights=wm.ravel(), minlength=mesh.n_pressures)
