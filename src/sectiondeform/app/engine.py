@@ -369,13 +369,13 @@ def describe(result: Result, support: np.ndarray, final: bool, prepared: bool, m
 
     The totals over the bodies (areas, the worst law error, the smallest
     Jacobian), the deformed support ``lower`` (``(k, 2)``), and each body's
-    contour, areas (volumes of revolution), error and meshes: at the top
+    contour, holes, areas (volumes of revolution), error and meshes: at the top
     level for the one body of a ``section-case/1`` case, else under
     ``bodies`` (with ``assembly`` and ``revolution`` flags). A full
     deformation, or the first answer of a newly prepared problem, carries
-    everything; a preview while dragging only what moves (the contours,
-    the support and the final meshes' points), the page keeping the
-    initial contours and the meshes' cells of the last full answer.
+    everything; a preview while dragging only what moves (the contours and
+    holes, the support and the final meshes' points), the page keeping the
+    initial contours and holes and the meshes' cells of the last full answer.
     """
     whole = final or prepared  # the initial contours and meshes change only with the section
     views = [_body_view(b, whole, meshes) for b in result.bodies]
@@ -405,11 +405,18 @@ def describe(result: Result, support: np.ndarray, final: bool, prepared: bool, m
 
 
 def _body_view(body, whole: bool, meshes: bool) -> dict:
-    """One body of :func:`describe`: contour, areas (and volumes), errors, figures and meshes."""
+    """One body of :func:`describe`: contour, holes, areas (and volumes), errors, figures and meshes.
+
+    ``holes`` (and, with the initial contour, ``initial_holes``): the
+    library's :attr:`BodyResult.holes <sectiondeform.result.BodyResult.holes>`,
+    one ``(k_h, 2)`` float64 array per hole (closed, the first point not
+    repeated), an empty list for a solid body. The areas are net of the holes.
+    """
     q = body.quality
     out = {
         "name": body.name,
         "contour": body.contour,
+        "holes": list(body.holes),
         "area_initial": body.area_initial,
         "area_target": body.area_target,
         "area_final": body.area_final,
@@ -423,6 +430,7 @@ def _body_view(body, whole: bool, meshes: bool) -> dict:
                    volume_error=(body.volume_final - vt) / vt if vt else None)
     if whole:
         out["initial_contour"] = body.initial_contour
+        out["initial_holes"] = list(body.initial_holes)
     if meshes:
         out["mesh_final"] = {"points": body.final_mesh.points}
         if whole:
@@ -435,8 +443,10 @@ def outline(case_json: dict) -> list[dict]:
     """Each body of a case as a closed ``(n, 2)`` outline (lower then upper), to draw before any answer.
 
     Only the curves are read: the page shows a problem whose deformation
-    the library refuses (with its message). Each body's ``area`` is the
-    exact area its curves enclose (units²), shown until the first answer.
+    the library refuses (with its message). Each body's ``holes`` are its
+    holes' closed ``(k, 2)`` outlines (the first point not repeated), its
+    ``area`` the exact area its curves enclose less its holes' (units²),
+    shown until the first answer.
     """
     bodies = (case_json.get("bodies") or []) if is_assembly(case_json) else [case_json]
     s = np.linspace(0.0, 1.0, OUTLINE_SAMPLES)
@@ -448,8 +458,14 @@ def outline(case_json: dict) -> list[dict]:
         lower = curve_from_json(body.get("lower"), f"{where}lower")
         upper = curve_from_json(body.get("upper"), f"{where}upper")
         area = abs(local_green(lower, lower.start) + local_green(upper, lower.start))
+        holes = body.get("holes", []) if is_assembly(case_json) else []
+        if not isinstance(holes, list):
+            raise CaseError(f"{where}holes", f"expected a list of closed curves, got {type(holes).__name__}")
+        holes = [curve_from_json(h, f"{where}holes[{k}]") for k, h in enumerate(holes)]
+        area -= sum(abs(local_green(h, h.start)) for h in holes)  # each about its own start: its digits kept
         out.append({"name": str(body.get("name", i)), "area": float(area),
-                    "contour": np.concatenate((lower.at_fractions(s), upper.at_fractions(s)[1:-1]))})
+                    "contour": np.concatenate((lower.at_fractions(s), upper.at_fractions(s)[1:-1])),
+                    "holes": [h.at_fractions(s)[:-1] for h in holes]})
     return out
 
 

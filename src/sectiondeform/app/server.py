@@ -207,7 +207,8 @@ def framed(reply: dict) -> bytes:
     Parameters
     ----------
     reply : dict
-        JSON values and ``(n, 2)`` float64 arrays, at any depth of dicts.
+        JSON values and ``(n, 2)`` float64 arrays, at any depth of dicts and
+        lists of them (an assembly's bodies, a body's holes).
 
     Returns
     -------
@@ -226,7 +227,7 @@ def framed(reply: dict) -> bytes:
             return ref
         if isinstance(value, dict):
             return {k: walk(v) for k, v in value.items()}
-        if isinstance(value, list) and value and isinstance(value[0], dict):  # an assembly's bodies
+        if isinstance(value, list) and value and isinstance(value[0], (dict, np.ndarray)):  # bodies, holes
             return [walk(v) for v in value]
         return value
 

@@ -50,6 +50,13 @@ function pathOf(pts, close) {
   return close ? d + "Z" : d;
 }
 
+// A body as one closed path: its contour, then each hole (drawn as the body's inside by the even-odd fill rule).
+function bodyOf(contour, holes) {
+  let d = pathOf(contour, true);
+  for (const h of holes || []) d += pathOf(h, true);
+  return d;
+}
+
 // A mesh as one path: each cell a closed polygon of its nodes. Points are flat x, y (Float64Array).
 function meshPath(mesh) {
   if (!mesh || !mesh.cells || !mesh.points) return "";
@@ -222,10 +229,10 @@ function drawResult(all) {
   if (all || $("bodies").children.length) $("bodies").replaceChildren();   // the outline drawn before any answer
   // the initial section and mesh change only with the section: redrawn only then
   if (all || res.initialSent) {
-    $("initial").setAttribute("d", pathOf(res.initial_contour, true));
+    $("initial").setAttribute("d", bodyOf(res.initial_contour, res.initial_holes));
     $("mesh-initial").setAttribute("d", show ? meshPath(res.mesh_initial) : "");
   }
-  $("deformed").setAttribute("d", pathOf(res.contour, true));
+  $("deformed").setAttribute("d", bodyOf(res.contour, res.holes));
   $("target").setAttribute("d", pathOf(res.lower, false));
   $("mesh-final").setAttribute("d", show ? meshPath(res.mesh_final) : "");
   drawField(res, all);
@@ -273,7 +280,7 @@ function drawField(res, all) {
     if (!mesh || !mesh.cells) continue;
     mesh.cells.forEach((c, e) => { ds[Math.min(BINS - 1, Math.floor(BINS * (values[e] - f.min) / span))] += cellPath(mesh.points, c); });
     cells += mesh.cells.length;
-    clip += pathOf(b.contour, true);
+    clip += bodyOf(b.contour, b.holes);
   }
   $("field-clip-path").setAttribute("d", clip);
   g.replaceChildren(...ds.map((d, i) => svgEl("path", { d, fill: viridis((i + 0.5) / BINS) })).filter((p) => p.getAttribute("d")));
@@ -313,10 +320,10 @@ function drawBodies(res, all, show) {
   res.bodies.forEach((b, i) => {
     const [initial, meshInitial, deformed, meshFinal] = paths[i];
     if (all || res.initialSent) {
-      initial.setAttribute("d", pathOf(b.initial_contour, true));
+      initial.setAttribute("d", bodyOf(b.initial_contour, b.initial_holes));
       meshInitial.setAttribute("d", show ? meshPath(b.mesh_initial) : "");
     }
-    deformed.setAttribute("d", pathOf(b.contour, true));
+    deformed.setAttribute("d", bodyOf(b.contour, b.holes));
     meshFinal.setAttribute("d", show ? meshPath(b.mesh_final) : "");
   });
   $("target").setAttribute("d", pathOf(res.lower, false));
@@ -330,7 +337,7 @@ function drawOutline() {
   if (!state.outline) { $("bodies").replaceChildren(); return; }
   const paths = bodyPaths(state.outline.length);
   state.outline.forEach((b, i) => {
-    paths[i][0].setAttribute("d", pathOf(b.contour, true));
+    paths[i][0].setAttribute("d", bodyOf(b.contour, b.holes));
     for (let k = 1; k < 4; k++) paths[i][k].setAttribute("d", "");
   });
   $("target").setAttribute("d", "");
@@ -788,8 +795,10 @@ function onAnswer(msg, received) {
     const before = last && last.assembly && last.bodies.length === msg.bodies.length ? last.bodies : null;
     msg.bodies.forEach((b, i) => {
       b.contour = pairs(b.contour); b.initial_contour = pairs(b.initial_contour);
+      b.holes = (b.holes || []).map(pairs); b.initial_holes = b.initial_holes && b.initial_holes.map(pairs);
       if (!msg.initialSent && before) {
         b.initial_contour = before[i].initial_contour;
+        b.initial_holes = before[i].initial_holes;
         b.mesh_initial = before[i].mesh_initial;
         if (b.mesh_final && before[i].mesh_final) b.mesh_final.cells = before[i].mesh_final.cells;
       }
@@ -797,9 +806,11 @@ function onAnswer(msg, received) {
   } else {
     msg.initialSent = Boolean(msg.initial_contour);
     for (const k of ["contour", "initial_contour"]) msg[k] = pairs(msg[k]);
+    msg.holes = (msg.holes || []).map(pairs); msg.initial_holes = msg.initial_holes && msg.initial_holes.map(pairs);
   }
   if (!msg.assembly && !msg.initialSent && last) {
     msg.initial_contour = last.initial_contour;
+    msg.initial_holes = last.initial_holes;
     msg.mesh_initial = last.mesh_initial;
     if (msg.mesh_final && last.mesh_final) msg.mesh_final.cells = last.mesh_final.cells;
   }
