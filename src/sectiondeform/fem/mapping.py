@@ -30,7 +30,8 @@ from ..errors import LawError
 from .elements import p2_gradients, p2_values
 from .mesh import CoarseMesh
 
-__all__ = ["boundary_weights", "edge_weights", "interpolation_matrix", "rigid_fit", "offset_root", "correct_area"]
+__all__ = ["boundary_weights", "edge_weights", "interpolation_matrix", "rigid_fit", "offset_normals", "offset_root",
+           "correct_area"]
 
 
 def _edge_curve(a, m, b, t):
@@ -154,6 +155,21 @@ def rigid_fit(src: np.ndarray, dst: np.ndarray, weights: np.ndarray | None = Non
     ang = math.atan2(c[1, 0] - c[0, 1], c[0, 0] + c[1, 1])
     q = np.array([[math.cos(ang), -math.sin(ang)], [math.sin(ang), math.cos(ang)]])
     return q, cd - q @ cs
+
+
+def offset_normals(ring: np.ndarray, movable: np.ndarray) -> np.ndarray:
+    """The directions a law's offset moves a closed polyline's points along, ``(k, 2)``.
+
+    The unit normal of the chord between each movable point's two
+    neighbours (outward for a counter-clockwise ring), zero for the other
+    points and where the neighbours coincide.
+    """
+    tang = np.roll(ring, -1, axis=0) - np.roll(ring, 1, axis=0)
+    length = np.hypot(tang[:, 0], tang[:, 1])
+    ok = movable & (length > 0)
+    v = np.zeros_like(ring)
+    v[ok] = np.column_stack((tang[ok, 1], -tang[ok, 0])) / length[ok, None]
+    return v
 
 
 def offset_root(c0: float, c1: float, c2: float, signed_area: float) -> float:

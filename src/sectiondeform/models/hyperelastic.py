@@ -63,7 +63,7 @@ from ..checks import positive
 from ..errors import CaseError, LawError, MeshError
 from ..extrusion import free_axial_stretch
 from ..fem.elements import geometry
-from ..fem.mapping import offset_root, rigid_fit
+from ..fem.mapping import offset_normals, offset_root, rigid_fit
 from ..fem.neohooke import Fields, MixedNeoHooke, Pattern
 from ..fem.newton import NewtonSolver, State
 from ..fem.rubber import MixedRubber
@@ -273,11 +273,7 @@ def offset_to_area(ring: np.ndarray, movable: np.ndarray, signed_area: float) ->
     >>> round(0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)), 12), out[:2].tolist()
     (1.5, [[0.0, 0.0], [1.0, 0.0]])
     """
-    tang = np.roll(ring, -1, axis=0) - np.roll(ring, 1, axis=0)
-    length = np.hypot(tang[:, 0], tang[:, 1])
-    ok = movable & (length > 0)
-    v = np.zeros_like(ring)
-    v[ok] = np.column_stack((tang[ok, 1], -tang[ok, 0])) / length[ok, None]
+    v = offset_normals(ring, movable)
     cross = lambda a, b: a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]  # noqa: E731
     nxt = lambda a: np.roll(a, -1, axis=0)  # noqa: E731
     local = ring - ring.mean(axis=0)  # the shoelace about the ring's own centre: far from the origin it keeps its digits

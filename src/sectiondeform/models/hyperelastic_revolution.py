@@ -32,21 +32,11 @@ import numpy as np
 
 from ..errors import CaseError, LawError
 from ..fem.axisymmetric import AxisymmetricNeoHooke, AxisymmetricRubber
-from ..fem.mapping import rigid_fit
+from ..fem.mapping import offset_normals, rigid_fit
 from ..materials import NeoHookean
 from ..pappus import axis_frame, signed_distance
 
 __all__ = ["RevolutionPhysics", "offset_to_law"]
-
-
-def _normals(ring: np.ndarray, movable: np.ndarray) -> np.ndarray:
-    """Unit normal of the chord between each movable point's two neighbours, zero elsewhere, ``(k, 2)``."""
-    tang = np.roll(ring, -1, axis=0) - np.roll(ring, 1, axis=0)
-    length = np.hypot(tang[:, 0], tang[:, 1])
-    ok = movable & (length > 0)
-    v = np.zeros_like(ring)
-    v[ok] = np.column_stack((tang[ok, 1], -tang[ok, 0])) / length[ok, None]
-    return v
 
 
 def offset_to_law(ring: np.ndarray, movable: np.ndarray, law, wanted: float) -> tuple[np.ndarray, float]:
@@ -94,7 +84,7 @@ def offset_to_law(ring: np.ndarray, movable: np.ndarray, law, wanted: float) -> 
     >>> round(k, 12) == round((31 ** 0.5 - 4) * 3 / 5, 12), round(law.quantity(out) / law.quantity(ring), 12)
     (True, 2.0)
     """
-    v = _normals(ring, movable)
+    v = offset_normals(ring, movable)
     c = np.array(law.coefficients(ring, v), dtype=np.float64)
     c[0] -= wanted
     scale = float(np.abs(c).max())
