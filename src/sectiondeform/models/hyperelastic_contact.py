@@ -50,11 +50,12 @@ PENETRATION_WARNING = 1e-2
 """A penetration left above this fraction of the element size is a warning."""
 MAX_HALVINGS = 6
 """A load step is halved at most this many times before the loading is refused."""
-MAX_LOADING_WORK = 4 * MAX_NEWTON_WORK
-"""Newton iterations x unknowns of a whole contact loading, all load steps and updates together (checked
-before each solve): four plain solves' (:data:`~sectiondeform.limits.MAX_NEWTON_WORK`). One solve's bound let a
-bumper meshed 16 elements through (6,822 unknowns) take 22 iterations, refused after 1 load step of ~12; with
-COLAMD a factorisation of 16,000 unknowns takes about 0.05 s, so 600,000 is a few seconds at most."""
+MAX_LOADING_WORK = 2 * MAX_NEWTON_WORK
+"""Factorisations x unknowns of a whole contact loading, all load steps, the attempts that failed and were halved,
+and the updates together (checked before each solve): two plain solves' (:data:`~sectiondeform.limits.MAX_NEWTON_WORK`).
+Counted in factorisations, the failed attempts count too: counted in the iterations of the solves that converged,
+a step halved six times ran seven solves unbounded (a Mooney-Rivlin bumper of 18,495 unknowns: 22 s of CPU to be
+refused; a factorisation and tangent of a general rubber at 16,000 unknowns take about 1.4 s)."""
 
 
 class _LoadingBound(ConvergenceError):
@@ -194,11 +195,14 @@ class Contact:
 
         unknowns = len(base.z)
 
+        first = solver.factorisations
+
         def run(t, to):
-            if totals[0] * unknowns > MAX_LOADING_WORK:  # checked before each solve: the loading's work is bounded
+            done = solver.factorisations - first
+            if done * unknowns > MAX_LOADING_WORK:  # checked before each solve: the loading's work is bounded
                 raise _LoadingBound(
-                    f"contact: the loading took {totals[0]} Newton iterations for {unknowns} unknowns, {t:.3g} of the "
-                    f"way, beyond its bound of {MAX_LOADING_WORK} iterations x unknowns; the parts' travel is too "
+                    f"contact: the loading took {done} factorisations for {unknowns} unknowns, {t:.3g} of the "
+                    f"way, beyond its bound of {MAX_LOADING_WORK} factorisations x unknowns; the parts' travel is too "
                     "severe for these bodies (a shorter travel, or a stiffer rubber)")
             new = solver.solve(to, xd0 + t * (xd - xd0), math.exp(ln0 + t * (ln1 - ln0)))
             totals[0] += new.iterations[0]
