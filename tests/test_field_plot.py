@@ -66,6 +66,8 @@ def test_the_cli_draws_the_field_of_an_assembly_of_revolution(tmp_path):
 @pytest.mark.parametrize("extra, message", [
     (["--plot-field", "J"], "--plot-field: draws the --plot figure"),
     (["--plot", "f.png", "--plot-field", "stress"], "--plot-field: unknown field 'stress'; use one of"),
+    # known only once the model has run (the paper model has no stress): still nothing written
+    (["--plot", "f.png", "--plot-field", "pressure", "--model", "paper"], "--plot-field: pressure is a stress"),
 ])
 def test_a_bad_plot_field_is_refused_in_one_line_before_anything_is_written(tmp_path, capsys, extra, message):
     case = tmp_path / "case.json"

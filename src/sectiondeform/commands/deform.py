@@ -107,6 +107,28 @@ def contact_lines(result) -> list[str]:
     return lines
 
 
+def write_outputs(args, result, problem) -> list:
+    """Write the result, its meshes and figures; if one cannot be written, none is left. The meshes' paths."""
+    written = [args.output]
+    try:
+        write_result(args.output, result, **result_options(args, problem))
+        meshes = write_meshes(args, result)
+        written += list(meshes)
+        if args.plot:
+            written.append(args.plot)
+            save_plot(args, result)
+        if args.plot_history is not None:
+            from ..plot import draw_load_deflection, write_figure
+
+            written.append(args.plot_history)
+            write_figure(draw_load_deflection(result), args.plot_history)
+    except BaseException:
+        for path in written:
+            Path(path).unlink(missing_ok=True)
+        raise
+    return meshes
+
+
 def run(args) -> int:
     check_outputs(args)
     check_plot_field_args(args)
@@ -120,14 +142,11 @@ def run(args) -> int:
     if args.plot_history is not None and not problem.rigid:
         raise CaseError("--plot-history", "the load-deflection curve needs rigid parts; the case has none")
     result = Deformer(problem, element_size=args.element_size).deform()
-    write_result(args.output, result, **result_options(args, problem))
-    meshes = write_meshes(args, result)
-    if args.plot:
-        save_plot(args, result)
-    if args.plot_history is not None:
-        from ..plot import draw_load_deflection, write_figure
+    if getattr(args, "plot_field", None):  # a field this result has no values of: refused before anything is written
+        from ..field_plot import field_values
 
-        write_figure(draw_load_deflection(result), args.plot_history)
+        field_values(result, args.plot_field)
+    meshes = write_outputs(args, result, problem)
     for line in report:
         print(f"  {line}")
     print(summary(result, warnings=False))
