@@ -92,3 +92,25 @@ def test_a_refusal_naming_the_model_is_spelled_by_each_surface(tmp_path, capsys)
     assert "option model" not in err and not (tmp_path / "r.json").exists()
     page = one_line(message)
     assert "use model hyperelastic" in page and "option" not in page and "--" not in page
+
+
+@pytest.mark.parametrize("law, message", [({"area_ratio": -0.5}, "bodies[1].law.area_ratio: must be"),
+                                          ({"volume_ratio": 0}, "bodies[1].law.volume_ratio: must be")])
+def test_a_bad_law_of_one_body_names_the_body(law, message):
+    import json
+
+    import sectiondeform as sd
+
+    case = json.loads((CASES / "v2" / "two-layer-strip.json").read_text())
+    case["bodies"][1]["law"] = law
+    with pytest.raises(CaseError) as info:
+        sd.case_from_dict(case)
+    assert str(info.value).startswith(message)
+
+
+def test_a_bad_area_ratio_on_the_command_line_names_the_option(tmp_path, capsys):
+    out = tmp_path / "r.json"
+    assert main(["deform", str(CASES / "paper-example.json"), "--area-ratio", "-0.5", "-o", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == "sectiondeform deform: error: --area-ratio: must be a finite number > 0, got -0.5"
+    assert not out.exists()

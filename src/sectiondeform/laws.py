@@ -313,7 +313,12 @@ def law_from_json(obj, field: str = "law", axis=None) -> Law:
     (key, value), = obj.items()
     if key not in LAWS:
         raise CaseError(field, f"unknown law {key!r}; use one of {', '.join(sorted(LAWS))}")
-    law = LAWS[key](value)
+    try:
+        law = LAWS[key](value)
+    except CaseError as exc:  # the law's own check names "law.<key>": name where it sits in the case
+        if field == "law" or exc.field != f"law.{key}":
+            raise
+        raise CaseError(f"{field}.{key}", exc.problem) from None
     if law.needs_axis and axis is not None:
         law = law.about(axis)
     check_growth(law, field)

@@ -28,6 +28,17 @@ def add_model_args(parser) -> None:
     parser.add_argument("--element-size", type=float, metavar="H", help="element size of the layered mesh, in the case's units")
 
 
+def area_ratio_law(args) -> AreaRatio | None:
+    """The law ``--area-ratio R`` gives, or None; a bad R is refused naming the option (not the case's field)."""
+    ratio = getattr(args, "area_ratio", None)
+    if ratio is None:
+        return None
+    try:
+        return AreaRatio(ratio)
+    except CaseError as exc:
+        raise CaseError("--area-ratio", exc.problem) from None
+
+
 def apply_overrides(problem, args):
     """The problem with the command line's ``--area-ratio`` and ``--model`` applied (``--element-size`` checked).
 
@@ -40,9 +51,8 @@ def apply_overrides(problem, args):
     CaseError
         One line naming the option.
     """
-    ratio = getattr(args, "area_ratio", None)
-    if ratio is not None:
-        law = AreaRatio(ratio)
+    law = area_ratio_law(args)
+    if law is not None:
         if len(problem.bodies) == 1:
             problem = problem.replace(law=law)
         elif any(b.law != law for b in problem.bodies):

@@ -14,7 +14,7 @@ from ..io import (
     read_case,
 )
 from ..io.drawing import ROLES, SIDES
-from ..laws import AreaRatio
+from ._common import area_ratio_law
 
 __all__ = ["add_input_args", "input_options", "read_input_case", "add_output_args", "check_outputs",
            "output_options", "write_meshes", "coordinate_tokens"]
@@ -107,7 +107,7 @@ def input_options(args) -> dict:
     if opts.get("lower_side") == "shorter":
         del opts["lower_side"]
     if getattr(args, "area_ratio", None) is not None:
-        opts["law"] = AreaRatio(args.area_ratio)
+        opts["law"] = area_ratio_law(args)
     return opts
 
 
