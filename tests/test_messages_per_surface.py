@@ -114,3 +114,11 @@ def test_a_bad_area_ratio_on_the_command_line_names_the_option(tmp_path, capsys)
     err = capsys.readouterr().err.strip()
     assert err == "sectiondeform deform: error: --area-ratio: must be a finite number > 0, got -0.5"
     assert not out.exists()
+
+
+def test_a_misspelt_option_gets_the_nearest_one(capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["deform", str(CASES / "paper-example.json"), "--area-ration", "0.8", "-o", "r.json"])
+    assert info.value.code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "did you mean --area-ratio?" in err[0]

@@ -9,6 +9,7 @@ print one line on stderr and exit with status 2.
 from __future__ import annotations
 
 import argparse
+import difflib
 import importlib
 import pkgutil
 import sys
@@ -30,7 +31,29 @@ class _OneLineParser(argparse.ArgumentParser):
     """A parser whose usage errors are one line on stderr (exit 2), pointing to ``--help``."""
 
     def error(self, message):
-        self.exit(2, f"{self.prog}: error: {' '.join(message.split())} (see {self.prog} --help)\n")
+        hint = self._nearest(message)
+        self.exit(2, f"{self.prog}: error: {' '.join(message.split())}{hint} (see {self.prog} --help)\n")
+
+    def _options(self) -> set[str]:
+        """Every option string of this parser and of its subcommands."""
+        out = set(self._option_string_actions)
+        for action in self._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                for sub in action.choices.values():
+                    out |= set(sub._option_string_actions)
+        return out
+
+    def _nearest(self, message: str) -> str:
+        """``; did you mean --area-ratio?`` for a misspelt option among unrecognized arguments, else ``""``."""
+        if not message.startswith("unrecognized arguments: "):
+            return ""
+        known = sorted(o for o in self._options() if o.startswith("--"))
+        for word in message.split(": ", 1)[1].split():
+            if word.startswith("--"):
+                close = difflib.get_close_matches(word.split("=")[0], known, n=1, cutoff=0.75)
+                if close:
+                    return f"; did you mean {close[0]}?"
+        return ""
 
 
 def build_parser() -> argparse.ArgumentParser:
