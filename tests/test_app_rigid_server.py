@@ -26,6 +26,7 @@ from sectiondeform.app import engine  # noqa: E402
 from sectiondeform.app.server import create_app, one_line  # noqa: E402
 from sectiondeform.deform import Deformer  # noqa: E402
 from sectiondeform.io.case import case_from_dict  # noqa: E402
+from sectiondeform.result import contact_units  # noqa: E402
 
 BUMPER = Path(__file__).parent / "data" / "cases" / "v2" / "bumper-under-plate.json"
 TOKEN = "test-token-of-this-run-0123456789"
@@ -135,10 +136,10 @@ def test_a_saved_case_keeps_the_edited_travel(client, bumper):
 
 
 def test_contact_units_follow_the_case_format():
-    assert engine.contact_units("mm", revolution=False)["force"] == "N/mm"
-    assert engine.contact_units("mm", revolution=True)["force"] == "N"  # the whole ring
-    assert engine.contact_units("m", revolution=False) == {"length": "m", "pressure": "MPa", "force": "MPa·m"}
-    assert engine.contact_units("m", revolution=True)["force"] == "MPa·m²"
+    assert contact_units("mm", revolution=False)["force"] == "N/mm"
+    assert contact_units("mm", revolution=True)["force"] == "N"  # the whole ring
+    assert contact_units("m", revolution=False) == {"length": "m", "pressure": "MPa", "force": "MPa·m"}
+    assert contact_units("m", revolution=True)["force"] == "MPa·m²"
 
 
 @pytest.mark.parametrize("travel", [[0.0], [0.0, "1"], [0.0, True], None])

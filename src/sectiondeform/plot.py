@@ -251,7 +251,7 @@ def draw_rigid(axes, result) -> None:
 
 
 def draw_load_deflection(result, fig=None):
-    """The load–deflection curve of a result with rigid parts: each part's force along its travel against the load fraction."""
+    """The load–deflection curve of a result with rigid parts: the size of each part's force against the load fraction."""
     if fig is None:
         fig = new_figure(figsize=(6, 4), layout="constrained")
     ax = fig.subplots()
@@ -259,9 +259,11 @@ def draw_load_deflection(result, fig=None):
     for name in [part.name for part in result.rigid] + ["support"]:
         f = np.array([s.forces[name] for s in result.history])
         ax.plot(travel, np.hypot(f[:, 0], f[:, 1]), "o-", ms=3, label=name)
-    per = "whole ring" if result.axis is not None else f"per {result.units}"
+    from .result import contact_units
+
+    force = contact_units(result.units, result.axis is not None)["force"]
     ax.set_xlabel("fraction of the travel")
-    ax.set_ylabel(f"force ({per})")
+    ax.set_ylabel(f"size of the force ({force}{', the whole ring' if result.axis is not None else ''})")
     ax.grid(True, lw=0.3, alpha=0.5)
     ax.legend(fontsize=8)
     ax.set_title(f"{result.name}: load–deflection")

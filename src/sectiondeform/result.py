@@ -18,7 +18,7 @@ from .errors import CaseError
 from .models.base import FinalQuality, Info, MeshData, MeshQuality
 from .problem import RESULT_V1, RESULT_V2
 
-__all__ = ["Result", "BodyResult", "ResultQuality", "RESULT_V1", "RESULT_V2"]
+__all__ = ["Result", "BodyResult", "ResultQuality", "RESULT_V1", "RESULT_V2", "contact_units"]
 
 
 
@@ -291,3 +291,19 @@ class Result:
             out["rigid"] = [part.to_json() for part in self.rigid]
             out["history"] = [step.to_json() for step in self.history]
         return out
+
+
+def contact_units(units: str, revolution: bool) -> dict:
+    """The units of a result's contact figures, for labels: ``{"length", "pressure", "force"}``.
+
+    The case format's convention: moduli in MPa, lengths in the case's
+    ``units``; a part's force per unit length of a plane section (N/mm with
+    mm), the whole ring's for a body of revolution (N with mm). Other
+    lengths give the same products written out (``MPa·m`` per ...).
+    """
+    u = units or "units"
+    if u == "mm":
+        force = "N" if revolution else "N/mm"
+    else:
+        force = f"MPa·{u}²" if revolution else f"MPa·{u}"
+    return {"length": u, "pressure": "MPa", "force": force}

@@ -29,7 +29,7 @@ from ..io.case import case_from_dict, case_to_dict, revolution_from_json
 from ..laws import AreaRatio, law_from_json
 from ..models import MODEL_NAMES
 from ..problem import V2, Problem
-from ..result import RESULT_V1, Result
+from ..result import RESULT_V1, Result, contact_units
 from ..section import local_green
 
 __all__ = ["FIELDS", "MODELS", "DeformerCache", "SharedDeformers", "answer", "case_from_json", "case_json_of", "case_model",
@@ -287,22 +287,6 @@ def field_view(result: Result, name) -> dict:
         view["values"] = None
         view["bodies"] = [{"values": v} for v in values]
     return {"field": view}
-
-
-def contact_units(units: str, revolution: bool) -> dict:
-    """The units of a result's contact figures, for labels: ``{"length", "pressure", "force"}``.
-
-    The case format's convention: moduli in MPa, lengths in the case's
-    ``units``; a part's force per unit length of a plane section (N/mm with
-    mm), the whole ring's for a body of revolution (N with mm). Other
-    lengths give the same products written out (``MPa·m`` per ...).
-    """
-    u = units or "units"
-    if u == "mm":
-        force = "N" if revolution else "N/mm"
-    else:
-        force = f"MPa·{u}²" if revolution else f"MPa·{u}"
-    return {"length": u, "pressure": "MPa", "force": force}
 
 
 def contact_view(result: Result, problem: Problem) -> dict:

@@ -95,15 +95,19 @@ def contact_lines(result) -> list[str]:
     """One line per rigid part (its force, contact length, peak and mean pressure, penetration) and the support's force."""
     if not result.rigid:
         return []
-    u = result.units
-    per = "ring" if result.axis is not None else f"per {u}"
+    from ..result import contact_units
+
+    units = contact_units(result.units, result.axis is not None)
+    u, f, p = units["length"], units["force"], units["pressure"]
+    whole = " (the whole ring)" if result.axis is not None else ""
     lines = []
     for part in result.rigid:
         fx, fy = part.force
-        lines.append(f"rigid {part.name:<8} force [{fx:.6g}, {fy:.6g}] ({per}), contact {part.length:.4g} {u}, pressure "
-                     f"max {part.pressure_max:.4g} mean {part.pressure_mean:.4g}, penetration {part.penetration_max:.3g} {u}")
+        lines.append(f"rigid {part.name:<8} force [{fx:.6g}, {fy:.6g}] {f}{whole}, contact {part.length:.4g} {u}, pressure "
+                     f"max {part.pressure_max:.4g} {p} mean {part.pressure_mean:.4g} {p}, penetration "
+                     f"{part.penetration_max:.3g} {u}")
     fx, fy = result.support_force
-    lines.append(f"support        force [{fx:.6g}, {fy:.6g}] ({per}), {len(result.history)} load steps")
+    lines.append(f"support        force [{fx:.6g}, {fy:.6g}] {f}{whole}, {len(result.history)} load steps")
     return lines
 
 
