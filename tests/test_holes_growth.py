@@ -150,6 +150,9 @@ BAD = {
                               r"holes\[1\]: it touches or overlaps holes\[0\]"),
     "open": (lambda b: b.update(holes=[{"polyline": [[10, 5], [14, 5], [12, 8]]}]), r"holes\[0\]: the curve is open"),
     "outside": (lambda b: b.update(holes=[_circle(40.0, 6.0, 2.0)]), r"holes\[0\]: it lies outside the body's contour"),
+    # named where it crosses (the top edge, y = 12), not at its centre, which is inside the body
+    "crossing": (lambda b: b.update(holes=[_circle(12.0, 6.5, 6.5)]),
+                 r"holes\[0\]: it crosses the body's contour near \[[0-9.]+, 12(\.0)?\]"),
     "growth zero": (lambda b: b.update(law={"volume_ratio": 0.0}), r"law\.volume_ratio"),
     "growth absurd": (lambda b: b.update(law={"volume_ratio": 50.0}), r"growth of an extruded body must be between"),
 }

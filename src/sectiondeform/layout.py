@@ -268,8 +268,12 @@ def check_holes(holes, contour, tol: float, name: str, labels=None) -> list:
         poly = shapely.Polygon(ring)
         if not poly.area > 0:
             raise GeometryError(f"{what}: the curve encloses no area")
-        c = shapely.get_coordinates(poly.representative_point())[0]
-        if not contour.contains(poly.representative_point()) or not contour.covers(poly):
+        if contour.contains(poly.representative_point()) and not contour.covers(poly):  # partly out: where it crosses
+            c = shapely.get_coordinates(line.intersection(outline).representative_point())[0]
+            raise GeometryError(f"{what}: it crosses the body's contour near {_where(c)}; a hole lies strictly inside "
+                                "its body (draw it inside, or as another body)")
+        if not contour.covers(poly):
+            c = shapely.get_coordinates(poly.representative_point())[0]
             raise GeometryError(f"{what}: it lies outside the body's contour near {_where(c)}; a hole lies strictly inside "
                                 "its body (draw it inside, or as another body)")
         d = float(shapely.distance(outline, line))
