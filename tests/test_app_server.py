@@ -337,3 +337,17 @@ def test_a_prepared_section_is_found_by_its_key(case_json):
     engine.answer(other, case_json, "paper", 0.8, True)
     expected = engine.answer(other, moved, "paper", 0.8, False)  # the key found again
     np.testing.assert_array_equal(preview["contour"], expected["contour"])
+
+
+def test_the_worst_element_is_each_models_own_figure(case_json):
+    """The paper model's smallest corner Jacobian (units²); the hyperelastic model's smallest det F (a ratio), apart."""
+    from sectiondeform.app import engine
+    from sectiondeform.io.case import case_from_dict
+
+    cache = engine.DeformerCache()
+    paper = engine.answer(cache, case_json, "paper", 0.8, True)
+    physics = engine.answer(cache, case_json, "hyperelastic", 0.8, True)
+    assert paper["jacobian_min"] > 0 and paper["det_f_min"] is None
+    assert physics["jacobian_min"] is None
+    expected = sd.Deformer(case_from_dict(case_json), "hyperelastic").deform().bodies[0].quality.final.area_stretch_min
+    assert physics["det_f_min"] == pytest.approx(expected, rel=1e-9) and 0 < physics["det_f_min"] < 1.5

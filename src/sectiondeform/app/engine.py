@@ -365,6 +365,7 @@ def describe(result: Result, support: np.ndarray, final: bool, prepared: bool, m
     views = [_body_view(b, whole, meshes) for b in result.bodies]
     targets = [b.area_target for b in result.bodies]
     jacobians = [v["jacobian_min"] for v in views if v["jacobian_min"] is not None]
+    stretches = [v["det_f_min"] for v in views if v["det_f_min"] is not None]
     out = {
         "final": bool(final),
         "model": result.model,
@@ -375,6 +376,7 @@ def describe(result: Result, support: np.ndarray, final: bool, prepared: bool, m
         "area_final": sum(b.area_final for b in result.bodies),
         "relative_error": result.relative_error,
         "jacobian_min": min(jacobians, default=None),
+        "det_f_min": min(stretches, default=None),
         "info": {},
         "warnings": list(result.warnings),
         "compute_ms": compute_ms,
@@ -405,7 +407,8 @@ def _body_view(body, whole: bool, meshes: bool) -> dict:
         "area_target": body.area_target,
         "area_final": body.area_final,
         "relative_error": (body.area_final - body.area_target) / body.area_target if body.area_target else None,
-        "jacobian_min": q.final.jacobian_min if q is not None else None,
+        "jacobian_min": q.final.jacobian_min if q is not None else None,  # a layered mesh's, units²
+        "det_f_min": q.final.area_stretch_min if q is not None else None,  # a finite-element solution's, a ratio
         "info": {k: v for k, v in body.info.to_json().items() if isinstance(v, (int, float, str, bool))},
     }
     if body.volume_initial is not None:  # the library's volumes of revolution (Pappus)

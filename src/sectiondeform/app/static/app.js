@@ -578,6 +578,14 @@ function quantityLabels(volume) {
   $("ratio-label").textContent = what + " ratio";
 }
 
+
+// The mesh's worst element: a layered mesh's smallest corner Jacobian (units²), or a finite-element
+// solution's smallest area stretch det F (a ratio: below 0 an element is turned over).
+function smallest(r) {
+  if (r.jacobian_min != null) return fmt(r.jacobian_min, 3);
+  if (r.det_f_min != null) return "det F " + fmt(r.det_f_min, 3);
+  return "—";
+}
 function showBodies(res, u) {
   const table = $("bodies-readout");
   table.hidden = !res.assembly;
@@ -590,7 +598,7 @@ function showBodies(res, u) {
     tr.dataset.body = i;
     const cells = [b.name,
       vol ? `${fmt(b.volume_final)} / ${fmt(b.volume_target)} ${unit}` : `${fmt(b.area_final)} / ${fmt(b.area_target)} ${unit}`,
-      expo(vol ? b.volume_error : b.relative_error), fmt(b.jacobian_min, 3)];
+      expo(vol ? b.volume_error : b.relative_error), smallest(b)];
     cells.forEach((c, k) => {
       const td = document.createElement("td");
       td.textContent = c;
@@ -615,7 +623,7 @@ function showReadout(res, roundtrip) {
   $("r-final").textContent = fmt(q1) + unit;
   $("r-error").textContent = expo(res.relative_error);
   showBodies(res, u);
-  $("r-jacobian").textContent = fmt(res.jacobian_min, 3);
+  $("r-jacobian").textContent = smallest(res);
   showInfo(res);
   $("r-compute").textContent = res.compute_ms.toFixed(2) + " ms";
   $("r-roundtrip").textContent = roundtrip.toFixed(1) + " ms";
