@@ -122,3 +122,10 @@ def test_a_misspelt_option_gets_the_nearest_one(capsys):
     assert info.value.code == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "did you mean --area-ratio?" in err[0]
+
+
+def test_an_output_that_is_a_folder_is_named_as_one(tmp_path, capsys):
+    assert main(["deform", str(CASES / "paper-example.json"), "-o", str(tmp_path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.endswith(f"--output: {str(tmp_path)!r} is a folder; give a file in it, such as {str(tmp_path / 'out.json')!r}")
+    assert list(tmp_path.iterdir()) == []

@@ -133,6 +133,9 @@ def check_output_path(path, option: str, formats, what: str = "output") -> Path:
         If the extension is not among ``formats`` or the folder does not exist.
     """
     path = Path(path)
+    if path.is_dir():
+        ext = ".json" if ".json" in formats else sorted(formats)[0]
+        raise CaseError(option, f"{str(path)!r} is a folder; give a file in it, such as {str(path / ('out' + ext))!r}")
     if path.suffix.lower() not in formats:
         raise CaseError(option, f"unknown {what} format {path.suffix or '(none)'!r}; use one of {', '.join(sorted(formats))}")
     if not path.parent.is_dir():
