@@ -790,15 +790,19 @@ function onAnswer(msg, received) {
   for (const k of state.sentAt.keys()) if (k <= msg.seq) state.sentAt.delete(k);
   if (msg.type === "refused") {
     flushEdits();
-    // the library refuses rigid parts (the paper model): said in one line where the parts' figures are
+    // the library's line is the message's; the parts' panel only greys its figures and says which model refused
+    // (a request the server could not read carries no model: the server refused it)
+    const who = msg.model ? `the ${msg.model} model` : "the server", last = state.result;
     const rigidRefused = rigidCase().length > 0 && /^rigid\b/.test(msg.message);
     $("rigid-note").hidden = !rigidRefused;
-    $("rigid-note").textContent = rigidRefused ? msg.message : "";
+    $("rigid-note").textContent = rigidRefused ? `not solved by ${who}` : "";
     state.refused = true;
     showRigid();
     svg.classList.add("refused");
     svg.dataset.refusedSeq = msg.seq;
-    message("refused: " + msg.message + (state.result ? " (the last good shape is kept)" : ""), "error");
+    $("r-state").textContent = last ? `last good shape: ${last.final ? "full deformation" : "preview"} (${last.model}); ` +
+                                      `${who} refused` : `${who} refused; the section as drawn`;
+    message("refused: " + msg.message + (last ? " (the last good shape is kept)" : ""), "error");
     return;
   }
   svg.classList.remove("refused");
