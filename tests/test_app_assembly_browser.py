@@ -56,6 +56,7 @@ def test_each_body_in_its_own_colour_with_its_readouts(page):
     rows = page.locator("#bodies-rows tr")
     assert rows.count() == 2 and "backing" in rows.nth(0).inner_text() and "cover" in rows.nth(1).inner_text()
     assert page.locator("#body-label").is_visible()
+    assert page.locator("#assembly-hint").is_visible()  # two bodies: the hint says what the body list picks
 
 
 def test_dragging_the_target_moves_every_body_on_its_law(page):

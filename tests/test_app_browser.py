@@ -215,6 +215,8 @@ def test_a_refusal_is_shown_and_the_last_shape_stays(page):
     d = wait_for(page, "d.refusedSeq === d.pending")
     assert int(d["seq"]) < int(d["refusedSeq"])              # the shape drawn is the last good one
     assert page.locator("#deformed").get_attribute("d").count("L") > 100
+    # the state says so: not the shape of the refused request
+    assert page.locator("#r-state").inner_text() == "last good shape: full deformation (paper); the paper model refused"
     page.click("#undo")                                         # and the page goes on
     back = wait_for(page, f"d.seq > {d['refusedSeq']} && d.final === '1'")
     assert back["contourHash"] == good["contourHash"]

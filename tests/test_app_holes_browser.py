@@ -66,3 +66,34 @@ def test_the_hole_is_drawn_initial_and_deformed_as_the_bodys_inside(page):
         assert in_fill(page, selector, low + (low - centre) * 0.25)  # the wall below it is
     # the readout's area is the library's, net of the hole
     assert float(shown(page)["areaFinal"]) == want.area_final
+
+
+def boxes(page, selector: str) -> list[dict]:
+    """The screen boxes of the elements ``selector``: ``{x, y, width, height}`` (CSS pixels)."""
+    return page.eval_on_selector_all(selector, "es => es.map((e) => { const b = e.getBoundingClientRect(); "
+                                               "return {x: b.x, y: b.y, width: b.width, height: b.height}; })")
+
+
+def overlap(a: dict, b: dict) -> bool:
+    return (a["x"] < b["x"] + b["width"] and b["x"] < a["x"] + a["width"]
+            and a["y"] < b["y"] + b["height"] and b["y"] < a["y"] + a["height"])
+
+
+def test_the_y_axis_label_never_covers_a_tick_label(page):
+    """As opened, and with the view panned down one pixel at a time over a whole tick step: no overlap."""
+    page.evaluate("document.fonts.ready")
+    step = page.evaluate("window.sdState.view.s") * float(page.eval_on_selector(
+        "#axes", "g => { const t = [...g.querySelectorAll('.tick-y')].map((e) => Number(e.textContent)); "
+                 "return Math.abs(t[1] - t[0]); }"))
+    ty0 = page.evaluate("window.sdState.view.ty")
+    for shift in range(0, int(step) + 2):
+        page.evaluate("t => { window.sdState.view.ty = t; window.dispatchEvent(new Event('resize')); }", ty0 + shift)
+        (label,) = boxes(page, "#axis-y-label")
+        ticks = boxes(page, "#axes .tick-y")
+        assert ticks and label["width"] > 0
+        assert not any(overlap(label, t) for t in ticks), (shift, label, ticks)
+        assert label["y"] >= page.locator("#view").bounding_box()["y"]  # on the drawing, not above it
+
+
+def test_the_assembly_hint_is_for_several_bodies_only(page):
+    assert page.locator("#assembly-hint").is_hidden()  # one body: no body list to pick from

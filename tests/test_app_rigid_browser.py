@@ -118,13 +118,20 @@ def test_dragging_the_plate_down_adds_travel_and_force(page):
 
 
 def test_the_paper_model_says_it_refuses_rigid_parts(page):
+    """The library's line once (the page's message), the panel greyed and the state naming both models."""
+    solved(page, 1.2)
     page.select_option("#model", "paper")
-    page.wait_for_selector("#rigid-note:not([hidden])")
-    note = page.locator("#rigid-note").inner_text()
-    assert note.startswith("rigid: the paper model has no mechanics for rigid parts") and "\n" not in note
+    wait_for(page, "d.refusedSeq === d.pending")
+    line = page.locator("#message").inner_text()
+    assert line.startswith("refused: rigid: the paper model has no mechanics for rigid parts") and "\n" not in line
+    assert line.endswith("(the last good shape is kept)")
+    library = line.removeprefix("refused: ").removesuffix(" (the last good shape is kept)")
+    assert page.locator("body").inner_text().count(library) == 1  # said once
+    assert page.locator("#rigid-note").inner_text() == "not solved by the paper model"
     assert page.locator("#rigid .rigid-final").get_attribute("d")  # the part is still drawn
     assert page.locator(f"{PART}.stale").count() == 1  # the figures on screen are not the paper model's: greyed
-    wait_for(page, "d.refusedSeq === d.pending")
+    state = page.locator("#r-state").inner_text()
+    assert state == "last good shape: full deformation (hyperelastic); the paper model refused", state
 
 
 def test_an_edited_travel_survives_a_reload_of_the_tab(page):

@@ -119,7 +119,7 @@ def test_the_paper_model_refuses_rigid_parts_with_the_librarys_line(client, bump
         ws.send_text(request(bumper, 1, model="paper"))
         r = receive(ws)
     # the library's line, with the option named as the page names it (its model control)
-    assert r == {"type": "refused", "seq": 1, "message": one_line(str(refused.value))}
+    assert r == {"type": "refused", "seq": 1, "model": "paper", "message": one_line(str(refused.value))}
     assert r["message"].endswith("use model hyperelastic")
     assert r["message"].startswith("rigid: ")
 

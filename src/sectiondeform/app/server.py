@@ -13,7 +13,8 @@ Routes
     server answers a result as one binary frame (a JSON header and the point
     arrays as raw float64, see :func:`framed`; a full deformation with rigid
     parts carries each part's contact, :func:`engine.contact_view`), a refusal as the text
-    ``{"type": "refused", "seq", "message"}``, and keeps running.
+    ``{"type": "refused", "seq", "message"}`` (with the request's ``"model"``
+    when the request itself was read), and keeps running.
 ``POST /api/open``
     An uploaded case file (.json, .dxf, .svg, multipart field ``file``),
     read in a private temporary folder: the case as JSON.
@@ -657,7 +658,7 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
                 last = msg["seq"]
                 ok, reply = await shared.run(_guarded(_compute, "request"), cache, msg)
                 if not ok:
-                    reply = {"type": "refused", "seq": msg["seq"], "message": reply}
+                    reply = {"type": "refused", "seq": msg["seq"], "model": msg["model"], "message": reply}
                 if isinstance(reply, bytes):
                     await ws.send_bytes(reply)
                 else:

@@ -110,6 +110,8 @@ function svgEl(tag, attrs, text) {
   return e;
 }
 
+const AXIS_FONT = 11;   // px, the axes' text (.axis text in index.html)
+
 // Axes along the bottom and left edges (ticks about every 100 px, a faint grid), the units, a scale bar.
 function drawAxes() {
   const g = $("axes"), bar = $("scale");
@@ -124,14 +126,19 @@ function drawAxes() {
     out.push(svgEl("line", { x1: sx, x2: sx, y1: r.height - 6, y2: r.height }));
     out.push(svgEl("text", { x: sx + 2, y: r.height - 8, class: "tick-x" }, numText(x, step)));
   }
+  let top = Infinity;   // the screen y of the highest tick
   for (let y = Math.ceil(y0 / step) * step; y <= y1; y += step) {
     const sy = -v.s * y + v.ty;
+    top = Math.min(top, sy);
     out.push(svgEl("line", { class: "grid", x1: 0, x2: r.width, y1: sy, y2: sy }));
     out.push(svgEl("line", { x1: 0, x2: 6, y1: sy, y2: sy }));
     out.push(svgEl("text", { x: 8, y: sy - 2, class: "tick-y" }, numText(y, step)));
   }
   out.push(svgEl("text", { x: r.width - 60, y: r.height - 22, id: "axis-x-label" }, "x" + (u ? ` (${u})` : "")));
-  out.push(svgEl("text", { x: 8, y: 14, id: "axis-y-label" }, "y" + (u ? ` (${u})` : "")));
+  // the y label at the top, or just under the highest tick's label where that one is too close to the top
+  // (ticks are at least 57 px apart, see niceStep: the label fits between two)
+  const labelY = top - 2 - AXIS_FONT < 14 + 0.4 * AXIS_FONT ? top + 2 + AXIS_FONT : 14;
+  out.push(svgEl("text", { x: 8, y: labelY, id: "axis-y-label" }, "y" + (u ? ` (${u})` : "")));
   g.replaceChildren(...out);
   // the scale bar: a round length between about 60 and 150 px, bottom left
   const len = niceStep(100 / v.s), px = len * v.s, bx = 40, by = r.height - 34;
@@ -783,15 +790,19 @@ function onAnswer(msg, received) {
   for (const k of state.sentAt.keys()) if (k <= msg.seq) state.sentAt.delete(k);
   if (msg.type === "refused") {
     flushEdits();
-    // the library refuses rigid parts (the paper model): said in one line where the parts' figures are
+    // the library's line is the message's; the parts' panel only greys its figures and says which model refused
+    // (a request the server could not read carries no model: the server refused it)
+    const who = msg.model ? `the ${msg.model} model` : "the server", last = state.result;
     const rigidRefused = rigidCase().length > 0 && /^rigid\b/.test(msg.message);
     $("rigid-note").hidden = !rigidRefused;
-    $("rigid-note").textContent = rigidRefused ? msg.message : "";
+    $("rigid-note").textContent = rigidRefused ? `not solved by ${who}` : "";
     state.refused = true;
     showRigid();
     svg.classList.add("refused");
     svg.dataset.refusedSeq = msg.seq;
-    message("refused: " + msg.message + (state.result ? " (the last good shape is kept)" : ""), "error");
+    $("r-state").textContent = last ? `last good shape: ${last.final ? "full deformation" : "preview"} (${last.model}); ` +
+                                      `${who} refused` : `${who} refused; the section as drawn`;
+    message("refused: " + msg.message + (last ? " (the last good shape is kept)" : ""), "error");
     return;
   }
   svg.classList.remove("refused");
@@ -1127,7 +1138,7 @@ function show(caseJson, model, outline, refit, ratio, body, rigid) {
   const bodies = isAssembly() ? state.case.bodies : [];
   $("body").replaceChildren(...bodies.map((b, i) => new Option(b.name || `body ${i}`, i)));
   $("body-label").hidden = !bodies.length;
-  $("assembly-hint").hidden = !bodies.length;
+  $("assembly-hint").hidden = bodies.length < 2;   // one body: nothing for the body list to pick
   svg.classList.remove("refused");
   if (bodies.length) { $("body").value = state.body; showRatio(); quantityLabels(Boolean(state.case.revolution)); }
   else {
