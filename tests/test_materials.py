@@ -199,3 +199,17 @@ def test_materials_are_frozen_and_hashable():
         m.c10 = 1.0
     assert {m: 1}[Yeoh(0.2, -0.001, 3e-5)] == 1
     assert m.scaled(2.0).c20 == pytest.approx(-0.002)
+
+
+@pytest.mark.parametrize("material", [NeoHookean(0.7), MooneyRivlin(0.4, 0.2), Yeoh(0.5, -0.05, 0.01)],
+                         ids=["neo-hookean", "mooney-rivlin", "yeoh"])
+def test_the_plane_tangent_is_the_in_plane_block_of_the_full_one(material):
+    """For F = diag(F2, lz) the in-plane block of dP/dF needs the in-plane blocks only: the same numbers, to rounding."""
+    rng = np.random.default_rng(3)
+    F = np.zeros((40, 3, 3))
+    F[:, :2, :2] = np.eye(2) + 0.3 * rng.normal(size=(40, 2, 2))
+    F[:, 2, 2] = 0.8 + 0.4 * rng.random(40)
+    F = F[np.linalg.det(F) > 0.1]
+    for volumetric in (False, True):
+        full = material.tangent(F, volumetric=volumetric)[..., :2, :2, :2, :2]
+        np.testing.assert_allclose(material.tangent(F, volumetric=volumetric, plane=True), full, rtol=1e-12, atol=1e-12)

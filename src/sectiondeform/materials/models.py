@@ -177,13 +177,23 @@ class _Rubber:
             P = P + (self.kappa * (J - 1.0) * J)[..., None, None] * k["Fit"]
         return P
 
-    def tangent(self, F, volumetric: bool = True) -> np.ndarray:
-        """Tangent ∂P/∂F, (..., 3, 3, 3, 3), ``A[..., i, J, k, L] = ∂P_iJ/∂F_kL``."""
+    def tangent(self, F, volumetric: bool = True, plane: bool = False) -> np.ndarray:
+        """Tangent ∂P/∂F, (..., 3, 3, 3, 3), ``A[..., i, J, k, L] = ∂P_iJ/∂F_kL``.
+
+        With ``plane`` (``F`` block diagonal, ``diag(F2, F33)``: plane strain or
+        its generalisation), only the in-plane block ``A[..., :2, :2, :2, :2]``,
+        (..., 2, 2, 2, 2), computed from the in-plane blocks alone (every term is
+        a product of block-diagonal tensors): a quarter of the work.
+        """
         k = _kinematics(F)
         F = k["F"]
         Fit, J, I1, I2 = k["Fit"], k["J"], k["I1"], k["I2"]
         w1, w11 = self.dW_dI1(k["I1bar"])
-        eye = np.eye(3)
+        n = 2 if plane else 3
+        if plane:
+            F, Fit = F[..., :2, :2], Fit[..., :2, :2]
+            k = {**k, "dI1": k["dI1"][..., :2, :2]}
+        eye = np.eye(n)
         II = np.einsum("ik,jl->ijkl", eye, eye)
         FiFi = _outer(Fit, Fit)
         T = np.einsum("...il,...kj->...ijkl", Fit, Fit)
