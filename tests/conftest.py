@@ -139,3 +139,14 @@ def ccx():
             pytest.fail("SECTIONDEFORM_REQUIRE_CCX=1 but CalculiX's ccx is not installed (apt-get install calculix-ccx)")
         pytest.skip("CalculiX's ccx is not installed (apt-get install calculix-ccx)")
     return exe
+
+
+def one_body_mesh(ring, fixed, h: float):
+    """The hyperelastic model's P2 mesh of one body (``union_mesh`` of one contour): ``ring`` ``(k, 2)``, the
+    contour indices ``fixed`` that must be nodes, element size ``h``.
+    """
+    from sectiondeform.fem.union_mesh import union_mesh
+
+    ring = np.asarray(ring, dtype=np.float64)
+    size = float(np.ptp(ring, axis=0).max())
+    return union_mesh([ring], [np.asarray(fixed, dtype=np.int64)], np.array([float(h)]), 1e-9 * size)

@@ -5,18 +5,19 @@ import pytest
 
 from sectiondeform.fem.axisymmetric import AxisymmetricNeoHooke, AxisymmetricRubber
 from sectiondeform.fem.elements import geometry
-from sectiondeform.fem.mesh import coarse_mesh
 from sectiondeform.fem.neohooke import MixedNeoHooke, Pattern
 from sectiondeform.fem.rubber import MixedRubber
 from sectiondeform.fem.union_mesh import body_pressure_cells, union_mesh
 from sectiondeform.materials import MooneyRivlin, NeoHookean
+
+from conftest import one_body_mesh
 
 BOX = np.array([[0, 0], [4, 0], [4, 2], [0, 2]], float)
 
 
 @pytest.fixture(scope="module")
 def problem():
-    m = coarse_mesh(BOX, np.array([0]), 1.0)
+    m = one_body_mesh(BOX, np.array([0]), 1.0)
     ph = MixedNeoHooke(m.cells, len(m.nodes), geometry(m.nodes, m.cells), 50.0)
     return m, ph
 

@@ -6,16 +6,17 @@ from scipy.sparse.linalg import splu
 
 from sectiondeform.fem.axisymmetric import AxisymmetricNeoHooke
 from sectiondeform.fem.elements import geometry
-from sectiondeform.fem.mesh import coarse_mesh
 from sectiondeform.fem.neohooke import MixedNeoHooke, Pattern
 from sectiondeform.fem.newton import NewtonSolver
+
+from conftest import one_body_mesh
 
 BOX = np.array([[1, 0], [5, 0], [5, 2], [1, 2]], float)  # one unit off the axis x = 0
 
 
 @pytest.fixture(scope="module")
 def ring():
-    m = coarse_mesh(BOX, np.array([0]), 0.7)
+    m = one_body_mesh(BOX, np.array([0]), 0.7)
     ph = AxisymmetricNeoHooke(m.cells, m.nodes, geometry(m.nodes, m.cells), [0.0, 0.0], [1.0, 0.0], 200.0, 1.0, 0.3)
     return m, ph
 
@@ -58,7 +59,7 @@ def test_axisymmetric_tangent_is_the_derivative_of_the_residual(ring):
 
 @pytest.mark.parametrize("spec", ["COLAMD", "MMD_AT_PLUS_A"])
 def test_later_factorisations_reuse_the_first_order_and_solve_the_same_system(spec):
-    m = coarse_mesh(np.array([[0, 0], [4, 0], [4, 2], [0, 2]], float), np.array([0]), 0.5)
+    m = one_body_mesh(np.array([[0, 0], [4, 0], [4, 2], [0, 2]], float), np.array([0]), 0.5)
     ph = MixedNeoHooke(m.cells, len(m.nodes), geometry(m.nodes, m.cells), 500.0)
     fixed = (2 * np.flatnonzero(np.isclose(m.nodes[:, 1], 0.0))[:, None] + np.arange(2)).ravel()
     pat = Pattern(ph.edofs, 2 * len(m.nodes) + m.n_vertices, fixed)

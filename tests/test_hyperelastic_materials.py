@@ -18,7 +18,6 @@ import shapely
 import sectiondeform as sd
 from sectiondeform.deform import Deformer
 from sectiondeform.fem.elements import geometry
-from sectiondeform.fem.mesh import coarse_mesh
 from sectiondeform.fem.neohooke import MixedNeoHooke, Pattern
 from sectiondeform.fem.rubber import MixedRubber
 from sectiondeform.io.case import case_from_dict
@@ -26,7 +25,7 @@ from sectiondeform.materials import MooneyRivlin, NeoHookean, Yeoh, gradient_3d
 from sectiondeform.materials.homogeneous import nominal_stress
 from sectiondeform.problem import V2
 
-from conftest import CASES_DIR
+from conftest import CASES_DIR, one_body_mesh
 
 RUBBERS = [MooneyRivlin(0.3, 0.08, bulk_to_shear=1e5), Yeoh(0.25, -0.01, 0.002, bulk_to_shear=1e5)]
 IDS = ["mooney-rivlin", "yeoh"]
@@ -34,7 +33,7 @@ IDS = ["mooney-rivlin", "yeoh"]
 
 def _block_mesh(size=0.7):
     ring = np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 3.0], [0.0, 3.0]])
-    mesh = coarse_mesh(ring, np.array([0, 1]), size)
+    mesh = one_body_mesh(ring, np.array([0, 1]), size)
     return mesh, geometry(mesh.nodes, mesh.cells)
 
 

@@ -24,12 +24,11 @@ from sectiondeform.deform import Deformer
 from sectiondeform.errors import LawError
 from sectiondeform.fem.axisymmetric import AxisymmetricNeoHooke
 from sectiondeform.fem.elements import geometry
-from sectiondeform.fem.mesh import coarse_mesh
 from sectiondeform.io.case import case_from_dict
 from sectiondeform.laws import VolumeRatio
 from sectiondeform.models.hyperelastic_revolution import offset_to_law
 
-from conftest import CASES_DIR
+from conftest import CASES_DIR, one_body_mesh
 
 DRUM = CASES_DIR / "v2" / "tread-on-drum.json"
 DRUM_AXIS = ((0.0, -250.0), (1.0, -250.0))
@@ -49,7 +48,7 @@ def pappus_by_geos(contour, axis):
 def small_problem(seed=0, ln_growth=None, kappa=50.0):
     """A 3 x 2 block at radius 5 to 7 about the x axis, meshed coarsely; random moduli and growths."""
     rng = np.random.default_rng(seed)
-    m = coarse_mesh(np.array([[0.0, 5.0], [3.0, 5.0], [3.0, 7.0], [0.0, 7.0]]), np.array([0, 1]), 1.0)
+    m = one_body_mesh(np.array([[0.0, 5.0], [3.0, 5.0], [3.0, 7.0], [0.0, 7.0]]), np.array([0, 1]), 1.0)
     e = len(m.cells)
     growth = rng.uniform(-0.2, 0.2, e) if ln_growth is None else ln_growth
     physics = AxisymmetricNeoHooke(m.cells, m.nodes, geometry(m.nodes, m.cells), [0.0, 0.0], [0.0, 1.0],

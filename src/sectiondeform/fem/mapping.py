@@ -1,21 +1,19 @@
-"""From the solved mesh to the section's points: boundary location, lower data, area.
+"""From the solved mesh to the section's points, and the law's offset.
 
-* :func:`boundary_weights`: every contour point lies on a coarse boundary
-  edge's stretch of the contour. It is located by its parameter on that
-  (quadratic) edge, found by projection, and its small offset ``d`` from the
-  edge (the true curve between two mesh nodes bulges off the edge). Its
-  image is ``x(t) + F(t) d``: the edge's image plus the offset carried by
-  the local deformation gradient, a first-order extrapolation with the
-  element's own shape functions. Linear in the node positions, so it is a
-  sparse matrix; no point is dropped, the order is kept, an identity or a
-  rigid motion is reproduced exactly.
-* :func:`interpolation_matrix`: the prescribed positions of the coarse
-  lower nodes, the target at their arc-length fractions, interpolated
-  linearly between the target nodes given at the section's lower fractions.
-* :func:`rigid_fit`: the rotation and translation that best carry the
-  lower nodes to the target (least squares), the cold start.
-* :func:`correct_area`: the exact area law by one normal offset of the
-  upper points, a quadratic solved in closed form.
+* :func:`edge_weights`: every contour point lies on a boundary edge's
+  stretch of the contour. It is located by its parameter on that
+  (quadratic) edge and its small offset ``d`` from the edge (the true curve
+  between two mesh nodes bulges off the edge). Its image is ``x(t) + F(t) d``:
+  the edge's image plus the offset carried by the local deformation
+  gradient, a first-order extrapolation with the element's own shape
+  functions. Linear in the node positions, so it is a sparse matrix; no
+  point is dropped, the order is kept, an identity or a rigid motion is
+  reproduced exactly.
+* :func:`rigid_fit`: the rotation and translation that best carry points
+  onto others (least squares), the cold start.
+* :func:`offset_normals`, :func:`offset_root`: the directions and the size
+  of the normal offset that makes a law exact (a quadratic in the offset for
+  an area, solved without cancellation).
 """
 
 from __future__ import annotations
@@ -25,13 +23,10 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
-from ..curves import polygon_area
 from ..errors import LawError
 from .elements import p2_gradients, p2_values
-from .mesh import CoarseMesh
 
-__all__ = ["boundary_weights", "edge_weights", "interpolation_matrix", "rigid_fit", "offset_normals", "offset_root",
-           "correct_area"]
+__all__ = ["edge_weights", "rigid_fit", "offset_normals", "offset_root"]
 
 
 def _edge_curve(a, m, b, t):
@@ -41,31 +36,6 @@ def _edge_curve(a, m, b, t):
     dx = a * (4 * t - 3) + m * (4 - 8 * t) + b * (4 * t - 1)
     ddx = 4 * a - 8 * m + 4 * b
     return x, dx, ddx
-
-
-def boundary_weights(mesh: CoarseMesh, s: np.ndarray, points: np.ndarray) -> sp.csr_matrix:
-    """Matrix ``W`` with ``W @ x_nodes`` the images of contour points.
-
-    Parameters
-    ----------
-    mesh : CoarseMesh
-    s : (m,) float64 ndarray
-        Arc length of each point along the mesh's contour, in
-        ``[0, perimeter]``, units.
-    points : (m, 2) float64 ndarray
-        The points (on the contour), units.
-
-    Returns
-    -------
-    (m, N) scipy.sparse.csr_matrix
-        Weights ``N_a + grad N_a . d`` on the six nodes of each point's cell.
-    """
-    s_b = mesh.boundary_s
-    s_end = np.append(s_b[1:], mesh.ring.perimeter)
-    j = np.clip(np.searchsorted(s_b, s, side="right") - 1, 0, len(s_b) - 1)
-    cell, loc, direction = mesh.boundary_edges[j].T
-    t = np.clip((s - s_b[j]) / (s_end[j] - s_b[j]), 0.0, 1.0)
-    return edge_weights(mesh.nodes, mesh.cells, cell, loc, direction, t, points)
 
 
 def edge_weights(nodes: np.ndarray, cells: np.ndarray, cell: np.ndarray, loc: np.ndarray, direction: np.ndarray,
@@ -118,24 +88,6 @@ def edge_weights(nodes: np.ndarray, cells: np.ndarray, cell: np.ndarray, loc: np
     grad = np.einsum("paj,pji->pai", dref, np.linalg.inv(jac))
     w = vals + np.einsum("pai,pi->pa", grad, d)
     return sp.csr_matrix((w.ravel(), (np.repeat(rows, 6), cn.ravel())), shape=(len(t), len(nodes)))
-
-
-def interpolation_matrix(at: np.ndarray, fractions: np.ndarray) -> np.ndarray:
-    """Linear interpolation weights ``(k, n)`` from values at ``fractions`` to values at ``at``.
-
-    Examples
-    --------
-    >>> interpolation_matrix(np.array([0.25, 1.0]), np.array([0.0, 0.5, 1.0])).tolist()
-    [[0.5, 0.5, 0.0], [0.0, 0.0, 1.0]]
-    """
-    n = len(fractions)
-    i = np.clip(np.searchsorted(fractions, at, side="right") - 1, 0, n - 2)
-    u = np.clip((at - fractions[i]) / (fractions[i + 1] - fractions[i]), 0.0, 1.0)
-    w = np.zeros((len(at), n))
-    rows = np.arange(len(at))
-    w[rows, i] += 1.0 - u
-    w[rows, i + 1] += u
-    return w
 
 
 def rigid_fit(src: np.ndarray, dst: np.ndarray, weights: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -195,54 +147,3 @@ def offset_root(c0: float, c1: float, c2: float, signed_area: float) -> float:
     if disc < 0:
         raise LawError(f"law: no normal offset of the upper curve gives the area {abs(signed_area):.6g}")
     return c0 / (-0.5 * (c1 + math.copysign(math.sqrt(disc), c1)))
-
-
-def correct_area(lower: np.ndarray, upper: np.ndarray, signed_area: float) -> tuple[np.ndarray, float]:
-    """Offset the inner upper points along their normals so the contour has ``signed_area``.
-
-    Parameters
-    ----------
-    lower : (n, 2) float64 ndarray
-        Deformed lower curve, A' to B' (kept).
-    upper : (m, 2) float64 ndarray
-        Deformed upper points, B' to A'; the ends stay.
-    signed_area : float
-        Wanted signed area of ``lower + upper[1:-1]``, units².
-
-    Returns
-    -------
-    upper : (m, 2) float64 ndarray
-        Corrected points.
-    offset : float
-        The normal offset applied, units (signed; positive grows the area).
-
-    Raises
-    ------
-    LawError
-        If no offset gives that area.
-
-    Examples
-    --------
-    >>> low = np.array([[0.0, 0.0], [1.0, 0.0]])
-    >>> up, k = correct_area(low, np.array([[1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.0, 0.0]]), 1.1)
-    >>> ring = np.concatenate((low, up[1:-1]))
-    >>> round(0.5 * float(np.sum(ring[:, 0] * np.roll(ring[:, 1], -1) - np.roll(ring[:, 0], -1) * ring[:, 1])), 12)
-    1.1
-    """
-    inner = upper[1:-1]
-    tang = upper[2:] - upper[:-2]  # ring neighbours of each inner point
-    length = np.sqrt(tang[:, 0] ** 2 + tang[:, 1] ** 2)
-    nrm = np.column_stack((tang[:, 1], -tang[:, 0])) / length[:, None]
-    ring = np.concatenate((lower, inner))
-    area = polygon_area(ring)
-    # A(k) = area + k c1 + k^2 c2 with c1 = sum n_i x (P_i+1 - P_i-1) / 2 (summation by parts).
-    c0 = area - signed_area
-    c1 = 0.5 * float(length.sum())  # n x tang = |tang| for the normal (t_y, -t_x)
-    c2 = 0.5 * float(nrm[:-1, 0] @ nrm[1:, 1] - nrm[:-1, 1] @ nrm[1:, 0])
-    if c1 == 0.0:
-        raise LawError("law: the upper curve cannot be offset to meet the area (degenerate contour)")
-    k = offset_root(c0, c1, c2, signed_area)
-    out = upper.copy()
-    out[1:-1] = inner + k * nrm
-    # Report the offset as positive when the area's magnitude grows.
-    return out, float(k if c1 * signed_area >= 0 else -k)

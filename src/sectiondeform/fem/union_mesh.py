@@ -5,14 +5,13 @@ graph: contour points closer than a tolerance become one *vertex*, and the
 contour edges between vertices its edges, each kept once. A piece shared by
 two bodies is then one run of edges. The graph is cut into *chains* at its
 corners: vertices met by other than two edges (where pieces meet), vertices
-where it turns by more than :data:`~sectiondeform.fem.mesh.CORNER_DEG`, and
+where it turns by more than :data:`CORNER_DEG`, and
 the points asked for (each body's A and B). Every chain gets mesh nodes at
 equal steps of about ``h`` along its arc length (more where it turns), the
 same nodes for both bodies of a shared piece. Interior nodes are a
 hexagonal lattice per body, half a step off its contour; a Delaunay
 triangulation of all nodes is made to contain every chain segment by
-splitting the missing ones (a conforming Delaunay mesh, as
-:func:`~sectiondeform.fem.mesh.coarse_mesh` does for one body). Each
+splitting the missing ones (a conforming Delaunay mesh). Each
 triangle is tagged with the body holding its centroid (a triangle inside a
 hole belongs to none and is dropped); the interior nodes
 are smoothed while no triangle turns over; mid-edge nodes of chain segments
@@ -44,9 +43,18 @@ from ..errors import MeshError
 from ..limits import MAX_FE_VERTICES, bounded
 from .elements import geometry
 from .mapping import edge_weights
-from .mesh import CONFORM_ITERATIONS, CORNER_DEG, PIECE_TURN_DEG, SMOOTH_ITERATIONS, _lattice, _signed_areas, _smooth
 
 __all__ = ["UnionMesh", "Chain", "union_mesh", "body_pressure_cells"]
+
+
+CORNER_DEG = 15.0
+"""A contour turning by more than this at a point makes it a corner: a mesh node, where chains are cut."""
+PIECE_TURN_DEG = 30.0
+"""A chain's steps are shortened so that none turns by more than this."""
+CONFORM_ITERATIONS = 40
+"""Passes of the conforming loop (split the segments Delaunay missed, triangulate again) at most."""
+SMOOTH_ITERATIONS = 4
+"""Laplace smoothing passes of the interior nodes (each kept only while no triangle turns over)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -223,6 +231,43 @@ def _blocked_message(bpts: np.ndarray, missing: np.ndarray, h: float) -> str:
     return (f"mesh: the mesh (h = {h:.4g}) cannot be made to follow {len(missing)} contour segment(s), the first "
             f"({a[0, 0]:.6g}, {a[0, 1]:.6g})-({b[0, 0]:.6g}, {b[0, 1]:.6g}), however they are split; "
             "check that the bodies' contours do not cross or touch without sharing their points")
+
+
+def _lattice(poly, h: float) -> np.ndarray:
+    """Hexagonal lattice points of spacing ``h`` inside ``poly`` (holes allowed), half a step off its boundary."""
+    x0, y0, x1, y1 = poly.bounds
+    dy = h * math.sqrt(3.0) / 2.0
+    ys = np.arange(y0 + 0.5 * dy, y1, dy)
+    xs = np.arange(x0 + 0.25 * h, x1 + h, h)
+    gx, gy = np.meshgrid(xs, ys)
+    gx = gx + 0.5 * h * (np.arange(len(ys))[:, None] % 2)
+    pts = np.column_stack((gx.ravel(), gy.ravel()))
+    inside = shapely.contains_xy(poly, pts[:, 0], pts[:, 1])
+    pts = pts[inside]
+    d = shapely.distance(poly.boundary, shapely.points(pts))  # the holes' rings too
+    return pts[d >= 0.5 * h]
+
+
+def _signed_areas(pts: np.ndarray, tri: np.ndarray) -> np.ndarray:
+    p0, p1, p2 = pts[tri[:, 0]], pts[tri[:, 1]], pts[tri[:, 2]]
+    return 0.5 * ((p1[:, 0] - p0[:, 0]) * (p2[:, 1] - p0[:, 1]) - (p2[:, 0] - p0[:, 0]) * (p1[:, 1] - p0[:, 1]))
+
+
+def _smooth(pts: np.ndarray, tri: np.ndarray, n_fixed: int, iterations: int) -> np.ndarray:
+    """Laplace smoothing of the free nodes (index >= n_fixed) while every triangle stays positive."""
+    n = len(pts)
+    e = np.concatenate((tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]))
+    e = np.unique(np.sort(e, axis=1), axis=0)
+    i, j = np.concatenate((e[:, 0], e[:, 1])), np.concatenate((e[:, 1], e[:, 0]))
+    deg = np.bincount(i, minlength=n).astype(float)
+    for _ in range(iterations):
+        nb = np.column_stack((np.bincount(i, weights=pts[j, 0], minlength=n), np.bincount(i, weights=pts[j, 1], minlength=n)))
+        new = pts.copy()
+        new[n_fixed:] = nb[n_fixed:] / deg[n_fixed:, None]
+        if _signed_areas(new, tri).min() <= 0:
+            break
+        pts = new
+    return pts
 
 
 def union_mesh(rings, fixed, h, tol: float, holes=None) -> UnionMesh:
