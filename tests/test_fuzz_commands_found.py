@@ -41,5 +41,5 @@ def test_a_contact_loading_is_bounded_in_work_before_each_solve(monkeypatch):
         sd.deform(case)
     except sd.ConvergenceError as exc:
         message = str(exc)
-    assert "Newton iterations" in message and "bound of 1 iterations x unknowns" in message
+    assert "factorisations" in message and "beyond its bound of 1 at this size" in message
     assert "halved" not in message and "\n" not in message

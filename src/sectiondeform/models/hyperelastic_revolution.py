@@ -161,10 +161,18 @@ class RevolutionPhysics:
         return 2 * on + radial, np.full(len(on), origin[radial]), vertices
 
     def _start_motion(self, points: np.ndarray, targets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The best rigid motion of the support nodes; for bodies held on the axis, a translation along it."""
+        """The best rigid motion of the support nodes, if it keeps every node on its side of the axis; else a
+        translation along the axis (bodies held on the axis, or a fit that would turn a body across it: its
+        hoop stretch would change sign, no state to start from).
+        """
+        axis = self.problem.revolution.axis
         if not len(self.axis_values):
-            return rigid_fit(points, targets)
-        e = axis_frame(self.problem.revolution.axis)[1][0]
+            q, t = rigid_fit(points, targets)
+            before = signed_distance(self.mesh.nodes, axis)
+            after = signed_distance(self.mesh.nodes @ q.T + t, axis)
+            if np.all(before * after > 0):
+                return q, t
+        e = axis_frame(axis)[1][0]
         return np.eye(2), e * float(np.mean((targets - points) @ e))
 
     def _physics(self, cells, geom, kappa, mu):
