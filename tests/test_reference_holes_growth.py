@@ -6,8 +6,6 @@ CalculiX tests need ccx: skipped without it, failing when SECTIONDEFORM_REQUIRE_
 from __future__ import annotations
 
 import json
-import os
-import shutil
 from pathlib import Path
 
 import numpy as np
@@ -28,16 +26,6 @@ HOLLOW = DATA / "hollow-on-arc.json"
 TUBE = DATA / "grown-tube.json"
 R = 1.1
 G = R ** (1.0 / 3.0)
-
-
-@pytest.fixture(scope="module")
-def ccx():
-    exe = os.environ.get("SECTIONDEFORM_CCX") or shutil.which("ccx")
-    if exe is None or shutil.which(exe) is None:
-        if os.environ.get("SECTIONDEFORM_REQUIRE_CCX") == "1":
-            pytest.fail("SECTIONDEFORM_REQUIRE_CCX=1 but CalculiX's ccx is not installed (apt-get install calculix-ccx)")
-        pytest.skip("CalculiX's ccx is not installed (apt-get install calculix-ccx)")
-    return exe
 
 
 def _circle(cx, cy, r, n=16):
