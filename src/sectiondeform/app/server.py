@@ -31,16 +31,18 @@ one size limit, checked before they are buffered; no path sent by the page
 is ever read or written; every answer forbids framing and content sniffing,
 and every error is one line without the server's paths.
 
-Load: every computation runs on a bounded pool of worker threads, never on
-the event loop; a connection has at most one request in the pool, and while
-it waits for a worker its newer requests replace the older (so a closed
-connection leaves at most the one being computed); connections are capped.
+Load: every computation runs off the event loop, previews on a bounded pool
+of worker threads, full hyperelastic solves in solver processes of their own
+(:mod:`.pools`: one page's solve on release never holds another's previews,
+and the solvers' memory is given back); a connection has at most one request
+in a pool, and while it waits for a worker its newer requests replace the
+older (so a closed connection leaves at most the one being computed);
+connections are capped.
 """
 
 from __future__ import annotations
 
 import asyncio
-import concurrent.futures
 import contextlib
 import hashlib
 import hmac
@@ -49,7 +51,8 @@ import os
 import re
 import struct
 import tempfile
-import weakref
+import uuid
+from collections import OrderedDict
 from importlib import resources
 from pathlib import Path
 
@@ -63,6 +66,7 @@ from starlette.websockets import WebSocket
 
 from ..errors import CaseError, SectionDeformError, spelled
 from . import engine
+from .pools import Solvers, Workers, resident_mb
 
 __all__ = ["MAX_CONNECTIONS", "MAX_MESSAGE", "MAX_UPLOAD", "STATIC", "UVICORN_OPTIONS", "WORKERS", "cookie_name",
            "create_app", "one_line"]
@@ -73,7 +77,12 @@ MAX_UPLOAD = MAX_MESSAGE
 MAX_CONNECTIONS = 64
 """Open WebSocket connections (pages) at once; one more is refused with a message."""
 WORKERS = max(2, min(4, os.cpu_count() or 2))
-"""Worker threads computing for all connections (the bound of the pool: nothing waits in its queue)."""
+"""Worker threads computing previews for all connections (the bound of the pool: nothing waits in its queue)."""
+SOLVERS = max(1, (os.cpu_count() or 2) // 2)
+"""Solver processes running full hyperelastic solves for all connections (:class:`~.pools.Solvers`)."""
+SOLVER_PAGES = 16
+"""Pages whose prepared sections a solver process keeps."""
+DIED = "server: the solver process stopped before answering (out of memory?); a new one is ready, try again"
 CACHE_SIZE = 2
 """Prepared sections kept per connection (the section being dragged and one other, e.g. the other model)."""
 SHARED_SECTIONS = 8
@@ -445,59 +454,33 @@ def _compute(cache: engine.DeformerCache, msg: dict) -> bytes:
     return framed({"type": "result", "seq": msg["seq"], **out})
 
 
-class Workers:
-    """A bounded pool of worker threads shared by all connections.
+def _heavy(model, final: bool, what: str = "result") -> bool:
+    """Whether a request is a full hyperelastic solve (run in a solver process, :class:`~.pools.Solvers`)."""
+    return model == "hyperelastic" and bool(final) and what != "case"
 
-    A job first takes one of ``size`` slots on the event loop (waiting
-    there, not in the pool's queue, so that a waiting job can still be
-    replaced by a newer one or dropped with its connection), then runs on a
-    thread; the slot comes back when the thread is done, even if the one
-    waiting for the answer has gone. So the pool's queue stays empty and
-    no more than ``size`` jobs ever run.
-    """
 
-    def __init__(self, size: int = WORKERS):
-        self.size = size
-        self.pool = concurrent.futures.ThreadPoolExecutor(max_workers=size, thread_name_prefix="sectiondeform")
-        self._slots: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # one semaphore per event loop
+_SOLVER_PAGES: OrderedDict[str, engine.DeformerCache] = OrderedDict()
+"""In a solver process: the prepared sections (and warm starts) of the pages it has solved for, by page."""
+_SOLVER_SHARED = engine.SharedDeformers(SHARED_SECTIONS)
 
-    def slots(self) -> asyncio.Semaphore:
-        loop = asyncio.get_running_loop()
-        if loop not in self._slots:
-            self._slots[loop] = asyncio.Semaphore(self.size)
-        return self._slots[loop]
 
-    async def acquire(self) -> None:
-        """Wait for a free worker (cancellable: a job never started holds nothing)."""
-        await self.slots().acquire()
+def _solve(page: str, msg: dict) -> tuple[tuple[bool, bytes | str], float]:
+    """In a solver process: the framed answer to a full solve for ``page`` (guarded), and the process's memory (MB)."""
+    cache = _SOLVER_PAGES.pop(page, None) or engine.DeformerCache(size=CACHE_SIZE, shared=_SOLVER_SHARED)
+    _SOLVER_PAGES[page] = cache
+    while len(_SOLVER_PAGES) > SOLVER_PAGES:
+        _SOLVER_PAGES.popitem(last=False)
+    return _guarded(_compute, "request")(cache, msg), resident_mb()
 
-    def release(self) -> None:
-        """Give back a slot taken by :meth:`acquire` and not used."""
-        self.slots().release()
 
-    async def run(self, fn, *args):
-        """Run ``fn(*args)`` on a worker, after :meth:`acquire`; the slot is given back when it ends."""
-        loop, slots = asyncio.get_running_loop(), self.slots()
-        try:
-            future = self.pool.submit(fn, *args)
-        except BaseException:
-            slots.release()
-            raise
-        future.add_done_callback(lambda _: loop.call_soon_threadsafe(slots.release))
-        return await asyncio.wrap_future(future)
-
-    async def call(self, fn, *args):
-        """Wait for a worker and run ``fn(*args)`` on it."""
-        await self.acquire()
-        return await self.run(fn, *args)
-
-    def close(self) -> None:
-        self.pool.shutdown(wait=False, cancel_futures=True)
+def _save(case_json, model, what: str, ext: str) -> tuple[tuple[bool, bytes | str], float]:
+    """In a solver process: :func:`_write` guarded, and the process's memory (MB)."""
+    return _guarded(_write, "save")(case_json, model, what, ext), resident_mb()
 
 
 def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_MESSAGE,
                upload_limit: int = MAX_UPLOAD, max_connections: int = MAX_CONNECTIONS, workers: int = WORKERS,
-               cache_size: int = CACHE_SIZE):
+               cache_size: int = CACHE_SIZE, solvers: int = SOLVERS):
     """The ASGI application of the page (a Starlette app behind the token, Host and header checks).
 
     Parameters
@@ -515,9 +498,13 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
     max_connections : int
         Open WebSocket connections at once; one more gets a refusal and is closed (code 1013).
     workers : int
-        Worker threads computing for all connections.
+        Worker threads computing previews (and reading and writing files) for all connections.
     cache_size : int
         Prepared sections kept per connection.
+    solvers : int
+        Solver processes running the full hyperelastic solves (started with
+        the server, replaced when grown, :class:`~.pools.Solvers`); 0: those
+        solves run on the worker threads too.
     """
     if not isinstance(token, str) or not token:
         raise ValueError("create_app needs a non-empty token")
@@ -531,12 +518,26 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
     shared = Workers(workers)
     prepared = engine.SharedDeformers(SHARED_SECTIONS)
     connections = 0
+    processes: list[Solvers] = []
+
+    def solving() -> Solvers:
+        """The solver processes (started on first use if the server's start has not)."""
+        if not processes:
+            processes.append(Solvers(solvers, preload=(__name__,)))
+        return processes[0]
 
     async def offload(fn, *args, what: str, names: dict | None = None):
         ok, value = await shared.call(_guarded(fn, what, names), *args)
         if not ok:
             raise Refused(value)
         return value
+
+    async def solve(job, *args, acquired: bool = False):
+        """Run a solver job (:func:`_solve`, :func:`_save`) in a process: ``(ok, value or line)``."""
+        pool = solving()
+        if not acquired:
+            await pool.acquire()
+        return await pool.run(job, *args, died=(False, DIED))
 
     async def index(request: Request):
         return FileResponse(STATIC / "index.html", headers={"Cache-Control": "no-store"})
@@ -581,7 +582,13 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
             body = await offload(parse_json, raw, "request", what="request")
             if not isinstance(body, dict):
                 raise CaseError("request", "expected a JSON object {\"case\", \"model\"}")
-            data = await offload(_write, body.get("case"), body.get("model", "paper"), what, ext, what="save")
+            model = body.get("model", "paper")
+            if solvers and _heavy(model, True, what):
+                ok, data = await solve(_save, body.get("case"), model, what, ext)
+                if not ok:
+                    raise Refused(data)
+            else:
+                data = await offload(_write, body.get("case"), model, what, ext, what="save")
         except Refused as exc:
             return _refusal(exc.status, exc.message)
         except SectionDeformError as exc:
@@ -605,6 +612,7 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
             return
         connections += 1
         cache = engine.DeformerCache(size=cache_size, shared=prepared)
+        page = uuid.uuid4().hex  # this page's prepared sections in the solver processes
         pending: dict = {}
         wake = asyncio.Event()
 
@@ -641,6 +649,9 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
                     pending.update(msg, seq=seq)
                     wake.set()
 
+        def in_process(msg: dict) -> bool:
+            return bool(solvers) and _heavy(msg.get("model"), msg.get("final"))
+
         async def work():
             last = -1
             while True:
@@ -648,15 +659,23 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
                 wake.clear()
                 if not pending:
                     continue
-                await shared.acquire()  # newer requests keep replacing the pending one meanwhile
-                if not pending or pending["seq"] <= last:
-                    shared.release()
-                    pending.clear()
+                heavy = in_process(pending)
+                pool = solving() if heavy else shared
+                await pool.acquire()  # newer requests keep replacing the pending one meanwhile
+                if not pending or pending["seq"] <= last or in_process(pending) != heavy:
+                    pool.release()  # gone, or replaced by one for the other pool: look again
+                    if pending and pending["seq"] > last:
+                        wake.set()
+                    else:
+                        pending.clear()
                     continue
                 msg = dict(pending)
                 pending.clear()
                 last = msg["seq"]
-                ok, reply = await shared.run(_guarded(_compute, "request"), cache, msg)
+                if heavy:
+                    ok, reply = await solve(_solve, page, msg, acquired=True)
+                else:
+                    ok, reply = await shared.run(_guarded(_compute, "request"), cache, msg)
                 if not ok:
                     reply = {"type": "refused", "seq": msg["seq"], "model": msg["model"], "message": reply}
                 if isinstance(reply, bytes):
@@ -677,8 +696,12 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
 
     @contextlib.asynccontextmanager
     async def lifespan(app):
+        if solvers:
+            solving()  # the processes start with the server: the first solve does not wait for them
         yield
         shared.close()
+        for pool in processes:
+            pool.close()
 
     routes = [
         Route("/", index),
