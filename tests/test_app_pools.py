@@ -36,10 +36,11 @@ def header(frame: bytes) -> dict:
 
 
 async def _jobs(solvers: pools.Solvers, *jobs):
-    out = []
+    """Run ``jobs`` one after the other in the first process of ``solvers``."""
+    solver, out = solvers.solvers[0], []
     for fn, *args in jobs:
-        await solvers.acquire()
-        out.append(await solvers.run(fn, *args, died="died"))
+        await solver.acquire()
+        out.append(await solver.run(fn, *args, died="died"))
     return out
 
 
@@ -64,6 +65,15 @@ def test_a_solver_process_grown_past_its_memory_is_replaced(case_json):
         assert solvers.replaced == 1
     finally:
         solvers.close()
+
+
+def test_pages_are_pinned_to_the_solver_processes_in_turn():
+    solvers = pools.Solvers(2, nice=0)
+    try:
+        first, second, third = solvers.assign(), solvers.assign(), solvers.assign()
+    finally:
+        solvers.close()
+    assert first is third is solvers.solvers[0] and second is solvers.solvers[1]
 
 
 def test_a_solver_process_is_replaced_after_its_count_of_solves(case_json):
@@ -107,11 +117,10 @@ def test_resident_memory_is_read():
     assert 1.0 < pools.resident_mb() < 1e6
 
 
-def test_only_full_hyperelastic_solves_go_to_the_processes():
-    assert server._heavy("hyperelastic", True)
-    assert not server._heavy("hyperelastic", False)
-    assert not server._heavy("paper", True)
-    assert not server._heavy("hyperelastic", True, what="case")
+def test_the_hyperelastic_models_work_goes_to_the_processes():
+    assert server._in_solver("hyperelastic") and server._in_solver("hyperelastic", what="figure")
+    assert not server._in_solver("paper")
+    assert not server._in_solver("hyperelastic", what="case")
 
 
 uvicorn = pytest.importorskip("uvicorn")

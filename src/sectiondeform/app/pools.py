@@ -1,16 +1,17 @@
 """Where the page's computations run: worker threads for previews, solver processes for full solves.
 
-A preview of a prepared section takes a millisecond or two and needs the
-section prepared in the server (:class:`Workers`, threads). A full
-hyperelastic solve takes up to seconds of Python and numerical code; on a
-thread it would hold the interpreter lock a good part of that time, so
-every other page's previews would wait behind it, and the solver's working
-memory would stay with the server. It runs in a process of its own instead
-(:class:`Solvers`): the server's interpreter stays free for the previews,
-the process runs at a lower priority than the server (a preview being
-dragged goes before a solve on release), and it is replaced once it has
-grown past :data:`SOLVER_MEMORY_MB` or served :data:`SOLVER_TASKS` solves,
-so the memory of a long session stays bounded.
+A paper-model answer takes a millisecond or two: it runs on a thread of
+the server (:class:`Workers`). A full hyperelastic solve takes up to
+seconds of Python and numerical code; on a thread it would hold the
+interpreter lock a good part of that time, so every other page's previews
+would wait behind it, and the solver's working memory would stay with the
+server. The hyperelastic model's work runs in a process of its own instead
+(:class:`Solvers`; a page's previews too, since each starts from the page's
+last full solve and its factorisation, which stay in that process): the
+server's interpreter stays free, the process runs at a lower priority than
+the server (a paper-model preview being dragged goes first), and it is
+replaced once it has grown past :data:`SOLVER_MEMORY_MB` or run
+:data:`SOLVER_TASKS` jobs, so the memory of a long session stays bounded.
 
 Both pools hand out slots on the event loop: a job first waits for a slot
 (cancellable, so a newer request can replace it or a closed connection drop
@@ -27,12 +28,12 @@ import os
 import weakref
 from concurrent.futures.process import BrokenProcessPool
 
-__all__ = ["SOLVER_MEMORY_MB", "SOLVER_NICE", "SOLVER_TASKS", "Solvers", "Workers", "resident_mb"]
+__all__ = ["SOLVER_MEMORY_MB", "SOLVER_NICE", "SOLVER_TASKS", "Solver", "Solvers", "Workers", "resident_mb"]
 
 SOLVER_MEMORY_MB = 1024
 """A solver process whose resident memory has grown past this (MB) is replaced after its solve."""
-SOLVER_TASKS = 200
-"""A solver process is replaced after this many solves, whatever its memory."""
+SOLVER_TASKS = 1000
+"""A solver process is replaced after this many jobs (solves and previews), whatever its memory."""
 SOLVER_NICE = 5
 """How much lower a solver process's scheduling priority is than the server's (POSIX ``nice`` increment)."""
 
@@ -128,51 +129,40 @@ def _context():
                                        else "spawn")
 
 
-class Solvers:
-    """A bounded pool of solver processes shared by all connections (full solves).
+class Solver:
+    """One solver process: its jobs run one at a time, and it is replaced when grown, worn or dead.
 
     A job is a picklable module-level function that returns ``(value,
     resident_mb)``: its answer and the process's resident memory after it.
-    A process past ``memory_mb`` or ``tasks`` solves is replaced once it is
-    idle; a process that dies (killed, out of memory) is replaced too and its
-    job answered with one line.
+    Once idle, a process past ``memory_mb`` or ``tasks`` jobs is replaced by
+    a fresh one (what it kept, prepared sections and warm starts, goes with
+    it); a process that dies (killed, out of memory) is replaced too and its
+    job answered ``died``.
 
     Parameters
     ----------
-    size : int
-        Processes, and so the most solves running at once.
     memory_mb : float
-        Resident memory (MB) past which a process is replaced.
+        Resident memory (MB) past which the process is replaced.
     tasks : int
-        Solves after which a process is replaced.
+        Jobs after which the process is replaced.
     nice : int
-        Priority decrement of the processes (0: the server's own).
-    preload : sequence of str
-        Modules the processes import once, before the first job (a forkserver
-        forks them ready).
+        Priority decrement of the process (0: the server's own).
+    context : multiprocessing context
     """
 
-    def __init__(self, size: int, memory_mb: float = SOLVER_MEMORY_MB, tasks: int = SOLVER_TASKS,
-                 nice: int = SOLVER_NICE, preload: tuple[str, ...] = ()):
-        if size < 1:
-            raise ValueError("Solvers needs at least one process")
-        self.size, self.memory_mb, self.tasks, self.nice = size, memory_mb, tasks, nice
-        self._context = _context()
-        if preload and self._context.get_start_method() == "forkserver":
-            self._context.set_forkserver_preload(list(preload))
-        self._slots = _Slots(size)
-        self._running = 0
-        self._served = 0
+    def __init__(self, memory_mb: float, tasks: int, nice: int, context):
+        self.memory_mb, self.tasks, self.nice, self._context = memory_mb, tasks, nice, context
+        self._slots = _Slots(1)
+        self._running = self._served = 0
         self._grown = False
         self.replaced = 0
-        """How many times the processes were replaced (grown, served their count, or died)."""
+        """How many times the process was replaced (grown, worn, or dead)."""
         self.pool = self._new_pool()
 
     def _new_pool(self) -> concurrent.futures.ProcessPoolExecutor:
-        pool = concurrent.futures.ProcessPoolExecutor(max_workers=self.size, mp_context=self._context,
+        pool = concurrent.futures.ProcessPoolExecutor(max_workers=1, mp_context=self._context,
                                                       initializer=_start_solver, initargs=(self.nice,))
-        for _ in range(self.size):
-            pool.submit(_ready)  # start the processes now, not on the first solve
+        pool.submit(_ready)  # start the process now, not on the first solve
         return pool
 
     def _replace(self) -> None:
@@ -182,24 +172,24 @@ class Solvers:
         old.shutdown(wait=False, cancel_futures=True)
 
     async def acquire(self) -> None:
-        """Wait for a free process (cancellable)."""
+        """Wait until the process is free (cancellable)."""
         await self._slots.get().acquire()
 
     def release(self) -> None:
-        """Give back a slot taken by :meth:`acquire` and not used."""
+        """Give back the slot taken by :meth:`acquire` and not used."""
         self._slots.get().release()
 
-    async def run(self, fn, *args, died: str = "server: the solver stopped before answering; try again"):
-        """Run ``fn(*args)`` in a process, after :meth:`acquire`: its value, or ``died`` if the process died.
+    async def run(self, fn, *args, died=None):
+        """Run ``fn(*args)`` in the process, after :meth:`acquire`: its value, or ``died`` if the process died.
 
-        ``fn`` returns ``(value, resident_mb)``. The slot is given back when
-        the process is done, even if the one awaiting the answer has gone.
+        The slot is given back when the process is done, even if the one
+        awaiting the answer has gone.
         """
         loop, slots = asyncio.get_running_loop(), self._slots.get()
         try:
             try:
                 future = self.pool.submit(fn, *args)
-            except BrokenProcessPool:  # died idle: a new pool, once
+            except BrokenProcessPool:  # died idle: a new process, once
                 self._replace()
                 future = self.pool.submit(fn, *args)
         except BaseException:
@@ -214,7 +204,7 @@ class Solvers:
         return value
 
     def _done(self, future: concurrent.futures.Future, slots: asyncio.Semaphore) -> None:
-        """A job has ended (on the event loop): its slot back, and the processes replaced if due and idle."""
+        """A job has ended (on the event loop): the slot back, and the process replaced if due."""
         self._running -= 1
         slots.release()
         if future.cancelled():
@@ -229,3 +219,47 @@ class Solvers:
 
     def close(self) -> None:
         self.pool.shutdown(wait=False, cancel_futures=True)
+
+
+class Solvers:
+    """The solver processes shared by all connections, each connection pinned to one.
+
+    A page's hyperelastic work all runs in one process (:meth:`assign`):
+    its full solves, and its previews, which start from its last full
+    solve and that solve's factorisation, kept where it was computed.
+
+    Parameters
+    ----------
+    size : int
+        Processes, and so the most solves running at once.
+    memory_mb, tasks, nice
+        As :class:`Solver`.
+    preload : sequence of str
+        Modules the processes import once, before the first job (a forkserver
+        forks them ready).
+    """
+
+    def __init__(self, size: int, memory_mb: float = SOLVER_MEMORY_MB, tasks: int = SOLVER_TASKS,
+                 nice: int = SOLVER_NICE, preload: tuple[str, ...] = ()):
+        if size < 1:
+            raise ValueError("Solvers needs at least one process")
+        context = _context()
+        if preload and context.get_start_method() == "forkserver":
+            context.set_forkserver_preload(list(preload))
+        self.solvers = [Solver(memory_mb, tasks, nice, context) for _ in range(size)]
+        self._next = 0
+
+    def assign(self) -> Solver:
+        """The solver of a new connection (in turn)."""
+        solver = self.solvers[self._next % len(self.solvers)]
+        self._next += 1
+        return solver
+
+    @property
+    def replaced(self) -> int:
+        """How many times a process was replaced."""
+        return sum(s.replaced for s in self.solvers)
+
+    def close(self) -> None:
+        for solver in self.solvers:
+            solver.close()

@@ -31,11 +31,11 @@ one size limit, checked before they are buffered; no path sent by the page
 is ever read or written; every answer forbids framing and content sniffing,
 and every error is one line without the server's paths.
 
-Load: every computation runs off the event loop, previews on a bounded pool
-of worker threads, full hyperelastic solves in solver processes of their own
-(:mod:`.pools`: one page's solve on release never holds another's previews,
-and the solvers' memory is given back); a connection has at most one request
-in a pool, and while it waits for a worker its newer requests replace the
+Load: every computation runs off the event loop, the paper model's and
+file work on a bounded pool of worker threads, the hyperelastic model's in
+solver processes of their own, each page pinned to one (:mod:`.pools`: one
+page's solve of a second never holds another's previews, and the solvers'
+memory is given back); a connection has at most one request in a pool, and while it waits for a worker its newer requests replace the
 older (so a closed connection leaves at most the one being computed);
 connections are capped.
 """
@@ -66,7 +66,7 @@ from starlette.websockets import WebSocket
 
 from ..errors import CaseError, SectionDeformError, spelled
 from . import engine
-from .pools import Solvers, Workers, resident_mb
+from .pools import Solver, Solvers, Workers, resident_mb
 
 __all__ = ["MAX_CONNECTIONS", "MAX_MESSAGE", "MAX_UPLOAD", "STATIC", "UVICORN_OPTIONS", "WORKERS", "cookie_name",
            "create_app", "one_line"]
@@ -79,7 +79,7 @@ MAX_CONNECTIONS = 64
 WORKERS = max(2, min(4, os.cpu_count() or 2))
 """Worker threads computing previews for all connections (the bound of the pool: nothing waits in its queue)."""
 SOLVERS = max(1, (os.cpu_count() or 2) // 2)
-"""Solver processes running full hyperelastic solves for all connections (:class:`~.pools.Solvers`)."""
+"""Solver processes running the hyperelastic model's work for all connections (:class:`~.pools.Solvers`)."""
 SOLVER_PAGES = 16
 """Pages whose prepared sections a solver process keeps."""
 DIED = "server: the solver process stopped before answering (out of memory?); a new one is ready, try again"
@@ -454,9 +454,13 @@ def _compute(cache: engine.DeformerCache, msg: dict) -> bytes:
     return framed({"type": "result", "seq": msg["seq"], **out})
 
 
-def _heavy(model, final: bool, what: str = "result") -> bool:
-    """Whether a request is a full hyperelastic solve (run in a solver process, :class:`~.pools.Solvers`)."""
-    return model == "hyperelastic" and bool(final) and what != "case"
+def _in_solver(model, what: str = "result") -> bool:
+    """Whether a request is the hyperelastic model's work (run in a solver process, :class:`~.pools.Solvers`).
+
+    Its previews too: each starts from the page's last full solve, whose
+    factorisation stays in the process that computed it.
+    """
+    return model == "hyperelastic" and what != "case"
 
 
 _SOLVER_PAGES: OrderedDict[str, engine.DeformerCache] = OrderedDict()
@@ -465,7 +469,7 @@ _SOLVER_SHARED = engine.SharedDeformers(SHARED_SECTIONS)
 
 
 def _solve(page: str, msg: dict) -> tuple[tuple[bool, bytes | str], float]:
-    """In a solver process: the framed answer to a full solve for ``page`` (guarded), and the process's memory (MB)."""
+    """In a solver process: the framed answer to ``page``'s request (guarded), and the process's memory (MB)."""
     cache = _SOLVER_PAGES.pop(page, None) or engine.DeformerCache(size=CACHE_SIZE, shared=_SOLVER_SHARED)
     _SOLVER_PAGES[page] = cache
     while len(_SOLVER_PAGES) > SOLVER_PAGES:
@@ -502,9 +506,9 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
     cache_size : int
         Prepared sections kept per connection.
     solvers : int
-        Solver processes running the full hyperelastic solves (started with
-        the server, replaced when grown, :class:`~.pools.Solvers`); 0: those
-        solves run on the worker threads too.
+        Solver processes running the hyperelastic model's work (started with
+        the server, each page pinned to one, replaced when grown,
+        :class:`~.pools.Solvers`); 0: that work runs on the worker threads too.
     """
     if not isinstance(token, str) or not token:
         raise ValueError("create_app needs a non-empty token")
@@ -526,18 +530,18 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
             processes.append(Solvers(solvers, preload=(__name__,)))
         return processes[0]
 
+    async def solve(solver: Solver, job, *args, acquired: bool = False):
+        """Run a solver job (:func:`_solve`, :func:`_save`) in ``solver``'s process: ``(ok, value or line)``."""
+        if not acquired:
+            await solver.acquire()
+        return await solver.run(job, *args, died=(False, DIED))
+
     async def offload(fn, *args, what: str, names: dict | None = None):
         ok, value = await shared.call(_guarded(fn, what, names), *args)
         if not ok:
             raise Refused(value)
         return value
 
-    async def solve(job, *args, acquired: bool = False):
-        """Run a solver job (:func:`_solve`, :func:`_save`) in a process: ``(ok, value or line)``."""
-        pool = solving()
-        if not acquired:
-            await pool.acquire()
-        return await pool.run(job, *args, died=(False, DIED))
 
     async def index(request: Request):
         return FileResponse(STATIC / "index.html", headers={"Cache-Control": "no-store"})
@@ -583,8 +587,8 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
             if not isinstance(body, dict):
                 raise CaseError("request", "expected a JSON object {\"case\", \"model\"}")
             model = body.get("model", "paper")
-            if solvers and _heavy(model, True, what):
-                ok, data = await solve(_save, body.get("case"), model, what, ext)
+            if solvers and _in_solver(model, what):
+                ok, data = await solve(solving().assign(), _save, body.get("case"), model, what, ext)
                 if not ok:
                     raise Refused(data)
             else:
@@ -612,7 +616,8 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
             return
         connections += 1
         cache = engine.DeformerCache(size=cache_size, shared=prepared)
-        page = uuid.uuid4().hex  # this page's prepared sections in the solver processes
+        page = uuid.uuid4().hex  # this page's prepared sections in its solver process
+        pinned: list[Solver] = []  # the page's solver process, once it has hyperelastic work
         pending: dict = {}
         wake = asyncio.Event()
 
@@ -650,7 +655,12 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
                     wake.set()
 
         def in_process(msg: dict) -> bool:
-            return bool(solvers) and _heavy(msg.get("model"), msg.get("final"))
+            return bool(solvers) and _in_solver(msg.get("model"))
+
+        def solver() -> Solver:
+            if not pinned:
+                pinned.append(solving().assign())
+            return pinned[0]
 
         async def work():
             last = -1
@@ -660,7 +670,7 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
                 if not pending:
                     continue
                 heavy = in_process(pending)
-                pool = solving() if heavy else shared
+                pool = solver() if heavy else shared
                 await pool.acquire()  # newer requests keep replacing the pending one meanwhile
                 if not pending or pending["seq"] <= last or in_process(pending) != heavy:
                     pool.release()  # gone, or replaced by one for the other pool: look again
@@ -673,7 +683,7 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
                 pending.clear()
                 last = msg["seq"]
                 if heavy:
-                    ok, reply = await solve(_solve, page, msg, acquired=True)
+                    ok, reply = await solve(pool, _solve, page, msg, acquired=True)
                 else:
                     ok, reply = await shared.run(_guarded(_compute, "request"), cache, msg)
                 if not ok:
