@@ -51,6 +51,7 @@ import os
 import re
 import struct
 import tempfile
+import threading
 import uuid
 from collections import OrderedDict
 from importlib import resources
@@ -523,11 +524,13 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
     prepared = engine.SharedDeformers(SHARED_SECTIONS)
     connections = 0
     processes: list[Solvers] = []
+    starting = threading.Lock()
 
     def solving() -> Solvers:
-        """The solver processes (started on first use if the server's start has not)."""
-        if not processes:
-            processes.append(Solvers(solvers, preload=(__name__,)))
+        """The solver processes (started with the server, in the background; else on first use)."""
+        with starting:
+            if not processes:
+                processes.append(Solvers(solvers, preload=(__name__,)))
         return processes[0]
 
     async def solve(solver: Solver, job, *args, acquired: bool = False):
@@ -706,8 +709,8 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
 
     @contextlib.asynccontextmanager
     async def lifespan(app):
-        if solvers:
-            solving()  # the processes start with the server: the first solve does not wait for them
+        if solvers:  # the processes start with the server (the first solve does not wait), not before it listens
+            threading.Thread(target=solving, name="sectiondeform-solvers", daemon=True).start()
         yield
         shared.close()
         for pool in processes:
