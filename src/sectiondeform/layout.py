@@ -85,14 +85,16 @@ def _fine(curve: Curve, tol: float) -> np.ndarray:
     return pts
 
 
-def _samples(curve: Curve, fine: np.ndarray) -> np.ndarray:
-    """Points of ``curve``: its fine polyline's vertices and :data:`SAMPLES` evenly spaced, in order."""
+def _samples(curve: Curve, fine: np.ndarray, fractions: np.ndarray) -> np.ndarray:
+    """Points of ``curve``: its fine polyline's vertices and :data:`SAMPLES` evenly spaced, in order.
+
+    Both sets are ordered by their fraction of the curve (the fine polyline's
+    from :meth:`~sectiondeform.curves.Curve.discretise`, which measures them
+    as :meth:`~sectiondeform.curves.Curve.at_fractions` does).
+    """
     s = np.linspace(0.0, 1.0, SAMPLES + 1)
-    pts = curve.at_fractions(s)
-    line = shapely.LineString(fine)
-    d = np.concatenate((shapely.line_locate_point(line, shapely.points(fine)), shapely.line_locate_point(line, shapely.points(pts))))
-    allp = np.concatenate((fine, pts))
-    return allp[np.argsort(d, kind="stable")]
+    order = np.argsort(np.concatenate((fractions, s)), kind="stable")
+    return np.concatenate((fine, curve.at_fractions(s)))[order]
 
 
 def _distance(points: np.ndarray, polyline: np.ndarray) -> np.ndarray:
@@ -139,10 +141,11 @@ def layout(problem) -> Layout:
         tol = CONTACT_FRACTION * size
     fine_tol = 0.25 * tol
     support = _fine(problem.support, fine_tol)
-    lowers = [_fine(b.lower, fine_tol) for b in bodies]
-    uppers = [_fine(b.upper, fine_tol) for b in bodies]
-    low_pts = [_samples(b.lower, f) for b, f in zip(bodies, lowers)]
-    up_pts = [_samples(b.upper, f) for b, f in zip(bodies, uppers)]
+    lower_fine = [b.lower.discretise(fine_tol) for b in bodies]  # points and their fractions of the curve
+    upper_fine = [b.upper.discretise(fine_tol) for b in bodies]
+    lowers, uppers = [f for f, _ in lower_fine], [f for f, _ in upper_fine]
+    low_pts = [_samples(b.lower, *f) for b, f in zip(bodies, lower_fine)]
+    up_pts = [_samples(b.upper, *f) for b, f in zip(bodies, upper_fine)]
     n = len(bodies)
 
     for i in range(n):
