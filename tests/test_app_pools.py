@@ -127,7 +127,6 @@ uvicorn = pytest.importorskip("uvicorn")
 pytest.importorskip("websockets.sync.client")
 from test_app_load import answer_to, connect, running  # noqa: E402
 
-
 HELD = 8.0
 """Seconds the only worker thread is held (a full solve in its process takes well under that)."""
 

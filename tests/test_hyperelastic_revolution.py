@@ -26,7 +26,7 @@ from sectiondeform.fem.axisymmetric import AxisymmetricNeoHooke
 from sectiondeform.fem.elements import geometry
 from sectiondeform.io.case import case_from_dict
 from sectiondeform.laws import VolumeRatio
-from sectiondeform.models.hyperelastic_revolution import offset_to_law
+from sectiondeform.fem.mapping import offset_to_law
 
 from conftest import CASES_DIR, one_body_mesh
 

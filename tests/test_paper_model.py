@@ -11,7 +11,7 @@ import sectiondeform as sd
 from sectiondeform.curves import Polyline
 from sectiondeform.errors import LawError, MeshError
 from sectiondeform.laws import AreaRatio
-from sectiondeform.models.paper import solve_scale
+from sectiondeform.models.paper import scale_roots
 
 from conftest import SHARED_CASES, Outcomes, box_case, chord_offset, rigid
 
@@ -130,12 +130,14 @@ def test_sharp_target_fold_is_reported():
     assert np.array_equal(again.contour, fresh.contour)
 
 
-def test_solve_scale_picks_the_root_near_the_guess():
-    sq = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+def test_the_height_scale_is_the_positive_root_nearest_the_guess():
+    # the rectangle [0, 1] x [0, k]: its area is k
+    sq = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [0.0, 0.0]])
     up = np.array([[0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [0.0, 1.0]])
-    assert solve_scale(sq - up, up, 2.0, 1.0) == pytest.approx(2.0)
-    with pytest.raises(LawError, match="no height scale"):
-        solve_scale(sq - up, up, -1.0, 1.0)
+    assert scale_roots(AreaRatio(2.0).coefficients(sq, up), 2.0, 1.0) == pytest.approx([2.0], rel=1e-15)
+    assert scale_roots(AreaRatio(2.0).coefficients(sq, up), -1.0, 1.0) == []  # a negative area: no positive scale
+    # 3k - k² = 2 has the roots 1 and 2: the nearer the guess first
+    assert scale_roots([0.0, 3.0, -1.0], 2.0, 1.8) == pytest.approx([2.0, 1.0], rel=1e-15)
 
 
 def test_mushroom_section_with_far_overhangs():

@@ -27,6 +27,7 @@ the physical reason a volume-preserving section changes area.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -37,8 +38,8 @@ from .checks import number
 from .curves import closed_parts
 from .errors import CaseError, LawError
 
-__all__ = ["Law", "AreaRatio", "VolumeRatio", "law_from_json", "check_growth", "area_coefficients", "LAWS", "RATIO_RANGE",
-           "GROWTH_RANGE"]
+__all__ = ["Law", "AreaRatio", "VolumeRatio", "law_from_json", "check_growth", "area_coefficients", "law_roots", "LAWS",
+           "RATIO_RANGE", "GROWTH_RANGE"]
 
 RATIO_RANGE = (0.01, 100.0)
 """Accepted area and volume ratios, inclusive: beyond them no rubber section means anything."""
@@ -70,6 +71,66 @@ def area_coefficients(fixed: np.ndarray, moving: np.ndarray) -> np.ndarray:
         return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
 
     return 0.5 * np.array([cross(fixed, f1).sum(), (cross(fixed, g1) + cross(moving, f1)).sum(), cross(moving, g1).sum()])
+
+
+def law_roots(coefficients, wanted: float) -> list[float]:
+    """The real ``k`` where a law's polynomial (degree <= 3) takes the value ``wanted``.
+
+    A law's quantity of a polygon ``fixed + k moving`` is a polynomial in
+    ``k`` (:meth:`Law.coefficients`): a quadratic for an area, a cubic for a
+    volume of revolution. A leading coefficient negligible against the
+    others is dropped; quadratics are solved by the cancellation-free
+    formula, cubics by :func:`numpy.roots` (the companion matrix's
+    eigenvalues) polished by two Newton steps. Used for the paper model's
+    height scale and the hyperelastic model's law offset alike.
+
+    Parameters
+    ----------
+    coefficients : sequence of float
+        ``c`` with ``q(k) = c[0] + c[1] k + ...``, at most 4.
+    wanted : float
+        Wanted value of ``q``, signed as the coefficients.
+
+    Returns
+    -------
+    list of float
+        The finite real roots (none when the polynomial is constant).
+
+    Examples
+    --------
+    >>> law_roots([0.0, 0.0, 0.0, 1.0], 8.0)  # k³ = 8
+    [2.0]
+    >>> sorted(round(k, 12) for k in law_roots([0.0, 3.0, -1.0], 2.0))  # 3k - k² = 2: k = 1 or 2
+    [1.0, 2.0]
+    """
+    c = np.array(coefficients, dtype=np.float64)
+    c[0] -= wanted
+    while len(c) > 1 and abs(c[-1]) <= 1e-14 * float(np.abs(c[:-1]).sum()):
+        c = c[:-1]
+    if len(c) == 4:
+        raw = np.roots(c[::-1])
+        roots = [float(r.real) for r in raw if abs(r.imag) <= 1e-9 * (1.0 + abs(r))]
+        dc = c[1:] * np.arange(1, len(c))
+        for i, k in enumerate(roots):
+            for _ in range(2):
+                slope = np.polynomial.polynomial.polyval(k, dc)
+                if slope == 0:
+                    break
+                k -= np.polynomial.polynomial.polyval(k, c) / slope
+            roots[i] = float(k)
+    elif len(c) == 3:
+        c0, c1, c2 = (float(v) for v in c)
+        disc = c1 * c1 - 4.0 * c2 * c0
+        if disc < 0:
+            roots = []
+        else:
+            q = -0.5 * (c1 + math.copysign(math.sqrt(disc), c1))
+            roots = [q / c2] + ([c0 / q] if q != 0 else [])
+    elif len(c) == 2:
+        roots = [-float(c[0]) / float(c[1])]
+    else:
+        roots = []
+    return [r for r in roots if math.isfinite(r)]
 
 
 class Law:

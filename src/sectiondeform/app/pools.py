@@ -39,7 +39,7 @@ SOLVER_NICE = 5
 
 
 def resident_mb() -> float:
-    """This process's resident memory (MB; from ``/proc``, or the peak from ``resource`` elsewhere; NaN if neither)."""
+    """The resident memory of the calling process (MB; from ``/proc``, or the peak from ``resource`` elsewhere; NaN if neither)."""
     try:
         with open("/proc/self/statm") as f:
             return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE") / 2**20

@@ -11,9 +11,9 @@
   reproduced exactly.
 * :func:`rigid_fit`: the rotation and translation that best carry points
   onto others (least squares), the cold start.
-* :func:`offset_normals`, :func:`offset_root`: the directions and the size
-  of the normal offset that makes a law exact (a quadratic in the offset for
-  an area, solved without cancellation).
+* :func:`offset_normals`, :func:`offset_to_law`: the directions and the
+  size of the normal offset that makes a law exact (a quadratic in the
+  offset for an area, a cubic for a volume of revolution).
 """
 
 from __future__ import annotations
@@ -24,9 +24,10 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..errors import LawError
+from ..laws import law_roots
 from .elements import p2_gradients, p2_values
 
-__all__ = ["edge_weights", "rigid_fit", "offset_normals", "offset_root"]
+__all__ = ["edge_weights", "rigid_fit", "offset_normals", "offset_to_law"]
 
 
 def _edge_curve(a, m, b, t):
@@ -124,26 +125,56 @@ def offset_normals(ring: np.ndarray, movable: np.ndarray) -> np.ndarray:
     return v
 
 
-def offset_root(c0: float, c1: float, c2: float, signed_area: float) -> float:
-    """The offset k nearest zero with c0 + c1 k + c2 k² = 0 (c1 ≠ 0), without cancellation.
+def offset_to_law(ring: np.ndarray, movable: np.ndarray, law, wanted: float) -> tuple[np.ndarray, float]:
+    """Offset the movable points of a closed polyline along their normals so its law's quantity is ``wanted``.
 
-    The area of a contour whose movable points move by k along fixed
-    normals is quadratic in k; the wanted offset is the root of smaller
-    magnitude (the one that tends to -c0 / c1 as c2 vanishes).
+    The quantity of ``ring + k v`` (``v`` the normals, :func:`offset_normals`)
+    is a polynomial in ``k`` (:meth:`~sectiondeform.laws.Law.coefficients`:
+    a quadratic for an area, a cubic for a volume of revolution); of its
+    real roots (:func:`~sectiondeform.laws.law_roots`) the one nearest 0,
+    the smallest correction, is taken.
+
+    Parameters
+    ----------
+    ring : (k, 2) float64 ndarray
+        Closed polyline (the closing edge implied), units.
+    movable : (k,) bool ndarray
+        The points that may move; each along the normal of the chord
+        between its two neighbours, by one common distance.
+    law : Law
+        Gives :meth:`~sectiondeform.laws.Law.coefficients` (signed).
+    wanted : float
+        Wanted signed quantity (units² or units³).
+
+    Returns
+    -------
+    ring : (k, 2) float64 ndarray
+    offset : float
+        The distance applied, units (positive: outward for a
+        counter-clockwise ring).
 
     Raises
     ------
     LawError
-        If the quadratic has no real root: no offset gives ``signed_area``.
+        If no offset meets the law (no movable point, or no real root).
 
     Examples
     --------
-    >>> offset_root(-1.0, 1.0, 0.0, 2.0), round(offset_root(-3.0, 2.0, 1.0, 2.0), 12)
-    (1.0, 1.0)
+    The top corners of a unit square moved out (along the chords between
+    their neighbours) to give it the area 1.5, its base kept:
+
+    >>> from sectiondeform.laws import AreaRatio
+    >>> sq = np.array([[0.0, 0], [1, 0], [1, 1], [0, 1]])
+    >>> out, k = offset_to_law(sq, np.array([False, False, True, True]), AreaRatio(1.5), 1.5)
+    >>> round(AreaRatio(1.5).quantity(out), 12), out[:2].tolist()
+    (1.5, [[0.0, 0.0], [1.0, 0.0]])
     """
-    if abs(c2 * c0) <= 1e-12 * c1 * c1:
-        return -c0 / c1
-    disc = c1 * c1 - 4.0 * c2 * c0
-    if disc < 0:
-        raise LawError(f"law: no normal offset of the upper curve gives the area {abs(signed_area):.6g}")
-    return c0 / (-0.5 * (c1 + math.copysign(math.sqrt(disc), c1)))
+    v = offset_normals(ring, movable)
+    c = np.array(law.coefficients(ring, v), dtype=np.float64)
+    if not np.abs(c[1:]).max() > 1e-14 * float(np.abs(c).max() + abs(wanted)):
+        raise LawError(f"law: no point of the upper curve is free to move to meet the {law.measure}")
+    roots = law_roots(c, wanted)
+    if not roots:
+        raise LawError(f"law: no normal offset of the upper curve gives the {law.measure} {abs(wanted):.6g}")
+    k = min(roots, key=abs)
+    return ring + k * v, float(k)

@@ -63,7 +63,7 @@ from ..checks import positive
 from ..errors import CaseError, LawError, MeshError
 from ..extrusion import free_axial_stretch
 from ..fem.elements import geometry
-from ..fem.mapping import offset_normals, offset_root, rigid_fit
+from ..fem.mapping import offset_to_law, rigid_fit
 from ..fem.neohooke import Fields, MixedNeoHooke, Pattern
 from ..fem.newton import NewtonSolver, State
 from ..fem.rubber import MixedRubber
@@ -77,7 +77,7 @@ from .hyperelastic_revolution import RevolutionPhysics
 
 __all__ = [
     "HyperelasticModel", "HyperelasticPrepared", "HyperelasticState", "HyperelasticOptions", "HyperelasticInfo",
-    "PreviewInfo", "MODEL", "offset_to_area", "DEFAULT_THROUGH_THICKNESS", "DEFAULT_BULK_TO_SHEAR",
+    "PreviewInfo", "MODEL", "DEFAULT_THROUGH_THICKNESS", "DEFAULT_BULK_TO_SHEAR",
 ]
 
 DEFAULT_THROUGH_THICKNESS = 4.0
@@ -238,53 +238,6 @@ class _GrownRubber(MixedRubber):
         for mat, idx in self._groups:
             pzz[idx] += f.c[idx] * mat.first_piola(gradient_3d(f.F[idx], lz[idx]), volumetric=False)[..., 2, 2]
         return np.bincount(body, weights=(pzz * self.geom.weight).sum(axis=1), minlength=n_bodies)
-
-
-def offset_to_area(ring: np.ndarray, movable: np.ndarray, signed_area: float) -> tuple[np.ndarray, float]:
-    """Offset the movable points of a closed polyline along their normals so it has ``signed_area``.
-
-    Parameters
-    ----------
-    ring : (k, 2) float64 ndarray
-        Closed polyline (the closing edge implied), units.
-    movable : (k,) bool ndarray
-        The points that may move; each along the normal of the chord
-        between its two neighbours, by one common distance.
-    signed_area : float
-        Wanted signed (shoelace) area, units².
-
-    Returns
-    -------
-    ring : (k, 2) float64 ndarray
-    offset : float
-        The distance applied, units (positive: outward for a
-        counter-clockwise ring).
-
-    Raises
-    ------
-    LawError
-        If no offset gives that area (no movable point, or a degenerate curve).
-
-    Examples
-    --------
-    >>> sq = np.array([[0.0, 0], [1, 0], [1, 1], [0, 1]])
-    >>> out, k = offset_to_area(sq, np.array([False, False, True, True]), 1.5)
-    >>> x, y = out.T
-    >>> round(0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)), 12), out[:2].tolist()
-    (1.5, [[0.0, 0.0], [1.0, 0.0]])
-    """
-    v = offset_normals(ring, movable)
-    cross = lambda a, b: a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]  # noqa: E731
-    nxt = lambda a: np.roll(a, -1, axis=0)  # noqa: E731
-    local = ring - ring.mean(axis=0)  # the shoelace about the ring's own centre: far from the origin it keeps its digits
-    area = 0.5 * float(cross(local, nxt(local)).sum())
-    c0 = area - signed_area
-    c1 = 0.5 * float((cross(v, nxt(local)) + cross(local, nxt(v))).sum())  # translation invariant on a closed ring
-    c2 = 0.5 * float(cross(v, nxt(v)).sum())
-    if c1 == 0.0:
-        raise LawError("law: no point of the upper curve is free to move to meet the area")
-    k = offset_root(c0, c1, c2, signed_area)
-    return ring + k * v, float(k)
 
 
 @dataclass(frozen=True, eq=False)
@@ -454,8 +407,8 @@ class HyperelasticPrepared(Prepared):
         return physics
 
     def _law_offset(self, b: int, ring: np.ndarray, movable: np.ndarray, law, wanted: float) -> tuple[np.ndarray, float]:
-        """Body ``b``'s contour ``ring`` with its movable points offset to the signed area ``wanted`` (:func:`offset_to_area`)."""
-        return offset_to_area(ring, movable, wanted)
+        """Body ``b``'s contour ``ring`` with its movable points offset to meet ``law`` (:func:`~sectiondeform.fem.mapping.offset_to_law`)."""
+        return offset_to_law(ring, movable, law, wanted)
 
     @staticmethod
     def growths_of(laws) -> tuple:

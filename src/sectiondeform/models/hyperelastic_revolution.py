@@ -20,7 +20,7 @@ their shared nodes, one Newton solve) except two things:
   revolution (Pappus: 2π × area × centroid distance), by one common normal
   offset of its free upper points: the volume of the offset polygon is a
   cubic in the offset (:meth:`~sectiondeform.laws.Law.coefficients`),
-  solved exactly (:func:`offset_to_law`). From the support up, as in the
+  solved exactly (:func:`~sectiondeform.fem.mapping.offset_to_law`). From the support up, as in the
   plane case, so the interfaces stay bonded.
 """
 
@@ -30,81 +30,13 @@ import copy
 
 import numpy as np
 
-from ..errors import CaseError, LawError
+from ..errors import CaseError
 from ..fem.axisymmetric import AxisymmetricNeoHooke, AxisymmetricRubber
-from ..fem.mapping import offset_normals, rigid_fit
+from ..fem.mapping import rigid_fit
 from ..materials import NeoHookean
 from ..pappus import axis_frame, signed_distance
 
-__all__ = ["RevolutionPhysics", "offset_to_law"]
-
-
-def offset_to_law(ring: np.ndarray, movable: np.ndarray, law, wanted: float) -> tuple[np.ndarray, float]:
-    """Offset the movable points of a closed polyline along their normals so its law's quantity is ``wanted``.
-
-    The quantity of ``ring + k v`` (``v`` the normals) is a polynomial in
-    ``k`` (a quadratic for an area, a cubic for a volume of revolution); of
-    its real roots the one nearest 0 (the smallest correction) is taken,
-    polished by two Newton steps.
-
-    Parameters
-    ----------
-    ring : (k, 2) float64 ndarray
-        Closed polyline (the closing edge implied), units.
-    movable : (k,) bool ndarray
-        The points that may move; each along the normal of the chord
-        between its two neighbours, by one common distance.
-    law : Law
-        Gives :meth:`~sectiondeform.laws.Law.coefficients` (signed).
-    wanted : float
-        Wanted signed quantity (units² or units³).
-
-    Returns
-    -------
-    ring : (k, 2) float64 ndarray
-    offset : float
-        The distance applied, units (positive: outward for a
-        counter-clockwise ring).
-
-    Raises
-    ------
-    LawError
-        If no offset meets the law (no movable point, or no real root).
-
-    Examples
-    --------
-    A unit square at distance 1 to 2 from the axis y = 0, the two inner points of its top raised
-    to double its volume (first moment 3/2 + 4k/3 + 5k²/18 = 3).
-
-    >>> from sectiondeform.laws import VolumeRatio
-    >>> ring = np.array([[0.0, 1], [1, 1], [1, 2], [2 / 3, 2], [1 / 3, 2], [0, 2]])
-    >>> law = VolumeRatio(2.0, ((0.0, 0.0), (1.0, 0.0)))
-    >>> top = np.array([False, False, False, True, True, False])
-    >>> out, k = offset_to_law(ring, top, law, law.target(law.quantity(ring)))
-    >>> round(k, 12) == round((31 ** 0.5 - 4) * 3 / 5, 12), round(law.quantity(out) / law.quantity(ring), 12)
-    (True, 2.0)
-    """
-    v = offset_normals(ring, movable)
-    c = np.array(law.coefficients(ring, v), dtype=np.float64)
-    c[0] -= wanted
-    scale = float(np.abs(c).max())
-    if not np.abs(c[1:]).max() > 1e-14 * scale:
-        raise LawError(f"law: no point of the upper curve is free to move to meet the {law.measure}")
-    trimmed = c.copy()
-    while len(trimmed) > 2 and abs(trimmed[-1]) <= 1e-14 * scale:
-        trimmed = trimmed[:-1]
-    raw = np.roots(trimmed[::-1])
-    real = [float(r.real) for r in raw if abs(r.imag) <= 1e-9 * (1.0 + abs(r))]
-    if not real:
-        raise LawError(f"law: no normal offset of the upper curve gives the {law.measure} {abs(wanted):.6g}")
-    k = min(real, key=abs)
-    dc = c[1:] * np.arange(1, len(c))
-    for _ in range(2):
-        slope = np.polynomial.polynomial.polyval(k, dc)
-        if slope == 0:
-            break
-        k -= np.polynomial.polynomial.polyval(k, c) / slope
-    return ring + k * v, float(k)
+__all__ = ["RevolutionPhysics"]
 
 
 class RevolutionPhysics:
@@ -195,6 +127,3 @@ class RevolutionPhysics:
         physics.ln_growth = np.log(np.asarray(stretches))[self.mesh.body][:, None]
         physics.ln_stretch = -physics.ln_growth
         return physics
-
-    def _law_offset(self, b: int, ring: np.ndarray, movable: np.ndarray, law, wanted: float) -> tuple[np.ndarray, float]:
-        return offset_to_law(ring, movable, law, wanted)

@@ -28,7 +28,6 @@ before giving up with :class:`~sectiondeform.errors.MeshError` (or
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -44,10 +43,9 @@ from ..applicability import (
     stretch_range,
     uniform_height_scale,
 )
-from ..curves import cross as _cross
 from ..curves import polygon_area
 from ..errors import CaseError, GeometryError, LawError, MeshError, SectionDeformError
-from ..laws import Law
+from ..laws import Law, law_roots
 from ..layers import (
     SMOOTHING_WEIGHTS,
     Smoother,
@@ -67,65 +65,9 @@ from .base import FinalQuality, Info, MeshData, MeshQuality, Model, ModelOptions
 # smoothing length grows as the fourth root of the weight, in nodes).
 TARGET_SMOOTHING = (0.0,) + SMOOTHING_WEIGHTS + (5e6, 5e7, 5e8, 5e9, 5e10)
 
-__all__ = ["PaperModel", "PaperPrepared", "PaperSection", "PaperOptions", "PaperInfo", "MODEL", "solve_scale", "scale_roots"]
+__all__ = ["PaperModel", "PaperPrepared", "PaperSection", "PaperOptions", "PaperInfo", "MODEL", "scale_roots"]
 
 DENSE_MAP_MAX = 2**21  # entries of each (upper points x columns) placement matrix kept dense
-
-
-def _next(a):
-    """``np.roll(a, -1, axis=0)``, without its overhead."""
-    return np.concatenate((a[1:], a[:1]))
-
-
-def solve_scale(fixed: np.ndarray, moving: np.ndarray, signed_area: float, guess: float) -> float:
-    """Scale ``k`` for which the polygon ``fixed + k moving`` has ``signed_area``.
-
-    Parameters
-    ----------
-    fixed, moving : (N, 2) float64 ndarray
-        Polygon vertices as ``fixed + k * moving``.
-    signed_area : float
-        Wanted signed area (positive counter-clockwise), units².
-    guess : float
-        Expected value; of two admissible roots the nearer is returned.
-
-    Returns
-    -------
-    float
-        The positive root nearest ``guess``.
-
-    Raises
-    ------
-    LawError
-        If no positive ``k`` gives that area.
-
-    Examples
-    --------
-    >>> sq = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
-    >>> up = np.array([[0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [0.0, 1.0]])
-    >>> solve_scale(sq - up, up, 0.8, 1.0)
-    0.8
-    """
-    f1, g1 = _next(fixed), _next(moving)
-    c0 = 0.5 * float(_cross(fixed, f1).sum()) - signed_area
-    c1 = 0.5 * float((_cross(fixed, g1) + _cross(moving, f1)).sum())
-    c2 = 0.5 * float(_cross(moving, g1).sum())
-    if abs(c2) <= 1e-14 * (abs(c1) + abs(c0)):
-        roots = [-c0 / c1] if c1 != 0 else []
-    else:
-        disc = c1 * c1 - 4.0 * c2 * c0
-        if disc < 0:
-            roots = []
-        else:
-            q = -0.5 * (c1 + math.copysign(math.sqrt(disc), c1))
-            roots = [q / c2] + ([c0 / q] if q != 0 else [])
-    roots = [r for r in roots if r > 0 and math.isfinite(r)]
-    if not roots:
-        raise LawError(
-            f"law: no height scale gives the area {abs(signed_area):.6g}; the target cannot carry "
-            "this section under this law (check the target's direction and the area ratio)"
-        )
-    return min(roots, key=lambda r: abs(r - guess))
 
 
 def scale_roots(coefficients, wanted: float, guess: float) -> list[float]:
@@ -133,9 +75,8 @@ def scale_roots(coefficients, wanted: float, guess: float) -> list[float]:
 
     A law's quantity of the placed section is a polynomial in the height
     scale ``k`` (:meth:`~sectiondeform.laws.Law.coefficients`): a quadratic
-    for the area, a cubic for a volume of revolution. Quadratics are solved
-    by the cancellation-free formula, cubics by :func:`numpy.roots` (the
-    companion matrix's eigenvalues) polished by two Newton steps.
+    for the area, a cubic for a volume of revolution
+    (:func:`~sectiondeform.laws.law_roots`).
 
     Parameters
     ----------
@@ -158,34 +99,7 @@ def scale_roots(coefficients, wanted: float, guess: float) -> list[float]:
     >>> [round(k, 12) for k in scale_roots([0.0, 3.0, -1.0], 2.0, 1.2)]  # 3k - k² = 2: k = 1 or 2
     [1.0, 2.0]
     """
-    c = np.array(coefficients, dtype=np.float64)
-    c[0] -= wanted
-    while len(c) > 1 and abs(c[-1]) <= 1e-14 * float(np.abs(c[:-1]).sum()):
-        c = c[:-1]
-    if len(c) == 4:
-        raw = np.roots(c[::-1])
-        roots = [float(r.real) for r in raw if abs(r.imag) <= 1e-9 * (1.0 + abs(r))]
-        dc = c[1:] * np.arange(1, len(c))
-        for i, k in enumerate(roots):
-            for _ in range(2):
-                slope = np.polynomial.polynomial.polyval(k, dc)
-                if slope == 0:
-                    break
-                k -= np.polynomial.polynomial.polyval(k, c) / slope
-            roots[i] = float(k)
-    elif len(c) == 3:
-        c0, c1, c2 = (float(v) for v in c)
-        disc = c1 * c1 - 4.0 * c2 * c0
-        if disc < 0:
-            roots = []
-        else:
-            q = -0.5 * (c1 + math.copysign(math.sqrt(disc), c1))
-            roots = [q / c2] + ([c0 / q] if q != 0 else [])
-    elif len(c) == 2:
-        roots = [-float(c[0]) / float(c[1])]
-    else:
-        roots = []
-    return sorted((r for r in roots if r > 0 and math.isfinite(r)), key=lambda r: abs(r - guess))
+    return sorted((r for r in law_roots(coefficients, wanted) if r > 0), key=lambda r: abs(r - guess))
 
 
 def _column_matrix(weights: np.ndarray, columns: np.ndarray, n: int) -> np.ndarray:
