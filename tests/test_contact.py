@@ -160,3 +160,16 @@ def test_ramp_is_continuous_with_its_slope():
     p, dp = ramp(u, np.full_like(u, 0.5))
     assert np.all(np.abs(np.diff(p)) <= 1e-3 + 1e-12) and np.all(np.diff(dp) >= -1e-12)
     np.testing.assert_allclose(np.gradient(p, u)[1:-1], dp[1:-1], atol=2e-3)
+
+
+def test_a_loading_stopped_by_the_newton_bound_does_not_also_advise_a_finer_mesh(monkeypatch):
+    """The bound's own advice is a coarser mesh; the loading adds the travel, never "refine the mesh" beside it."""
+    import sectiondeform.fem.newton as newton
+
+    monkeypatch.setattr(newton, "newton_budget", lambda unknowns: 1)  # every solve stops at its bound at once
+    with pytest.raises(sd.ConvergenceError) as info:
+        sd.Deformer(sd.load_case(BUMPER)).deform()
+    message = str(info.value)
+    assert "\n" not in message and message.startswith("rigid[0] 'plate': the loading cannot go on at load step 1")
+    assert "try a lower options.elements_through_thickness" in message and message.endswith("or shorten the travel")
+    assert "refine the mesh" not in message

@@ -206,8 +206,8 @@ class Contact:
                 raise _LoadingBound(
                     f"contact: the loading took {done} factorisations of {unknowns} unknowns, {t:.3g} of the "
                     f"way, beyond its bound of {allowed} at this size ({MAX_LOADING_WORK:.3g} factorisations x "
-                    "unknowns^1.5); the parts' travel is too severe for these bodies (a shorter travel, or a "
-                    "stiffer rubber)")
+                    "unknowns^1.5); the parts' travel is too severe for these bodies and this mesh (a shorter travel, "
+                    "a stiffer rubber, or fewer elements through the thickness, options.elements_through_thickness)")
             new = solver.solve(to, xd0 + t * (xd - xd0), math.exp(ln0 + t * (ln1 - ln0)))
             totals[0] += new.iterations[0]
             totals[1] += new.iterations[1]
@@ -276,9 +276,12 @@ class Contact:
             _, g, _, _ = obs.query(xq, obs.at(t1), 0.0)
             depth.append(float(g.max(initial=-np.inf)))
         k = int(np.argmax(depth))
+        # A solve stopped by its work bound names the coarser mesh itself: refining it would be the wrong way.
+        advice = "or shorten the travel" if "stopped at its bound" in str(exc) else \
+            "shorten the travel or refine the mesh (options.elements_through_thickness)"
         return ConvergenceError(f"{self.labels[k]}: the loading cannot go on at load step {step} "
                                 f"(from {t:.3g} to {t1:.3g} of the travel, the step halved {MAX_HALVINGS} times): "
-                                f"{exc}; shorten the travel or refine the mesh (options.elements_through_thickness)")
+                                f"{exc}; {advice}")
 
 
 def contact_results(state) -> tuple:
