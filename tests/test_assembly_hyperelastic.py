@@ -9,9 +9,8 @@ import shapely
 from sectiondeform.cli import main
 from sectiondeform.curves import Polyline
 from sectiondeform.deform import Deformer
-from sectiondeform.fem.mapping import rigid_fit
+from sectiondeform.fem.mapping import offset_to_law, rigid_fit
 from sectiondeform.io.case import case_from_dict
-from sectiondeform.fem.mapping import offset_to_law
 from sectiondeform.laws import AreaRatio
 
 from conftest import CASES_DIR, chord_offset

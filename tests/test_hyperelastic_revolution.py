@@ -24,9 +24,9 @@ from sectiondeform.deform import Deformer
 from sectiondeform.errors import LawError
 from sectiondeform.fem.axisymmetric import AxisymmetricNeoHooke
 from sectiondeform.fem.elements import geometry
+from sectiondeform.fem.mapping import offset_to_law
 from sectiondeform.io.case import case_from_dict
 from sectiondeform.laws import VolumeRatio
-from sectiondeform.fem.mapping import offset_to_law
 
 from conftest import CASES_DIR, one_body_mesh
 
