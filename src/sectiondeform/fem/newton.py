@@ -370,7 +370,7 @@ class NewtonSolver:
         dz = -state.tangent.solve(rhs)
         return self._state(state.z[self.pattern.free] + dz, xd, state.z)
 
-    def solve(self, start: State, xd: np.ndarray, lz: float, modified: bool = True) -> State:
+    def solve(self, start: State, xd: np.ndarray, lz: float, modified: bool = True, halvings: int = MAX_HALVINGS) -> State:
         """Equilibrium for the prescribed ``xd`` and ``lz``, continuing from ``start``.
 
         Parameters
@@ -383,6 +383,10 @@ class NewtonSolver:
             Wanted out-of-plane stretch.
         modified : bool
             Try modified Newton with the predictor's factorisation first.
+        halvings : int
+            Halvings of the load step before giving up (a caller that steps
+            another parameter itself, as the contact loading does the parts,
+            gives up sooner and halves its own step instead).
 
         Returns
         -------
@@ -391,7 +395,7 @@ class NewtonSolver:
         Raises
         ------
         ConvergenceError
-            If the path cannot be followed even in ``2**MAX_HALVINGS`` steps,
+            If the path cannot be followed even in ``2**halvings`` steps,
             or within the work budget (:func:`~sectiondeform.limits.newton_budget`).
         """
         xd0 = start.z[self.pattern.fixed]
@@ -419,10 +423,11 @@ class NewtonSolver:
             used += 1 + ran  # the predictor counts as one
             if new is None:
                 dt *= 0.5
-                if dt < 0.5**MAX_HALVINGS:
+                if dt < 0.5**halvings:
                     _raise_if_unstable(self.physics, state, t)
+                    stepped = f" even with load steps of 1/{2**halvings}" if halvings else ""
                     raise ConvergenceError(
-                        f"hyperelastic: Newton did not converge even with load steps of 1/{2**MAX_HALVINGS} "
+                        f"hyperelastic: Newton did not converge{stepped} "
                         f"(stopped at {t:.3g} of the way to the target); the target or the law is too severe"
                     )
                 continue

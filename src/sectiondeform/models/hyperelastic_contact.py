@@ -42,6 +42,7 @@ from ..fem.contact import (
     free_boundary,
     ring_factor,
 )
+from ..fem.newton import MAX_HALVINGS as NEWTON_HALVINGS
 
 __all__ = ["Contact", "ContactState", "HistoryStep", "PENETRATION_WARNING", "MAX_HALVINGS"]
 
@@ -53,13 +54,19 @@ MAX_LOADING_WORK = 40_000_000
 """Factorisations of a whole contact loading, each weighted by ``unknowns ** 1.5`` (what a sparse factorisation of
 a plane mesh costs, measured: 9.5 ms at 1,609 unknowns, about 0.35 s at 16,423), all load steps, the attempts that
 failed and were halved, and the updates together, checked before each solve. The worked O-ring (1,609 unknowns)
-takes 461 factorisations (30 M, 4.4 s); at 16,423 unknowns 19 are allowed (a Mooney-Rivlin bumper the fuzzing
+takes 144 factorisations (9.3 M, 1.3 s); at 16,423 unknowns 19 are allowed (a Mooney-Rivlin bumper the fuzzing
 found took 20-50 s of CPU to be refused when only the iterations of converged solves were counted)."""
 
 
 class _LoadingBound(ConvergenceError):
     """The contact loading reached :data:`MAX_LOADING_WORK`: refused as it is, no smaller step tried."""
 MIN_STEPS, MAX_STEPS = 2, 32
+STEP_HALVINGS = 0
+"""Halvings a load step's solve makes of its own step (the support's motion) before the loading halves the step,
+which moves the parts and the support together: none. The parts do not move within a solve, so its own halvings
+cannot ease a part's step, and they cost factorisations (measured: failed solves took 36 to 61 factorisations
+each, 142 of the bumper's 196 at 8 elements through; without them 71, the O-ring 144 instead of 462, every
+result the same to the bit)."""
 STEP_FRACTION = 0.25
 """A load step moves a part by at most this fraction of the smallest element size (within MIN_STEPS..MAX_STEPS steps)."""
 
@@ -200,7 +207,7 @@ class Contact:
         first = solver.factorisations
         allowed = max(1, int(MAX_LOADING_WORK / float(unknowns) ** 1.5))
 
-        def run(t, to):
+        def run(t, to, halvings=NEWTON_HALVINGS):
             done = solver.factorisations - first
             if done > allowed:  # checked before each solve: the loading's work is bounded
                 raise _LoadingBound(
@@ -208,7 +215,7 @@ class Contact:
                     f"way, beyond its bound of {allowed} at this size ({MAX_LOADING_WORK:.3g} factorisations x "
                     "unknowns^1.5); the parts' travel is too severe for these bodies and this mesh (a shorter travel, "
                     "a stiffer rubber, or fewer elements through the thickness, options.elements_through_thickness)")
-            new = solver.solve(to, xd0 + t * (xd - xd0), math.exp(ln0 + t * (ln1 - ln0)))
+            new = solver.solve(to, xd0 + t * (xd - xd0), math.exp(ln0 + t * (ln1 - ln0)), halvings=halvings)
             totals[0] += new.iterations[0]
             totals[1] += new.iterations[1]
             totals[2] += new.iterations[2]
@@ -224,7 +231,7 @@ class Contact:
                 t1 = min(1.0, t + dt)
                 cphys.t = t1
                 try:
-                    state = run(t1, state)
+                    state = run(t1, state, STEP_HALVINGS)
                 except _LoadingBound as exc:
                     raise ConvergenceError(str(exc)) from None
                 except ConvergenceError as exc:
