@@ -150,3 +150,49 @@ def test_a_full_solve_is_answered_while_the_only_worker_thread_is_held(case_json
             busy.recv(timeout=0)
         assert answer_to(busy, 1)["type"] == "result"
     assert got["type"] == "result", got
+
+
+def _descendants(pid: int) -> set[int]:
+    """The processes started by ``pid`` and theirs (from /proc)."""
+    from pathlib import Path
+
+    out, todo = set(), [pid]
+    while todo:
+        for task in Path(f"/proc/{todo.pop()}/task").glob("*"):
+            try:
+                children = {int(c) for c in (task / "children").read_text().split()}
+            except OSError:
+                continue
+            todo += sorted(children - out)
+            out |= children
+    return out
+
+
+@pytest.mark.parametrize("how", ["SIGTERM", "SIGKILL"])
+def test_the_solver_processes_end_with_the_server_however_it_ends(how):
+    """Stopped (SIGTERM: its shutdown runs) or killed (SIGKILL: no shutdown), the server leaves no process behind."""
+    import signal
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    if not Path("/proc/self/task").exists():
+        pytest.skip("needs /proc to find the server's processes")
+    proc = subprocess.Popen([sys.executable, "-m", "sectiondeform", "serve", "--port", "0", "--no-browser",
+                             "--token", "a-token-for-this-test-0123456789"], stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True)
+    try:
+        assert "token=" in proc.stdout.readline()
+        end = time.monotonic() + 30
+        while len(helpers := _descendants(proc.pid)) < 2 and time.monotonic() < end:  # a forkserver and its solver
+            time.sleep(0.1)
+        assert len(helpers) >= 2, helpers
+        proc.send_signal(getattr(signal, how))
+        proc.wait(timeout=30)
+        end = time.monotonic() + 15
+        while (left := {p for p in helpers if Path(f"/proc/{p}").exists()}) and time.monotonic() < end:
+            time.sleep(0.1)
+        assert not left, f"left behind after {how}: {sorted(left)}"
+    finally:
+        if proc.poll() is None:
+            proc.kill()

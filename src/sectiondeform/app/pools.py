@@ -25,6 +25,8 @@ import asyncio
 import concurrent.futures
 import multiprocessing
 import os
+import threading
+import time
 import weakref
 from concurrent.futures.process import BrokenProcessPool
 
@@ -109,12 +111,31 @@ class Workers:
         self.pool.shutdown(wait=False, cancel_futures=True)
 
 
-def _start_solver(nice: int) -> None:
-    """Run first in each solver process: a lower priority than the server's."""
+def _start_solver(nice: int, server: int) -> None:
+    """Run first in each solver process: a lower priority than the server's, and an end with the server.
+
+    A process of a pool never learns that the process that started it has
+    gone (its queue's pipe stays open in itself): if the server is killed
+    without its shutdown, a thread here ends the solver within a second of
+    it (its forkserver then ends too, having no one left).
+    """
     if nice and hasattr(os, "nice"):
         try:
             os.nice(nice)
         except OSError:
+            pass
+    threading.Thread(target=_watch, args=(server,), name="sectiondeform-server-watch", daemon=True).start()
+
+
+def _watch(server: int, every: float = 1.0) -> None:
+    """End this process once process ``server`` has gone."""
+    while True:
+        time.sleep(every)
+        try:
+            os.kill(server, 0)
+        except ProcessLookupError:
+            os._exit(0)
+        except OSError:  # alive, someone else's (no permission to signal it)
             pass
 
 
@@ -161,7 +182,7 @@ class Solver:
 
     def _new_pool(self) -> concurrent.futures.ProcessPoolExecutor:
         pool = concurrent.futures.ProcessPoolExecutor(max_workers=1, mp_context=self._context,
-                                                      initializer=_start_solver, initargs=(self.nice,))
+                                                      initializer=_start_solver, initargs=(self.nice, os.getpid()))
         pool.submit(_ready)  # start the process now, not on the first solve
         return pool
 
@@ -218,7 +239,8 @@ class Solver:
             self._replace()
 
     def close(self) -> None:
-        self.pool.shutdown(wait=False, cancel_futures=True)
+        """Stop the process: waiting jobs are dropped, a running one ends first (the server's shutdown)."""
+        self.pool.shutdown(wait=True, cancel_futures=True)
 
 
 class Solvers:
