@@ -145,7 +145,9 @@ def test_a_message_over_the_limit_is_refused_before_it_is_buffered(case_json):
     from websockets.exceptions import ConnectionClosed
 
     codes = []
-    with running(case_json) as port:
+    # No solver processes starting beside: their start (a burst of CPU) can delay the server so long that the
+    # client, still sending, loses the close frame to the connection's reset.
+    with running(case_json, solvers=0) as port:
         with contextlib.suppress(ConnectionClosed), connect(port) as ws:
             ws.send(request(case_json, 1))
             answer_to(ws, 1)
