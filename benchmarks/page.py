@@ -287,18 +287,19 @@ def server_profile(calls: int = 1000) -> str:
                                    f"{len(sec.upper)} upper points.", ""])
 
 
-LOAD_READING = """Reading (2026-11-24; the machine shared, load average 8 on 2 cores). Prepared sections shared by the
-pages keep the light pages' worst round trip at 0.2 to 0.4 s; before, each of the 29 pages prepared the
-paper example itself on its first request (0.7 s each on this machine, almost all of it in the library's
-layout check, `layout._samples` through shapely's `line_locate_point`), and the last waited 17 s. Beside
-the heavy page the light pages' p95 is 2.5 to 2.7 times their p95 alone: **the 2x target is not met**.
-The heavy solve runs Python and numerical code that holds the interpreter lock for part of each second,
-so the event loop and the light pages' worker share one lock with it, not two cores; running heavy solves
-in a process of their own would remove that (not done). **The memory is not bounded**: it grows by about
-10 MB per heavy solve whenever another thread computes at the same time (the same solves on one thread stay
-flat at 164 MB; the growth is the same with `MALLOC_ARENA_MAX=1` and after `malloc_trim`, and it is not
-Python objects (tracemalloc)): native memory of the solver under concurrent threads, to be found in the
-library.
+LOAD_READING = """Reading (2026-11-25; 2 cores, the clients on the same cores, load average 2 to 3). The hyperelastic
+model's work runs in solver processes (`sectiondeform/app/pools.py`; one here, a page pinned to it), at a
+lower priority than the server: beside the heavy page the light pages' p95 is 1.1 to 1.2 times their p95
+alone, **within the 2x target** (it was 2.5 to 2.7 times when the heavy solves ran on the server's
+threads and held its interpreter lock), and the heavy page itself got 47 and 48 solves done per 30 s
+instead of 31 and 34. **The memory is bounded**: the server stays at 72 to 87 MB through both rounds; the
+server with its solver process at 337 to 434 MB, rising during a heavy phase (the solver's working
+memory) and falling back after it, with no growth from round to round (it was 177 to 823 MB, still
+rising, with the solves on the server's threads). A solver process is replaced once idle past 1 GB or
+after 1,000 jobs (`SOLVER_MEMORY_MB`, `SOLVER_TASKS`), so a session of any length stays near that.
+Prepared sections shared by the pages keep the light pages' worst round trip at 0.1 s. The light pages
+drag within ±15 % of the target's radius: at -30 % (the earlier runs' range) the paper model refuses
+the distorted layers, and refusals are not round trips of a preview.
 """
 
 
@@ -462,8 +463,8 @@ def load_report(run_: dict, command: str) -> str:
         f"process, for {run_['seconds']:.0f} s per phase. {run_['clients'] - 1} *light* pages drag the paper example's",
         "target (paper model, previews, each request waiting for its answer); first alone, then beside one *heavy*",
         "page asking the whole time for full deformations of the paper example with the hyperelastic model and",
-        f"{run_['layers']} elements through its thickness (about a second of compute each: the longest a page can",
-        f"hold one of the server's {WORKERS_NOTE} worker threads). Round trips of the light pages:",
+        f"{run_['layers']} elements through its thickness (about a second of compute each, in the server's solver",
+        f"process; the light pages' previews on its {WORKERS_NOTE} worker threads). Round trips of the light pages:",
         "",
         "| phase | pages | light answers | median ms | p95 ms | max ms | light compute median ms | heavy: answers, compute median ms | refused | load average |",
         "|---|---|---|---|---|---|---|---|---|---|",
