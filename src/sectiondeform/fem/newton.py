@@ -370,7 +370,7 @@ class NewtonSolver:
         dz = -state.tangent.solve(rhs)
         return self._state(state.z[self.pattern.free] + dz, xd, state.z)
 
-    def solve(self, start: State, xd: np.ndarray, lz: float, modified: bool = True, halvings: int = MAX_HALVINGS) -> State:
+    def solve(self, start: State, xd: np.ndarray, lz: float, modified: bool = True, halvings: int | None = None) -> State:
         """Equilibrium for the prescribed ``xd`` and ``lz``, continuing from ``start``.
 
         Parameters
@@ -383,10 +383,11 @@ class NewtonSolver:
             Wanted out-of-plane stretch.
         modified : bool
             Try modified Newton with the predictor's factorisation first.
-        halvings : int
-            Halvings of the load step before giving up (a caller that steps
-            another parameter itself, as the contact loading does the parts,
-            gives up sooner and halves its own step instead).
+        halvings : int, optional
+            Halvings of the load step before giving up (default
+            :data:`MAX_HALVINGS`; a caller that steps another parameter
+            itself, as the contact loading does the parts, gives up sooner
+            and halves its own step instead).
 
         Returns
         -------
@@ -398,6 +399,7 @@ class NewtonSolver:
             If the path cannot be followed even in ``2**halvings`` steps,
             or within the work budget (:func:`~sectiondeform.limits.newton_budget`).
         """
+        halvings = MAX_HALVINGS if halvings is None else halvings
         xd0 = start.z[self.pattern.fixed]
         lnl0, lnl1 = np.log(start.lz), np.log(lz)
         t, dt, state = 0.0, 1.0, start

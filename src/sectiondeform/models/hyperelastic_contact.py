@@ -42,7 +42,6 @@ from ..fem.contact import (
     free_boundary,
     ring_factor,
 )
-from ..fem.newton import MAX_HALVINGS as NEWTON_HALVINGS
 
 __all__ = ["Contact", "ContactState", "HistoryStep", "PENETRATION_WARNING", "MAX_HALVINGS"]
 
@@ -207,7 +206,7 @@ class Contact:
         first = solver.factorisations
         allowed = max(1, int(MAX_LOADING_WORK / float(unknowns) ** 1.5))
 
-        def run(t, to, halvings=NEWTON_HALVINGS):
+        def run(t, to, halvings=None):
             done = solver.factorisations - first
             if done > allowed:  # checked before each solve: the loading's work is bounded
                 raise _LoadingBound(
