@@ -78,6 +78,7 @@ def run(args) -> int:
     config = uvicorn.Config(None, host=args.host, port=args.port, log_level="warning", **UVICORN_OPTIONS)
     server = uvicorn.Server(config)
     sock = config.bind_socket()
+    sock.listen(config.backlog)  # a page opened as soon as the address is printed waits for the start, not refused
     port = sock.getsockname()[1]
     if args.host not in LOOPBACK:
         print(exposure(args.host, port), flush=True)
