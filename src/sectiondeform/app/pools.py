@@ -124,11 +124,12 @@ def _start_solver(nice: int, server: int) -> None:
             os.nice(nice)
         except OSError:
             pass
-    threading.Thread(target=_watch, args=(server,), name="sectiondeform-server-watch", daemon=True).start()
+    if os.name == "posix":  # (on Windows os.kill(pid, 0) would end the server, not ask about it)
+        threading.Thread(target=_watch, args=(server,), name="sectiondeform-server-watch", daemon=True).start()
 
 
 def _watch(server: int, every: float = 1.0) -> None:
-    """End this process once process ``server`` has gone."""
+    """End this process once process ``server`` has gone (POSIX: signal 0 asks whether it exists)."""
     while True:
         time.sleep(every)
         try:
