@@ -117,6 +117,25 @@ def test_dragging_the_plate_down_adds_travel_and_force(page):
     assert float(again["forceY"]) == pytest.approx(float(before["forceY"]), rel=1e-3)
 
 
+def test_the_bodies_follow_the_plate_while_it_is_dragged(page):
+    """Before the release, the page shows full deformations for travels it was dragged through."""
+    solved(page, 1.2)
+    box = page.locator("circle[data-rigid='0']").bounding_box()
+    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    seen = set()
+    for k in range(1, 9):
+        page.mouse.move(x, y + 2 * k)
+        page.wait_for_timeout(250)  # a solve of the bumper takes a few tenths of a second
+        seen.add(page.eval_on_selector(PART, "e => e.dataset.solvedTravel"))
+    dragged = page.eval_on_selector(PART, "e => e.dataset.travel")
+    page.mouse.up()
+    travels = {-json.loads(t)[1] for t in seen if t}
+    assert any(t > 1.2 + 1e-9 for t in travels), travels  # a travel past the start was solved before the release
+    assert solved(page, float(dragged))["travel"] == dragged
+
+
 def test_the_paper_model_says_it_refuses_rigid_parts(page):
     """The library's line once (the page's message), the panel greyed and the state naming both models."""
     solved(page, 1.2)

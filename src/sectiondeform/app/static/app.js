@@ -950,12 +950,16 @@ svg.addEventListener("pointermove", (e) => {
     return;
   }
   const to = toWorld(e);
-  if (d.rigid !== undefined) {   // drawn at once; solved on release (a preview has no contact)
+  if (d.rigid !== undefined) {   // drawn at once, and solved in full as it moves (a preview has no contact)
     const step = niceStep(1 / state.view.s);   // a round travel, to about a screen pixel
     const s = Math.max(0, d.s0 + Geo.dot(Geo.sub(to, d.from), state.parts[d.rigid].dir));
+    const before = JSON.stringify(rigidCase()[d.rigid].travel);
     setTravel(d.rigid, Number(numText(Math.round(s / step) * step, step)));
     d.moved = true;
     drawEdits(); showRigid();
+    // The server keeps only a page's newest request while one is being solved: the bodies follow the part
+    // as fast as the solver goes, and the last answer is the release's.
+    if (JSON.stringify(rigidCase()[d.rigid].travel) !== before) request(true, t0);
     return;
   }
   let P;
