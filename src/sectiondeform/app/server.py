@@ -35,9 +35,10 @@ Load: every computation runs off the event loop, the paper model's and
 file work on a bounded pool of worker threads, the hyperelastic model's in
 solver processes of their own, each page pinned to one (:mod:`.pools`: one
 page's solve of a second never holds another's previews, and the solvers'
-memory is given back); a connection has at most one request in a pool, and while it waits for a worker its newer requests replace the
-older (so a closed connection leaves at most the one being computed);
-connections are capped.
+memory is given back); a connection has at most one request in a pool, and
+while it waits for a worker its newer requests replace the older (so a
+closed connection leaves at most the one being computed); connections are
+capped.
 """
 
 from __future__ import annotations
@@ -544,7 +545,6 @@ def create_app(case_json: dict, hosts, *, token: str, message_limit: int = MAX_M
         if not ok:
             raise Refused(value)
         return value
-
 
     async def index(request: Request):
         return FileResponse(STATIC / "index.html", headers={"Cache-Control": "no-store"})

@@ -78,19 +78,9 @@ def scale_roots(coefficients, wanted: float, guess: float) -> list[float]:
     for the area, a cubic for a volume of revolution
     (:func:`~sectiondeform.laws.law_roots`).
 
-    Parameters
-    ----------
-    coefficients : sequence of float
-        ``c`` with ``q(k) = c[0] + c[1] k + ...``, at most 4.
-    wanted : float
-        Wanted value of ``q``, signed as the coefficients.
-    guess : float
-        Expected ``k``; the roots are sorted by their distance to it.
-
-    Returns
-    -------
-    list of float
-        Positive finite roots, nearest ``guess`` first; empty when none.
+    ``coefficients`` and ``wanted`` are those of
+    :func:`~sectiondeform.laws.law_roots`; ``guess`` is the expected ``k``.
+    Returns the positive roots, nearest ``guess`` first (empty when none).
 
     Examples
     --------
