@@ -259,39 +259,39 @@ class Obstacle:
             Arc length of the closest point along the outline, units.
         """
         y = x - shift
-        near = np.all((y >= self.lo - margin) & (y <= self.hi + margin), axis=1)
-        idx = np.flatnonzero(near)
-        m = len(idx)
+        lo, hi = self.lo - margin, self.hi + margin
+        idx = np.flatnonzero((y[:, 0] >= lo[0]) & (y[:, 0] <= hi[0]) & (y[:, 1] >= lo[1]) & (y[:, 1] <= hi[1]))
+        m, k = len(idx), len(self.a)
         g = np.empty(m)
         n = np.empty((m, 2))
         s = np.empty(m)
-        chunk = max(1, 2_000_000 // max(1, len(self.a)))
+        ax, ay, dx, dy = self.a[:, 0], self.a[:, 1], self.d[:, 0], self.d[:, 1]
+        chunk = max(1, 2_000_000 // k)
         for c0 in range(0, m, chunk):
             yy = y[idx[c0:c0 + chunk]]
-            rel = yy[:, None, :] - self.a[None]  # (m, k, 2)
-            t = np.clip(np.einsum("mki,ki->mk", rel, self.d) / self.len2, 0.0, 1.0)
-            diff = rel - t[..., None] * self.d[None]
-            d2 = np.einsum("mki,mki->mk", diff, diff)
+            wx, wy = yy[:, 0:1] - ax, yy[:, 1:2] - ay  # (m, k): from each segment's start
+            t = np.clip((wx * dx + wy * dy) / self.len2, 0.0, 1.0)
+            wx -= t * dx  # now from each segment's closest point
+            wy -= t * dy
+            d2 = wx * wx + wy * wy
             j = np.argmin(d2, axis=1)
             r = np.arange(len(yy))
-            dist = np.sqrt(d2[r, j])
-            # even-odd crossings of a ray to +x
-            ay, by = self.a[:, 1], self.a[:, 1] + self.d[:, 1]
-            cross = (ay[None] > yy[:, 1:2]) != (by[None] > yy[:, 1:2])
-            with np.errstate(divide="ignore", invalid="ignore"):
-                xc = self.a[None, :, 0] + (yy[:, 1:2] - ay[None]) / self.d[None, :, 1] * self.d[None, :, 0]
-            inside = (np.count_nonzero(cross & (xc > yy[:, 0:1]), axis=1) % 2) == 1
-            tj = t[r, j]
-            j1 = (j + 1) % len(self.a)
+            dist, tj, wx, wy = np.sqrt(d2[r, j]), t[r, j], wx[r, j], wy[r, j]
+            j1 = (j + 1) % k
+            at0, at1 = tj <= 0.0, tj >= 1.0
+            # Inside by the closest feature's pseudo-normal (Baerentzen & Aanaes 2005): the segment's
+            # outward normal, or at a vertex the sum of its two segments' (the same as an even-odd count).
+            pseudo = self.out[j] + np.where(at0[:, None], self.out[j - 1], 0.0) + np.where(at1[:, None], self.out[j1], 0.0)
+            inside = wx * pseudo[:, 0] + wy * pseudo[:, 1] < 0.0
             n0 = np.where(self.smooth[j, None], self.vnormal[j], self.out[j])
             n1 = np.where(self.smooth[j1, None], self.vnormal[j1], self.out[j])
             normal = (1.0 - tj)[:, None] * n0 + tj[:, None] * n1
             normal /= np.hypot(normal[:, 0], normal[:, 1])[:, None]
-            sharp = np.where(tj <= 0.0, ~self.smooth[j], ~self.smooth[j1])
-            corner = ((tj <= 0.0) | (tj >= 1.0)) & sharp & (dist > 1e-12 * (1.0 + np.abs(yy).max()))
+            sharp = np.where(at0, ~self.smooth[j], ~self.smooth[j1])
+            corner = (at0 | at1) & sharp & (dist > 1e-12 * (1.0 + np.abs(yy).max(initial=0.0)))
             if corner.any():
-                v = -diff[r, j][corner] / dist[corner, None]  # from the point to the closest vertex
-                normal[corner] = np.where(inside[corner, None], v, -v)
+                v = np.column_stack((wx[corner], wy[corner])) / dist[corner, None]  # from the closest vertex to the point
+                normal[corner] = np.where(inside[corner, None], -v, v)
             g[c0:c0 + chunk] = np.where(inside, dist, -dist)
             n[c0:c0 + chunk] = normal
             s[c0:c0 + chunk] = self.s0[j] + tj * np.sqrt(self.len2[j])
