@@ -14,7 +14,7 @@ import sectiondeform as sd
 import sectiondeform.fem.newton as newton
 from sectiondeform.curves import DEFAULT_CHORDAL_FRACTION
 from sectiondeform.errors import ConvergenceError, MeshError
-from sectiondeform.limits import MAX_NEWTON_ITERATIONS, MAX_NEWTON_WORK, newton_budget
+from sectiondeform.limits import MAX_NEWTON_ITERATIONS, MAX_SOLVE_WORK, newton_budget
 from sectiondeform.verify import check_result
 
 from conftest import box_case
@@ -32,9 +32,10 @@ def _bent_box(model: str) -> sd.Problem:
 def test_newton_budget_bounds_iterations_and_work(unknowns):
     b = newton_budget(unknowns)
     assert 1 <= b <= MAX_NEWTON_ITERATIONS
-    assert b * unknowns <= MAX_NEWTON_WORK or b == 1
-    if unknowns <= MAX_NEWTON_WORK // MAX_NEWTON_ITERATIONS:
+    assert b * unknowns**1.5 <= MAX_SOLVE_WORK or b == 1
+    if MAX_NEWTON_ITERATIONS * unknowns**1.5 <= MAX_SOLVE_WORK:
         assert b == MAX_NEWTON_ITERATIONS
+    assert (b + 1) * unknowns**1.5 > MAX_SOLVE_WORK or b == MAX_NEWTON_ITERATIONS  # the whole budget given
 
 
 def test_newton_stops_at_its_budget_with_one_line_naming_it(monkeypatch):

@@ -17,7 +17,7 @@ If a step fails it is halved, down to ``1 / 2**MAX_HALVINGS`` of the path;
 then :class:`~sectiondeform.errors.ConvergenceError` is raised. The whole
 path has a work budget (:func:`~sectiondeform.limits.newton_budget`: Newton
 iterations, each load step's predictor counted as one, at most
-``MAX_NEWTON_ITERATIONS`` and at most ``MAX_NEWTON_WORK`` / unknowns), so a
+``MAX_NEWTON_ITERATIONS`` and at most ``MAX_SOLVE_WORK`` / unknowns^1.5), so a
 path whose steps keep failing and succeeding stops in bounded time with the
 same error. Never a quiet unconverged result.
 """
@@ -32,7 +32,7 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
 from ..errors import ConvergenceError
-from ..limits import MAX_NEWTON_ITERATIONS, MAX_NEWTON_WORK, newton_budget
+from ..limits import MAX_NEWTON_ITERATIONS, MAX_SOLVE_WORK, newton_budget
 from .neohooke import MixedNeoHooke, Pattern
 
 __all__ = ["State", "Tangent", "NewtonSolver", "MAX_HALVINGS"]
@@ -413,7 +413,7 @@ class NewtonSolver:
                 _raise_if_unstable(self.physics, state, t)
                 raise ConvergenceError(
                     f"hyperelastic: Newton stopped at its bound of {budget} iterations for {unknowns} unknowns "
-                    f"(at most {MAX_NEWTON_ITERATIONS}, and {MAX_NEWTON_WORK} iterations x unknowns), {t:.3g} of the way "
+                    f"(at most {MAX_NEWTON_ITERATIONS}, and {MAX_SOLVE_WORK:.3g} iterations x unknowns^1.5), {t:.3g} of the way "
                     "to the target; "
                     "the target or the law is too severe for this mesh (try a lower options.elements_through_thickness)"
                 )

@@ -42,6 +42,7 @@ from ..fem.contact import (
     free_boundary,
     ring_factor,
 )
+from ..limits import MAX_SOLVE_WORK, work_budget
 
 __all__ = ["Contact", "ContactState", "HistoryStep", "PENETRATION_WARNING", "MAX_HALVINGS"]
 
@@ -49,16 +50,12 @@ PENETRATION_WARNING = 1e-2
 """A penetration left above this fraction of the element size is a warning."""
 MAX_HALVINGS = 6
 """A load step is halved at most this many times before the loading is refused."""
-MAX_LOADING_WORK = 40_000_000
-"""Factorisations of a whole contact loading, each weighted by ``unknowns ** 1.5`` (what a sparse factorisation of
-a plane mesh costs, measured: 9.5 ms at 1,609 unknowns, about 0.35 s at 16,423), all load steps, the attempts that
-failed and were halved, and the updates together, checked before each solve. The worked O-ring (1,609 unknowns)
-takes 144 factorisations (9.3 M, 1.3 s); at 16,423 unknowns 19 are allowed (a Mooney-Rivlin bumper the fuzzing
-found took 20-50 s of CPU to be refused when only the iterations of converged solves were counted)."""
 
 
 class _LoadingBound(ConvergenceError):
-    """The contact loading reached :data:`MAX_LOADING_WORK`: refused as it is, no smaller step tried."""
+    """The contact loading reached :data:`~sectiondeform.limits.MAX_SOLVE_WORK`: refused as it is, no smaller step tried."""
+
+
 MIN_STEPS, MAX_STEPS = 2, 32
 STEP_HALVINGS = 0
 """Halvings a load step's solve makes of its own step (the support's motion) before the loading halves the step,
@@ -204,14 +201,14 @@ class Contact:
         unknowns = len(base.z)
 
         first = solver.factorisations
-        allowed = max(1, int(MAX_LOADING_WORK / float(unknowns) ** 1.5))
+        allowed = work_budget(unknowns)
 
         def run(t, to, halvings=None):
             done = solver.factorisations - first
             if done > allowed:  # checked before each solve: the loading's work is bounded
                 raise _LoadingBound(
                     f"contact: the loading took {done} factorisations of {unknowns} unknowns, {t:.3g} of the "
-                    f"way, beyond its bound of {allowed} at this size ({MAX_LOADING_WORK:.3g} factorisations x "
+                    f"way, beyond its bound of {allowed} at this size ({MAX_SOLVE_WORK:.3g} factorisations x "
                     "unknowns^1.5); the parts' travel is too severe for these bodies and this mesh (a shorter travel, "
                     "a stiffer rubber, or fewer elements through the thickness, options.elements_through_thickness)")
             new = solver.solve(to, xd0 + t * (xd - xd0), math.exp(ln0 + t * (ln1 - ln0)), halvings=halvings)
@@ -239,26 +236,23 @@ class Contact:
                         raise self._refusal(cphys, state, t, t1, len(history), exc) from None
                     continue
                 t = t1
-                history.append(self._step(t, *self._forces(cphys, solver, state)))  # the forces before the anchors move
+                if t < 1.0:  # the forces before the anchors move (at the end: after the updates, below)
+                    history.append(self._step(t, *self._forces(cphys, solver, state)))
                 cphys.commit(cphys.positions(state.z))
                 dt = min(dt0, 2.0 * dt)
         else:
             cphys.t = 1.0
             state = run(1.0, state)
-        for _ in range(MAX_UPDATES):
+        for done in range(MAX_UPDATES + 1):
             x = cphys.positions(state.z)
-            if cphys.penetration(x) <= PENETRATION_FRACTION:
+            left = cphys.penetration(x)
+            if left <= PENETRATION_FRACTION or done == MAX_UPDATES:
                 break
             cphys.commit(x)
             cphys.update(x)
             state = run(1.0, state)
-        x = cphys.positions(state.z)
         parts, support = self._forces(cphys, solver, state)
-        if warm is None:
-            history[-1] = self._step(1.0, parts, support)
-        else:
-            history.append(self._step(1.0, parts, support))
-        left = cphys.penetration(x)
+        history.append(self._step(1.0, parts, support))
         warnings = []
         if left > PENETRATION_WARNING:
             warnings.append(f"contact: a penetration of {left:.3g} element sizes is left after {MAX_UPDATES} "
