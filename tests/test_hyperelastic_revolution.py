@@ -56,13 +56,13 @@ def small_problem(seed=0, ln_growth=None, kappa=50.0):
     return m, physics, rng
 
 
-def ring_case(v, length=24 * T, through=4.0):
-    """Annular rectangle: x along the axis, y the radius; bonded inside, expanded to radius GROW; hyperelastic."""
+def ring_case(v, length=24 * T, through=4.0, grow=GROW):
+    """Annular rectangle: x along the axis, y the radius; bonded inside, expanded to radius ``grow``; hyperelastic."""
     top = [[x, A + T] for x in np.linspace(length, 0.0, 13)]
     return {
         "format": "section-case/2", "name": "ring",
         "support": {"polyline": [[0.0, A], [length, A]]},
-        "target": {"polyline": [[0.0, GROW], [length, GROW]]},
+        "target": {"polyline": [[0.0, grow], [length, grow]]},
         "revolution": {"axis": [[0.0, 0.0], [1.0, 0.0]]},
         "bodies": [{"name": "ring", "lower": {"polyline": [[0.0, A], [length, A]]},
                     "upper": {"polyline": [[length, A]] + top + [[0.0, A]]}, "law": {"volume_ratio": v},
@@ -155,6 +155,37 @@ def test_thick_ring_keeps_area_times_radius_of_every_annular_strip(v):
     # the whole ring meets its volume law exactly, after a correction far below the mesh's resolution
     assert abs(body.relative_error) <= 1e-9
     assert body.info.area_correction < 1e-2
+
+
+def test_a_two_layer_ring_expanded_to_twice_its_radius_is_answered_with_the_closed_form():
+    """A target far from the axis is reached along the path, in load steps.
+
+    An inner layer shrinking (v = 0.95) under an outer one growing (1.05),
+    bonded inside and expanded from radius 10 to 20: far from the free ends
+    each annular strip keeps its area × radius × v, layer by layer. The solve
+    used to start from the section moved rigidly onto the target (the rings
+    at twice their radius with no hoop stretch, far from equilibrium, which
+    no load step could ease: "Newton stopped at its bound ... 0 of the way").
+    It now starts from a slide along the axis when the rigid motion would
+    change a distance from the axis by more than 10 %.
+    """
+    length, grow, half = 24 * T, 2 * A, A + T / 2
+    case = ring_case(0.95, length, through=2.0, grow=grow)
+    inner = case["bodies"][0]
+    seam = [[x, half] for x in np.linspace(0.0, length, 13)]
+    outer = copy.deepcopy(inner)
+    inner["upper"]["polyline"] = [[length, A]] + seam[::-1] + [[0.0, A]]
+    outer.update(name="outer", lower={"polyline": seam}, law={"volume_ratio": 1.05})
+    outer["upper"]["polyline"] = [[length, half]] + outer["upper"]["polyline"][1:-1] + [[0.0, half]]
+    case["bodies"].append(outer)
+    result = Deformer(case_from_dict(case)).deform()
+    body = result.bodies[1]
+    P0, P1 = body.initial_mesh.points, body.final_mesh.points
+    mid = np.abs(P0[:, 0] - length / 2) <= T
+    seam_radius = math.sqrt(grow**2 + 0.95 * (half**2 - A**2))
+    exact = np.sqrt(seam_radius**2 + 1.05 * (P0[mid, 1] ** 2 - half**2))
+    assert np.abs(P1[mid, 1] - exact).max() < 1e-4 * T
+    assert all(abs(b.relative_error) <= 1e-9 for b in result.bodies)
 
 
 # --- the public example ---------------------------------------------------------------------

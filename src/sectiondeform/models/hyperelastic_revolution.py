@@ -39,6 +39,11 @@ from ..pappus import axis_frame, signed_distance
 __all__ = ["RevolutionPhysics"]
 
 
+START_HOOP = 0.1
+"""The largest relative change of a node's distance from the axis the start of a solve may take at once (a rigid
+motion of the section onto the target); a target farther out or in is reached along the path."""
+
+
 class RevolutionPhysics:
     """The axisymmetric physics of bodies of revolution, mixed into the plane problem's preparation.
 
@@ -93,16 +98,23 @@ class RevolutionPhysics:
         return 2 * on + radial, np.full(len(on), origin[radial]), vertices
 
     def _start_motion(self, points: np.ndarray, targets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The best rigid motion of the support nodes, if it keeps every node on its side of the axis; else a
-        translation along the axis (bodies held on the axis, or a fit that would turn a body across it: its
-        hoop stretch would change sign, no state to start from).
+        """The best rigid motion of the support nodes, if it changes no node's distance from the axis by more than
+        :data:`START_HOOP`; else a translation along the axis.
+
+        A motion of the section is rigid in its plane only: moved away from
+        the axis, a body of revolution is stretched round it. A start moved
+        so far is no equilibrium, and the first load step would carry that
+        whole hoop stretch at once, whatever its size; from a translation
+        along the axis the path carries it instead, in load steps. (Bodies
+        held on the axis, or a fit that would turn a body across it, start
+        from the translation as well.)
         """
         axis = self.problem.revolution.axis
         if not len(self.axis_values):
             q, t = rigid_fit(points, targets)
             before = signed_distance(self.mesh.nodes, axis)
             after = signed_distance(self.mesh.nodes @ q.T + t, axis)
-            if np.all(before * after > 0):
+            if np.all(before * after > 0) and np.all(np.abs(after - before) <= START_HOOP * np.abs(before)):
                 return q, t
         e = axis_frame(axis)[1][0]
         return np.eye(2), e * float(np.mean((targets - points) @ e))
