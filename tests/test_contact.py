@@ -173,3 +173,42 @@ def test_a_loading_stopped_by_the_newton_bound_does_not_also_advise_a_finer_mesh
     assert "\n" not in message and message.startswith("rigid[0] 'plate': the loading cannot go on at load step 1")
     assert "try a lower options.elements_through_thickness" in message and message.endswith("or shorten the travel")
     assert "refine the mesh" not in message
+
+
+def test_the_support_moves_with_the_parts_from_where_it_is_drawn():
+    """The contract: "Support and rigid parts move together, from start to end, as one loading".
+
+    The bumper's support is raised by 1.5 mm while the plate comes down
+    0.3 mm to a contour 1.5 mm higher: the same 1.2 mm squeeze as the public
+    example, raised. The bodies used to be moved onto the target before the
+    loading began, 0.9 mm into the plate's start: the history then opened
+    with a plate force of 2,336 N/mm balanced by nothing.
+    """
+    d = _bumper_dict()
+    plain = sd.Deformer(case_from_dict(d)).deform()
+    rise = 1.5
+    d["target"] = {"polyline": [[-8.0, rise], [8.0, rise]]}
+    d["rigid"][0]["contour"]["polyline"] = [[x, y + rise] for x, y in d["rigid"][0]["contour"]["polyline"]]
+    d["rigid"][0]["travel"] = [0.0, -0.3]
+    raised = sd.Deformer(case_from_dict(d)).deform()
+    first = raised.history[0]
+    assert first.travel == 0.0 and first.forces["plate"] == (0.0, 0.0)  # touching at the start, no force
+    for step in raised.history:  # each step balanced: the plate's force comes out at the support
+        np.testing.assert_allclose(step.forces["plate"], -np.asarray(step.forces["support"]), atol=1e-6)
+    # Frictionless: the end is the plain example's, raised.
+    np.testing.assert_allclose(raised.rigid[0].force, plain.rigid[0].force, rtol=1e-6)
+    np.testing.assert_allclose(raised.bodies[0].upper, plain.bodies[0].upper + [0.0, rise], atol=1e-6)
+
+
+def test_a_part_ending_across_the_target_is_refused_in_one_line():
+    """Bodies bonded to a target that runs through a part's end position would end inside it: no loading reaches that."""
+    d = _bumper_dict()
+    d["target"] = {"polyline": [[-8.0, 8.0], [8.0, 8.0]]}  # the support raised into the plate's end position
+    with pytest.raises(GeometryError, match=r"^rigid\[0\] 'plate': its end position \(contour\) lies across the target "
+                                            r"for a length of 16 near \[-8.0, 8.0\]; .*move the part's contour or the target$"):
+        case_from_dict(d)
+    # A part that ends along the target (a housing the bodies are bonded in) is not across it.
+    d["target"] = d["support"]
+    d["rigid"][0]["contour"]["polyline"] = [[-12.0, 0.0], [12.0, 0.0], [12.0, -10.0], [-12.0, -10.0], [-12.0, 0.0]]
+    d["rigid"][0]["travel"] = [0.0, 1.0]
+    case_from_dict(d)

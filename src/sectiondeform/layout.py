@@ -213,14 +213,31 @@ def layout(problem) -> Layout:
 
 
 def _check_rigid_start(problem, polygons, tol: float) -> None:
-    """Refuse a rigid part whose start position (contour less travel) overlaps a body's interior.
+    """Refuse a rigid part whose start position (contour less travel) overlaps a body's interior, or whose end
+    position lies across the target.
 
     Touching is allowed: an overlap of area up to the contact tolerance
-    times the shorter perimeter is taken as touching, as between bodies.
+    times the shorter perimeter is taken as touching, as between bodies;
+    the target may run along a part's outline (a seal bonded in a housing
+    that is a rigid part), not through it: the bodies bonded there would
+    end inside the part, an equilibrium no loading reaches.
     """
-    for k, part in enumerate(getattr(problem, "rigid", ())):
-        ring = _fine(part.contour, 0.25 * tol) - np.asarray(part.travel)
-        poly = shapely.Polygon(ring)
+    parts = getattr(problem, "rigid", ())
+    target = shapely.LineString(_fine(problem.target, 0.25 * tol)) if parts else None
+    for k, part in enumerate(parts):
+        end = _fine(part.contour, 0.25 * tol)
+        poly = shapely.Polygon(end)
+        if not poly.is_valid:
+            poly = shapely.make_valid(poly)
+        across = shapely.intersection(target, poly.buffer(-tol))
+        if across.length > tol:
+            c = shapely.get_coordinates(across.representative_point())[0]
+            raise GeometryError(
+                f"rigid[{k}] {part.name!r}: its end position (contour) lies across the target for a length of "
+                f"{across.length:.6g} near {_where(c)}; the bodies bonded there would end inside the part: "
+                "move the part's contour or the target"
+            )
+        poly = shapely.Polygon(end - np.asarray(part.travel))
         if not poly.is_valid:
             poly = shapely.make_valid(poly)
         for i, body in enumerate(polygons):

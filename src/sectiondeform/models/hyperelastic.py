@@ -460,12 +460,14 @@ class HyperelasticPrepared(Prepared):
         full[2 * len(mesh.nodes) :] = np.bincount(mesh.pressure_cells.ravel(), weights=wm.ravel(), minlength=mesh.n_pressures)
         return full[pattern.free]
 
-    def _base(self, xd: np.ndarray, start: HyperelasticState | None, stretches: tuple) -> State:
+    def _base(self, xd: np.ndarray, start: HyperelasticState | None, stretches: tuple, drawn: bool = False) -> State:
         """The state a solve or a preview starts from.
 
         ``start``'s, if it was solved under the same stretches; else (no
         start, or other laws: no path to follow) the undeformed bodies
-        moved rigidly onto ``xd``.
+        moved rigidly onto ``xd``, or left where they are drawn if
+        ``drawn`` (rigid parts: the support moves with the parts, from
+        where it is drawn, as one loading).
         """
         if start is not None:
             if not isinstance(start, HyperelasticState) or start.state.z.shape != self.reference.z.shape:
@@ -473,6 +475,8 @@ class HyperelasticPrepared(Prepared):
             if (start.guess or start.stretches) == stretches:
                 return start.state
         mesh = self.mesh
+        if drawn:
+            return self.reference
         q, t = self._start_motion(mesh.nodes[self.fixed_ids], xd)
         z0 = np.concatenate(((mesh.nodes @ q.T + t).ravel(), np.zeros(mesh.n_pressures)))
         return State(z0, 1.0, self.reference.tangent.rotated(q))
@@ -521,7 +525,7 @@ class HyperelasticPrepared(Prepared):
         """
         xd = curve.at_fractions(self.fixed_fractions)
         guess = self.stretches_of(laws)
-        base = self._base(xd, start, guess)
+        base = self._base(xd, start, guess, drawn=self.contact is not None)
         stretches = start.stretches if start is not None and base is start.state else guess
         physics, solver = self._problem(stretches)
         a0, f0 = solver.assemblies, solver.factorisations
