@@ -118,9 +118,12 @@ def main(argv=None) -> int:
         record(case, outcome, "api v2" if pick < share else "api")
         if pick < share and case.get("options", {}).get("model") == "hyperelastic" and case.get("name") == "fuzz-assembly":
             unstable = "is unstable" in outcome.detail
-            stopped = not unstable and ("Newton stopped" in outcome.detail or "did not converge" in outcome.detail)
-            newton["answered" if outcome.kind == "ok" else "Newton stopped / did not converge" if stopped
-                   else "unstable material (named)" if unstable else f"other {outcome.kind}"] += 1
+            named = "at the last equilibrium reached, " in outcome.detail  # a body folded, crushed... (fem/diagnosis.py)
+            stopped = not unstable and ("Newton stopped" in outcome.detail or "did not converge" in outcome.detail
+                                        or "the loading took" in outcome.detail)
+            newton["answered" if outcome.kind == "ok" else "unstable material (named)" if unstable
+                   else "no equilibrium reached, physical state named" if named
+                   else "Newton stopped / did not converge / loading bound" if stopped else f"other {outcome.kind}"] += 1
         if args.commands_every and n[0] % args.commands_every == 0:
             with tempfile.TemporaryDirectory() as folder:
                 record(command, outcome_command_run(command, Path(folder), args.limit), f"cmd {command['command']}")

@@ -94,7 +94,27 @@ class LawError(SectionDeformError, ValueError):
 
 
 class ConvergenceError(SectionDeformError):
-    """An iterative solver did not converge; the message says where it stopped."""
+    """An iterative solver did not converge; the message says where it stopped.
+
+    Parameters
+    ----------
+    message : str
+        What stopped, and where.
+    advice : str, optional
+        The message's closing hint (appended after "; ").
+    state : object, optional
+        The last equilibrium the solver reached, for a caller that can say
+        why none is near (:func:`~sectiondeform.fem.diagnosis.physical_reason`);
+        never pickled (the message alone crosses processes).
+    """
+
+    def __init__(self, message: str, advice: str = "", state=None):
+        super().__init__(f"{message}; {advice}" if advice else message)
+        self.args = (str(self),)
+        self.stopped, self.advice, self.state = message, advice, state
+
+    def __reduce__(self):
+        return type(self), self.args
 
 
 class MissingExtraError(SectionDeformError, ImportError):

@@ -414,8 +414,9 @@ class NewtonSolver:
                 raise ConvergenceError(
                     f"hyperelastic: Newton stopped at its bound of {budget} iterations for {unknowns} unknowns "
                     f"(at most {MAX_NEWTON_ITERATIONS}, and {MAX_SOLVE_WORK:.3g} iterations x unknowns^1.5), {t:.3g} of the way "
-                    "to the target; "
-                    "the target or the law is too severe for this mesh (try a lower options.elements_through_thickness)"
+                    "to the target",
+                    "the target or the law is too severe for this mesh (try a lower options.elements_through_thickness)",
+                    state,
                 )
             t1 = min(1.0, t + dt)
             xd_t = xd0 + t1 * (xd - xd0)
@@ -429,9 +430,8 @@ class NewtonSolver:
                     _raise_if_unstable(self.physics, state, t)
                     stepped = f" even with load steps of 1/{2**halvings}" if halvings else ""
                     raise ConvergenceError(
-                        f"hyperelastic: Newton did not converge{stepped} "
-                        f"(stopped at {t:.3g} of the way to the target); the target or the law is too severe"
-                    )
+                        f"hyperelastic: Newton did not converge{stepped} (stopped at {t:.3g} of the way to the target)",
+                        "the target or the law is too severe", state)
                 continue
             total[0] += new.iterations[0]
             total[1] += new.iterations[1]

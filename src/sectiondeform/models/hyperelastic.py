@@ -60,8 +60,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..checks import positive
-from ..errors import CaseError, LawError, MeshError
+from ..errors import CaseError, ConvergenceError, LawError, MeshError
 from ..extrusion import free_axial_stretch
+from ..fem.diagnosis import physical_reason
 from ..fem.elements import geometry
 from ..fem.mapping import offset_to_law, rigid_fit
 from ..fem.neohooke import Fields, MixedNeoHooke, Pattern
@@ -530,11 +531,14 @@ class HyperelasticPrepared(Prepared):
         physics, solver = self._problem(stretches)
         a0, f0 = solver.assemblies, solver.factorisations
         contact = None
-        if self.contact is not None:  # rigid parts: loaded with the support, the contact carried by the state
-            warm = start.contact if start is not None and base is start.state else None
-            state, contact = self.contact.solve(physics, solver, base, self._data(xd), math.e, warm)
-        else:
-            state = solver.solve(base, self._data(xd), math.e)
+        try:
+            if self.contact is not None:  # rigid parts: loaded with the support, the contact carried by the state
+                warm = start.contact if start is not None and base is start.state else None
+                state, contact = self.contact.solve(physics, solver, base, self._data(xd), math.e, warm)
+            else:
+                state = solver.solve(base, self._data(xd), math.e)
+        except ConvergenceError as exc:
+            raise self._diagnosed(exc, physics) from None
         f = state.fields if state.fields is not None else physics.fields(state.z, state.lz)
         if self.plane and len(stretches) > len(laws):  # growing extruded bodies: the axial stretch with no axial force
             stretches, state, f, physics, solver = self._free_extrusion(stretches, state, f, physics, solver, xd)
@@ -551,6 +555,30 @@ class HyperelasticPrepared(Prepared):
         return Placed(*self._finish(curve, laws, state.z, f, info, stretches),
                       HyperelasticState(state, stretches, self.materials, self.pressure_dofs, not self.plane, growths,
                                         guess if stretches != guess else (), contact))
+
+    def _diagnosed(self, exc: ConvergenceError, physics) -> ConvergenceError:
+        """``exc``, or with the physical reason its last equilibrium shows (:func:`~sectiondeform.fem.diagnosis.physical_reason`)
+        in place of its advice: a body folding onto itself or into another, across the axis, or crushed.
+        """
+        state = getattr(exc, "state", None)
+        f = physics.fields(state.z, state.lz) if state is not None else None
+        if f is None:
+            return exc
+        mesh = self.mesh
+        n = len(mesh.nodes)
+        x = state.z[: 2 * n].reshape(n, 2)
+        contour = mesh.vertex_weights @ x
+        labels = [self.problem.label(b) or "the body" for b in range(len(self.sections))]
+        reason = physical_reason(contour, mesh.rings, x[mesh.cells[:, :3]].mean(axis=1), mesh.body, f.F, labels,
+                                 self._axis_side(contour))
+        if reason is None:
+            return exc
+        return ConvergenceError(f"{exc.stopped}; at the last equilibrium reached, {reason}",
+                                "no equilibrium is near it along this path: a milder target or law, or a shorter travel")
+
+    def _axis_side(self, points: np.ndarray) -> np.ndarray | None:
+        """Distance of ``points`` from the axis, positive on the bodies' side (bodies of revolution); None for a plane section."""
+        return None
 
     def _free_extrusion(self, stretches, state, f, physics, solver, xd):
         """Solve each growing extruded body's axial stretch so that its axial force vanishes.

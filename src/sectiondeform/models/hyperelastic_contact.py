@@ -209,8 +209,8 @@ class Contact:
                 raise _LoadingBound(
                     f"contact: the loading took {done} factorisations of {unknowns} unknowns, {t:.3g} of the "
                     f"way, beyond its bound of {allowed} at this size ({MAX_SOLVE_WORK:.3g} factorisations x "
-                    "unknowns^1.5); the parts' travel is too severe for these bodies and this mesh (a shorter travel, "
-                    "a stiffer rubber, or fewer elements through the thickness, options.elements_through_thickness)")
+                    "unknowns^1.5)", "the parts' travel is too severe for these bodies and this mesh (a shorter travel, "
+                    "a stiffer rubber, or fewer elements through the thickness, options.elements_through_thickness)", to)
             new = solver.solve(to, xd0 + t * (xd - xd0), math.exp(ln0 + t * (ln1 - ln0)), halvings=halvings)
             totals[0] += new.iterations[0]
             totals[1] += new.iterations[1]
@@ -229,7 +229,7 @@ class Contact:
                 try:
                     state = run(t1, state, STEP_HALVINGS)
                 except _LoadingBound as exc:
-                    raise ConvergenceError(str(exc)) from None
+                    raise ConvergenceError(exc.stopped, exc.advice, exc.state) from None
                 except ConvergenceError as exc:
                     dt *= 0.5
                     if dt < dt0 / 2**MAX_HALVINGS:
@@ -277,11 +277,12 @@ class Contact:
             depth.append(float(g.max(initial=-np.inf)))
         k = int(np.argmax(depth))
         # A solve stopped by its work bound names the coarser mesh itself: refining it would be the wrong way.
-        advice = "or shorten the travel" if "stopped at its bound" in str(exc) else \
-            "shorten the travel or refine the mesh (options.elements_through_thickness)"
+        stopped, advice = getattr(exc, "stopped", str(exc)), getattr(exc, "advice", "")
+        advice = f"{advice} or shorten the travel" if "stopped at its bound" in stopped else \
+            f"{advice}; shorten the travel or refine the mesh (options.elements_through_thickness)".lstrip("; ")
         return ConvergenceError(f"{self.labels[k]}: the loading cannot go on at load step {step} "
                                 f"(from {t:.3g} to {t1:.3g} of the travel, the step halved {MAX_HALVINGS} times): "
-                                f"{exc}; {advice}")
+                                f"{stopped}", advice, state)
 
 
 def contact_results(state) -> tuple:

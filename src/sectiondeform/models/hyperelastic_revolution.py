@@ -119,6 +119,12 @@ class RevolutionPhysics:
         e = axis_frame(axis)[1][0]
         return np.eye(2), e * float(np.mean((targets - points) @ e))
 
+    def _axis_side(self, points: np.ndarray) -> np.ndarray:
+        """Distance of ``points`` from the axis, positive on the side the bodies are drawn, units."""
+        axis = self.problem.revolution.axis
+        side = signed_distance(self.mesh.points, axis)
+        return signed_distance(points, axis) * (1.0 if side[np.argmax(np.abs(side))] > 0 else -1.0)
+
     def _physics(self, cells, geom, kappa, mu):
         """The axisymmetric problem: neo-Hookean bodies in closed form, any other rubber through the materials."""
         a = self.problem
