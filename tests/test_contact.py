@@ -212,3 +212,69 @@ def test_a_part_ending_across_the_target_is_refused_in_one_line():
     d["rigid"][0]["contour"]["polyline"] = [[-12.0, 0.0], [12.0, 0.0], [12.0, -10.0], [-12.0, -10.0], [-12.0, 0.0]]
     d["rigid"][0]["travel"] = [0.0, 1.0]
     case_from_dict(d)
+
+
+def _bumper_at(travel: float) -> dict:
+    """The public bumper with the plate travelling ``travel`` mm down from where it starts (its contour moved with it)."""
+    d = _bumper_dict()
+    part = d["rigid"][0]
+    part["contour"]["polyline"] = [[x, y + 1.2 - travel] for x, y in part["contour"]["polyline"]]
+    part["travel"] = [0.0, -travel]
+    return d
+
+
+@pytest.fixture(scope="module")
+def bumper_deformer():
+    return sd.Deformer(sd.load_case(BUMPER))
+
+
+def test_a_travel_given_to_deform_is_the_case_with_that_travel_to_the_bit(bumper_deformer, bumper):
+    """One prepared problem serves every travel (a study of the squeeze, a dragged part), cold or warm.
+
+    Against the case drawn with that travel, to rounding (its contour moved in the case's decimal numbers); the
+    warm start from another travel loads the parts again from where they start, so to the bit.
+    """
+    fresh = sd.Deformer(case_from_dict(_bumper_at(1.6))).deform()
+    cold = bumper_deformer.deform(travel={"plate": (0.0, -1.6)})
+    np.testing.assert_allclose(cold.rigid[0].force, fresh.rigid[0].force, rtol=1e-9)
+    np.testing.assert_allclose(cold.bodies[0].upper, fresh.bodies[0].upper, rtol=0, atol=1e-9)
+    warm = bumper_deformer.deform(travel=[(0.0, -1.6)], start=bumper[1])
+    assert warm.rigid[0].force == cold.rigid[0].force and warm.rigid[0].length == cold.rigid[0].length
+    np.testing.assert_array_equal(warm.bodies[0].upper, cold.bodies[0].upper)
+    back = bumper_deformer.deform(start=warm)  # the case's own travel again
+    assert back.rigid[0].force == bumper[1].rigid[0].force
+
+
+def test_a_dragged_part_is_previewed_to_first_order(bumper_deformer, bumper):
+    """The preview moves the parts in the linear step: its error falls about fourfold as the move halves."""
+    start = bumper[1]
+    same = bumper_deformer.preview(travel=[(0.0, -1.2)], start=start)
+    np.testing.assert_allclose(same.bodies[0].upper, start.bodies[0].upper, atol=1e-12)
+    errors = []
+    for move in (0.2, 0.1, 0.05):
+        travel = [(0.0, -1.2 - move)]
+        full = bumper_deformer.deform(travel=travel, start=start).bodies[0].upper
+        preview = bumper_deformer.preview(travel=travel, start=start)
+        assert all(b.info.preview for b in preview.bodies)
+        errors.append(float(np.abs(preview.bodies[0].upper - full).max()))
+        assert errors[-1] < 0.05 * move  # far nearer than the start, which is `move` away
+    assert errors[0] / errors[1] > 2.5 and errors[1] / errors[2] > 2.5, errors
+
+
+@pytest.mark.parametrize("travel, field", [
+    ({"shaft": (0.0, -1.0)}, "travel"),  # no part of that name
+    ([(0.0, -1.0), (0.0, 1.0)], "travel"),  # one pair too many
+    ([(0.0, float("nan"))], "travel['plate']"),
+    ({"plate": (1.0,)}, "travel['plate']"),
+])
+def test_a_bad_travel_is_one_line_naming_it(bumper_deformer, travel, field):
+    with pytest.raises(CaseError) as info:
+        bumper_deformer.deform(travel=travel)
+    assert str(info.value).startswith(f"{field}: ") and "\n" not in str(info.value)
+
+
+def test_a_travel_for_a_problem_without_rigid_parts_is_refused():
+    d = _bumper_dict()
+    del d["rigid"]
+    with pytest.raises(CaseError, match=r"^travel: the problem has no rigid parts"):
+        sd.Deformer(case_from_dict(d)).deform(travel=[(0.0, -1.0)])

@@ -216,8 +216,43 @@ class Deformer:
             return check_growth(law if law.axis is None else law.about(None), f"bodies[{i}].law")
         return law if law.axis == rev.axis else law.about(rev.axis)
 
+    def travels(self, travel=None) -> tuple | None:
+        """The rigid parts' travels ``((dx, dy), ...)`` (units, the problem's order) for ``travel``; None for None.
+
+        ``travel`` is a mapping of part name to ``(dx, dy)`` (the parts not
+        named keep the problem's), or one ``(dx, dy)`` per part, in order.
+        A part starts where the problem starts it (its contour less its
+        travel) and ends this far from there.
+        """
+        if travel is None:
+            return None
+        parts = self.problem.rigid
+        if not parts:
+            raise CaseError("travel", "the problem has no rigid parts; give a travel only to a problem with rigid parts")
+        if isinstance(travel, Mapping):
+            names = [p.name for p in parts]
+            for key in travel:
+                if key not in names:
+                    raise CaseError("travel", f"no rigid part is called {key!r}; the parts are {', '.join(map(repr, names))}")
+            pairs = [travel.get(p.name, p.travel) for p in parts]
+        elif isinstance(travel, Sequence) and not isinstance(travel, str) and len(travel) == len(parts):
+            pairs = list(travel)
+        else:
+            raise CaseError("travel", f"expected one (dx, dy) per rigid part ({len(parts)}), or a dict by part name, "
+                                      f"got {travel!r}")
+        out = []
+        for part, pair in zip(parts, pairs):
+            try:
+                v = np.asarray(pair, dtype=np.float64)
+            except (TypeError, ValueError):
+                v = np.zeros(0)
+            if v.shape != (2,) or not np.isfinite(v).all():
+                raise CaseError(f"travel[{part.name!r}]", f"expected two finite numbers (dx, dy), got {pair!r}")
+            out.append((float(v[0]), float(v[1])))
+        return tuple(out)
+
     def deform(self, target: Curve | np.ndarray | None = None, law=None, *,
-               target_nodes: np.ndarray | None = None, start: Result | None = None) -> Result:
+               target_nodes: np.ndarray | None = None, start: Result | None = None, travel=None) -> Result:
         """Deform the problem: the support onto ``target``, each body under its law.
 
         Parameters
@@ -237,6 +272,11 @@ class Deformer:
             An earlier result of this deformer to start the solve from (a
             warm start; the hyperelastic model only). Without it the answer
             depends on the other arguments alone, bit for bit.
+        travel : mapping or sequence, optional
+            The rigid parts' travels instead of the problem's (:meth:`travels`):
+            a study of the squeeze, or a part dragged on the page, without
+            preparing the problem again. From a ``start`` solved at other
+            travels, the parts are loaded from where they ended there.
 
         Returns
         -------
@@ -252,11 +292,11 @@ class Deformer:
             If the target is not a curve or a polyline of finite points, or
             ``start`` is not a result of this deformer.
         """
-        return self._run(self.prepared.place, target, law, target_nodes, start)
+        return self._run(self.prepared.place, target, law, target_nodes, start, travel)
 
     def preview(self, target: Curve | np.ndarray | None = None, law=None, *,
-                target_nodes: np.ndarray | None = None, start: Result | None = None) -> Result:
-        """A fast deformation for dragging the target (interactive preview).
+                target_nodes: np.ndarray | None = None, start: Result | None = None, travel=None) -> Result:
+        """A fast deformation for dragging the target or a rigid part (interactive preview).
 
         The paper model answers exactly as :meth:`deform`; the hyperelastic
         model takes one linearised step from ``start`` (a result of this
@@ -264,13 +304,17 @@ class Deformer:
         hand: every law is met exactly and the interfaces stay bonded,
         every check of :meth:`deform` is made, but the shape is first-order
         in the change of target (each body's ``info.preview`` is True):
-        call :meth:`deform` when the drag ends. Arguments as :meth:`deform`.
+        call :meth:`deform` when the drag ends. From a ``start`` with rigid
+        parts, a ``travel`` other than ``start``'s moves them in the same
+        linear step (the contact figures are then ``start``'s). Arguments
+        as :meth:`deform`.
         """
-        return self._run(self.prepared.preview, target, law, target_nodes, start)
+        return self._run(self.prepared.preview, target, law, target_nodes, start, travel)
 
-    def _run(self, placer, target, law, target_nodes, start) -> Result:
+    def _run(self, placer, target, law, target_nodes, start, travel=None) -> Result:
         t0 = time.perf_counter()
         laws = self.laws(law)
+        travels = self.travels(travel)
         warnings: list[str] = []
         if target_nodes is not None:
             if target is not None:
@@ -294,7 +338,7 @@ class Deformer:
         if start is not None and not isinstance(start, Result):
             raise CaseError("start", f"give an earlier Result of this deformer, not {type(start).__name__}")
         with np.errstate(all="ignore"):
-            placed = placer(where, laws, start.state if start is not None else None)
+            placed = placer(where, laws, start.state if start is not None else None, travels)
             bodies = tuple(self._body_result(b, placed, laws[b]) for b in range(len(laws)))
             self._check(bodies, placed)
         problem = self.problem

@@ -231,6 +231,20 @@ class Obstacle:
         self.vnormal = mean / np.maximum(np.hypot(mean[:, 0], mean[:, 1]), 1e-300)[:, None]
         self.lo, self.hi = ring.min(axis=0), ring.max(axis=0)
 
+    def moved(self, shift, travel) -> Obstacle:
+        """The same part with its end ``shift`` ((2,), units) further, arriving by ``travel`` ((2,), units).
+
+        ``moved(travel - self.travel, travel)`` is the part starting where
+        this one starts and travelling ``travel`` instead;
+        ``moved((0, 0), travel)`` ends where this one ends.
+        """
+        new = copy.copy(self)
+        shift = np.asarray(shift, dtype=np.float64)
+        new.ring = new.a = self.ring + shift
+        new.lo, new.hi = self.lo + shift, self.hi + shift
+        new.travel = np.asarray(travel, dtype=np.float64)
+        return new
+
     def at(self, t: float) -> np.ndarray:
         """The outline's offset at load fraction ``t`` (0 start, 1 end), ``(2,)``."""
         return -(1.0 - t) * self.travel
@@ -444,6 +458,22 @@ class ContactPhysics:
                 q = self.friction(k, idx, p, s)[0]
                 traction = traction + q[:, None] * np.column_stack((-n[:, 1], n[:, 0]))
             force = -b.weight[idx][:, None, None] * b.shape[idx][:, :, None] * traction[:, None, :]  # (m, 3, 2)
+            np.add.at(r, b.nodes[idx], force)
+        return r.ravel()
+
+    def residual_rate(self, x: np.ndarray, shifts: np.ndarray) -> np.ndarray:
+        """The first-order change of the contact residual at ``x`` as the parts move by ``shifts`` ((K, 2), units), ``(2 N,)``.
+
+        At a point in contact the penetration grows by ``n · shift``, so its
+        pressure by ``ramp′ ε n · shift``, along ``n``; a point out of
+        contact at ``x`` stays out (first order), and the tangential force
+        is held.
+        """
+        b = self.boundary
+        r = np.zeros((self._inner.n_nodes, 2))
+        for k, (idx, _, n, _, _, slope) in enumerate(self.evaluate(x)):
+            dp = slope * b.penalty[idx] * (n @ np.asarray(shifts[k], dtype=np.float64))
+            force = -b.weight[idx][:, None, None] * b.shape[idx][:, :, None] * (dp[:, None] * n)[:, None, :]
             np.add.at(r, b.nodes[idx], force)
         return r.ravel()
 

@@ -248,21 +248,23 @@ class Prepared(ABC):
     bodies: tuple
 
     @abstractmethod
-    def place(self, target, laws: tuple, start=None) -> Placed:
+    def place(self, target, laws: tuple, start=None, travels=None) -> Placed:
         """Deform onto ``target`` (a :class:`~sectiondeform.stack.Target`) under ``laws`` (one per body).
 
         ``start`` is the :attr:`Placed.state` of an earlier placement to
-        start from (a model without a solver ignores it). Never changes the
-        prepared object: the same arguments give the same answer.
+        start from (a model without a solver ignores it); ``travels``, the
+        rigid parts' travels if not the problem's (a model that takes rigid
+        parts). Never changes the prepared object: the same arguments give
+        the same answer.
         """
 
-    def preview(self, target, laws: tuple, start=None) -> Placed:
-        """A fast placement for dragging the target, meeting the laws; by default :meth:`place`.
+    def preview(self, target, laws: tuple, start=None, travels=None) -> Placed:
+        """A fast placement for dragging the target or a rigid part, meeting the laws; by default :meth:`place`.
 
         A model whose full placement is slow (the hyperelastic one) answers
         with a linearised step about ``start`` and says so in its info.
         """
-        return self.place(target, laws, start)
+        return self.place(target, laws, start, travels)
 
 
 class Model(ABC):

@@ -486,7 +486,7 @@ class HyperelasticPrepared(Prepared):
         """The rigid motion ``(Q, t)`` that best takes the support nodes ``points`` onto ``targets``."""
         return rigid_fit(points, targets)
 
-    def place(self, curve, laws: tuple, start: HyperelasticState | None = None) -> Placed:
+    def place(self, curve, laws: tuple, start: HyperelasticState | None = None, travels=None) -> Placed:
         """Solve the bodies on the target ``curve``; per body its lower nodes, upper points and placement.
 
         Parameters
@@ -501,6 +501,9 @@ class HyperelasticPrepared(Prepared):
             None, or a state solved under other laws, starts from the
             undeformed bodies moved rigidly onto the target. The answer
             depends on the arguments alone.
+        travels : sequence of (float, float), optional
+            Each rigid part's travel, units, if not the problem's: the part
+            starts where the problem starts it and ends this far from there.
 
         Returns
         -------
@@ -526,6 +529,9 @@ class HyperelasticPrepared(Prepared):
         """
         xd = curve.at_fractions(self.fixed_fractions)
         guess = self.stretches_of(laws)
+        if self.contact is not None and start is not None and start.contact is not None and \
+                start.contact.travels != self.contact.travels_of(self.contact.obstacles_for(travels)):
+            start = None  # the parts moved: loaded again from where they start (a result independent of the path)
         base = self._base(xd, start, guess, drawn=self.contact is not None)
         stretches = start.stretches if start is not None and base is start.state else guess
         physics, solver = self._problem(stretches)
@@ -534,7 +540,7 @@ class HyperelasticPrepared(Prepared):
         try:
             if self.contact is not None:  # rigid parts: loaded with the support, the contact carried by the state
                 warm = start.contact if start is not None and base is start.state else None
-                state, contact = self.contact.solve(physics, solver, base, self._data(xd), math.e, warm)
+                state, contact = self.contact.solve(physics, solver, base, self._data(xd), math.e, warm, travels)
             else:
                 state = solver.solve(base, self._data(xd), math.e)
         except ConvergenceError as exc:
@@ -612,13 +618,14 @@ class HyperelasticPrepared(Prepared):
                            self.problem.label(int(growing[0])) or "body")
         return now["stretches"], now["state"], now["f"], now["physics"], now["solver"]
 
-    def preview(self, curve, laws: tuple, start: HyperelasticState | None = None) -> Placed:
+    def preview(self, curve, laws: tuple, start: HyperelasticState | None = None, travels=None) -> Placed:
         """Drag preview: one linear step from ``start`` (or the undeformed bodies), no new factorisation.
 
         The step is the Newton predictor: one back-substitution with the
         factorisation ``start`` carries, for the change of the support's
         nodes (and, from the undeformed bodies, of the out-of-plane
-        stretches). Every body's law is then met exactly and the interfaces
+        stretches), and, from a start with rigid parts, for the parts moved
+        to ``travels`` (:meth:`~sectiondeform.models.hyperelastic_contact.Contact.preview`). Every body's law is then met exactly and the interfaces
         stay bonded (the same correction as :meth:`place`); the shape is
         first-order in the change of target: call :meth:`place` when the
         drag ends. Arguments and returns as :meth:`place` (the state
@@ -630,6 +637,9 @@ class HyperelasticPrepared(Prepared):
         stretches = start.stretches if start is not None and base is start.state else guess
         physics, solver = self._problem(stretches)
         z = solver.predict(base, self._data(xd), math.e)
+        warm = start.contact if start is not None and base is start.state else None
+        if self.contact is not None and warm is not None:
+            z = self.contact.preview(physics, solver, base, z, warm, travels)
         f = physics.fields(z, math.e)
         if f is None:
             raise MeshError("preview: an element is inverted in the linear step; the target moved too far from the "

@@ -102,6 +102,8 @@ class ContactState:
     warnings : tuple of str
     anchor : (K, P) float64 ndarray or None
         Friction's anchors (a warm start carries them too).
+    travels : tuple of (float, float)
+        Each part's travel the state was solved for, units.
     """
 
     lam: np.ndarray
@@ -110,6 +112,7 @@ class ContactState:
     history: tuple
     warnings: tuple = ()
     anchor: np.ndarray = None
+    travels: tuple = ()
 
 
 class Contact:
@@ -136,12 +139,56 @@ class Contact:
         self.names = tuple(part.name for part in problem.rigid)
         self.labels = tuple(f"rigid[{i}] {part.name!r}" for i, part in enumerate(problem.rigid))
         self.ring = ring_factor(self.plane)
-        travel = max(float(np.hypot(*part.travel)) for part in problem.rigid)
-        self.steps = int(np.clip(math.ceil(travel / (STEP_FRACTION * float(prepared.sizes.min()))), MIN_STEPS, MAX_STEPS))
+        self.size = float(prepared.sizes.min())
 
-    def physics(self, physics, lam=None, anchor=None) -> ContactPhysics:
-        """``physics`` with the contact terms, multipliers ``lam`` (zeros by default) and friction anchors, the parts at their end."""
-        return ContactPhysics(physics, self.boundary, self.obstacles, lam, anchor)
+    def obstacles_for(self, travels=None) -> list:
+        """The parts travelling ``travels`` (one ``(dx, dy)`` each, units; None: the problem's), each from where it starts.
+
+        A part starts at its contour less its travel in the problem; another
+        travel moves its end, not its start (as a designer drags a part).
+        """
+        if travels is None:
+            return self.obstacles
+        return [obs.moved(np.asarray(tr, dtype=np.float64) - obs.travel, tr) for obs, tr in zip(self.obstacles, travels)]
+
+    @staticmethod
+    def travels_of(obstacles) -> tuple:
+        """Each part's travel, ``((dx, dy), ...)``, units."""
+        return tuple((float(o.travel[0]), float(o.travel[1])) for o in obstacles)
+
+    def steps(self, obstacles) -> int:
+        """Load steps moving each of ``obstacles`` by at most :data:`STEP_FRACTION` of the smallest element size."""
+        travel = max(float(np.hypot(*obs.travel)) for obs in obstacles)
+        return int(np.clip(math.ceil(travel / (STEP_FRACTION * self.size)), MIN_STEPS, MAX_STEPS))
+
+    def physics(self, physics, lam=None, anchor=None, obstacles=None) -> ContactPhysics:
+        """``physics`` with the contact terms, multipliers ``lam`` (zeros by default) and friction anchors, the parts
+        (``obstacles``, the problem's by default) at their end.
+        """
+        return ContactPhysics(physics, self.boundary, self.obstacles if obstacles is None else obstacles, lam, anchor)
+
+    def preview(self, physics, solver, state, z: np.ndarray, warm: ContactState, travels) -> np.ndarray:
+        """``z`` (a preview from ``state``) with the linear response to the parts moved from ``warm``'s travels to ``travels``.
+
+        One back-substitution with the factorisation ``state`` carries (its
+        contact stiffness included), for the first-order change of the
+        contact forces as the parts' ends move
+        (:meth:`~sectiondeform.fem.contact.ContactPhysics.residual_rate`): the
+        contact set is ``state``'s, so a point the parts reach only now
+        does not push back yet (the full solve on release does).
+        """
+        new, old = self.obstacles_for(travels), self.obstacles_for(warm.travels)
+        shifts = np.array([a.travel - b.travel for a, b in zip(new, old)])
+        if not shifts.any():
+            return z
+        n = physics.n_nodes
+        x = state.z[: 2 * n].reshape(n, 2)
+        change = np.zeros(len(z))
+        change[: 2 * n] = self.physics(physics, warm.lam, warm.anchor, old).residual_rate(x, shifts)
+        free = solver.pattern.free
+        out = z.copy()
+        out[free] -= state.tangent.solve(change[free])
+        return out
 
     def _forces(self, cphys: ContactPhysics, solver, state) -> tuple[list, tuple]:
         """Each part's contact and the support's force at ``state``."""
@@ -159,8 +206,8 @@ class Contact:
         forces["support"] = support
         return HistoryStep(float(t), forces)
 
-    def solve(self, physics, solver, base, xd: np.ndarray, lz: float, warm) -> tuple:
-        """Solve with contact from ``base`` to the data ``(xd, lz)``.
+    def solve(self, physics, solver, base, xd: np.ndarray, lz: float, warm, travels=None) -> tuple:
+        """Solve with contact from ``base`` to the data ``(xd, lz)``, the parts travelling ``travels`` (None: the problem's).
 
         Parameters
         ----------
@@ -175,8 +222,10 @@ class Contact:
         lz : float
             The path parameter at the end.
         warm : ContactState or None
-            The contact of the state ``base`` is (a warm start): the parts
-            are then at their end from the start.
+            The contact of the state ``base`` is (a warm start, solved for
+            the same ``travels``): the parts are then at their end from the
+            start.
+        travels : sequence of (float, float), optional
 
         Returns
         -------
@@ -188,7 +237,9 @@ class Contact:
         ConvergenceError
             Naming the load step and the part when the loading cannot go on.
         """
-        cphys = self.physics(physics, warm.lam if warm is not None else None, warm.anchor if warm is not None else None)
+        obstacles = self.obstacles_for(travels)
+        cphys = self.physics(physics, warm.lam if warm is not None else None, warm.anchor if warm is not None else None,
+                             obstacles)
         given, solver = solver, copy.copy(solver)
         solver.physics = cphys
         fixed = solver.pattern.fixed
@@ -221,7 +272,7 @@ class Contact:
             cphys.t = 0.0
             cphys.commit(cphys.positions(state.z))
             history.append(self._step(0.0, *self._forces(cphys, solver, state)))
-            t, dt0 = 0.0, 1.0 / self.steps
+            t, dt0 = 0.0, 1.0 / self.steps(obstacles)
             dt = dt0
             while t < 1.0:
                 t1 = min(1.0, t + dt)
@@ -264,7 +315,8 @@ class Contact:
         cphys.update(x)  # the multipliers and anchors of this state, for the next warm start
         given.assemblies, given.factorisations = solver.assemblies, solver.factorisations  # the work counted as without contact
         out = type(state)(state.z, state.lz, state.tangent, tuple(totals), None)
-        return out, ContactState(cphys.lam, tuple(parts), support, tuple(history), tuple(warnings), cphys.anchor)
+        return out, ContactState(cphys.lam, tuple(parts), support, tuple(history), tuple(warnings), cphys.anchor,
+                                 self.travels_of(obstacles))
 
     def _refusal(self, cphys, state, t, t1, step, exc) -> ConvergenceError:
         """The loading cannot go on: name the step and the part that would penetrate most."""

@@ -385,8 +385,10 @@ class PaperPrepared(Prepared):
                 raise renamed(exc, problem.label(b)) from None
         self.bodies = tuple(bodies)
 
-    def place(self, target: Target, laws: tuple, start=None) -> Placed:
-        """Place every body from the support up (``start`` is ignored: the placement is closed-form)."""
+    def place(self, target: Target, laws: tuple, start=None, travels=None) -> Placed:
+        """Place every body from the support up (``start`` is ignored: the placement is closed-form; the model takes no
+        rigid parts, so ``travels`` is None).
+        """
         stack = self.stack
         n = len(self.bodies)
         lowers, images, placements = [None] * n, [None] * n, [None] * n
