@@ -34,7 +34,7 @@ from ..section import local_green
 
 __all__ = ["FIELDS", "MODELS", "DeformerCache", "SharedDeformers", "answer", "case_from_json", "case_json_of", "case_model",
            "contact_units", "contact_view", "describe", "field_view", "full_result", "is_assembly", "law_of", "laws_of",
-           "model_of_json", "outline", "report_figure", "rigid_outline", "section_key", "with_model"]
+           "model_of_json", "outline", "report_figure", "rigid_outline", "section_key", "travels_of", "with_model"]
 
 MODELS = MODEL_NAMES
 OUTLINE_SAMPLES = 65
@@ -94,11 +94,43 @@ def laws_of(case_json: dict, ratio=None) -> tuple:
 
 
 def section_key(case_json: dict, model: str) -> str:
-    """What a prepared problem depends on: everything of the case but its target and laws, and the model."""
+    """What a prepared problem depends on: everything of the case but its target, its laws and its rigid parts'
+    travels (a part counts by where it starts: its contour less its travel), and the model.
+    """
     rest = {k: v for k, v in case_json.items() if k not in ("target", "law")}
     if isinstance(rest.get("bodies"), list):
         rest["bodies"] = [{k: v for k, v in b.items() if k != "law"} if isinstance(b, dict) else b for b in rest["bodies"]]
+    if isinstance(rest.get("rigid"), list):
+        rest["rigid"] = [_rigid_start(part) for part in rest["rigid"]]
     return json.dumps([rest, model], sort_keys=True)
+
+
+def _rigid_start(part):
+    """A rigid part as its prepared problem depends on it: all but its travel, its contour moved to where it starts
+    (rounded to 10 digits: the page moves the contour by the travel in its own arithmetic). Anything unreadable is
+    kept as it is (the library refuses it when the case is prepared).
+    """
+    if not isinstance(part, dict) or "contour" not in part:
+        return part
+    try:
+        travel = np.asarray(part.get("travel", [0.0, 0.0]), dtype=np.float64)
+        start = curve_from_json(part["contour"], "contour").transformed(np.eye(2), -travel).to_json()
+    except Exception:  # noqa: BLE001 - refused with its own message where the case is read
+        return part
+    rest = {k: v for k, v in part.items() if k not in ("contour", "travel")}
+    rest["start"] = _rounded(start)
+    return rest
+
+
+def _rounded(value):
+    """A JSON value with every float rounded to 10 significant digits."""
+    if isinstance(value, float):
+        return float(f"{value:.10g}")
+    if isinstance(value, (list, tuple)):
+        return [_rounded(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _rounded(v) for k, v in value.items()}
+    return value
 
 
 class SharedDeformers:
@@ -238,15 +270,17 @@ def answer(cache: DeformerCache, case_json: dict, model: str, ratio, final: bool
     deformer, prepared = cache.get(case_json, model, key)
     target = curve_from_json(case_json.get("target"), "target")
     laws = laws_of(case_json, ratio)
+    travel = travels_of(case_json)
     start = cache.start(deformer)
     with cache.lock(deformer):
-        result = deformer.deform(target, laws, start=start) if final else deformer.preview(target, laws, start=start)
+        run = deformer.deform if final else deformer.preview
+        result = run(target, laws, start=start, travel=travel)
     if final:
         cache.remember(deformer, result)
     support = target.at_fractions(deformer.fractions)
     out = describe(result, support, final, prepared, meshes, 1e3 * (time.perf_counter() - t0))
     if final and result.rigid:  # a preview's contact figures would be the last full deformation's: not sent
-        out.update(contact_view(result, deformer.problem))
+        out.update(contact_view(result, deformer.problem, travel))
     if field is not None and final:
         out.update(field_view(result, field))
         out["compute_ms"] = 1e3 * (time.perf_counter() - t0)
@@ -289,7 +323,15 @@ def field_view(result: Result, name) -> dict:
     return {"field": view}
 
 
-def contact_view(result: Result, problem: Problem) -> dict:
+def travels_of(case_json: dict):
+    """The rigid parts' travels of a case object, in order (checked by the library), or None without rigid parts."""
+    parts = case_json.get("rigid")
+    if not isinstance(parts, list) or not parts:
+        return None
+    return [part.get("travel", [0.0, 0.0]) if isinstance(part, dict) else part for part in parts]
+
+
+def contact_view(result: Result, problem: Problem, travel=None) -> dict:
     """The page's view of a full deformation's contact with rigid parts (:attr:`Result.rigid`).
 
     Returns
@@ -302,9 +344,11 @@ def contact_view(result: Result, problem: Problem) -> dict:
         ``pressure`` (``(m, 3)`` float64, ``[x, y, p]`` along the contact)
         and ``outline`` (``(k, 2)`` float64, where it ends); the support's
         ``support_force``, the load steps' forces ``history`` and the
-        ``contact_units``.
+        ``contact_units``. ``travel``: the travels the result was solved
+        for, one ``[dx, dy]`` per part, if not the problem's.
     """
-    travels = {part.name: list(part.travel) for part in problem.rigid}
+    pairs = travel if travel is not None else [part.travel for part in problem.rigid]
+    travels = {part.name: [float(v) for v in pair] for part, pair in zip(problem.rigid, pairs)}
     parts = []
     for part in result.rigid:
         outline = np.asarray(part.outline, dtype=np.float64)

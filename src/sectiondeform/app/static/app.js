@@ -470,7 +470,7 @@ function showRigid() {
   });
 }
 
-// A travel typed in a part's field: solved in full (a preview has no contact).
+// A travel typed in a part's field: solved in full.
 function travelTyped(i, input) {
   const v = Number(input.value);
   if (input.value === "" || !(v >= 0)) {
@@ -950,16 +950,14 @@ svg.addEventListener("pointermove", (e) => {
     return;
   }
   const to = toWorld(e);
-  if (d.rigid !== undefined) {   // drawn at once, and solved in full as it moves (a preview has no contact)
+  if (d.rigid !== undefined) {   // previewed as it moves (the contact linearised about the last full solve), solved on release
     const step = niceStep(1 / state.view.s);   // a round travel, to about a screen pixel
     const s = Math.max(0, d.s0 + Geo.dot(Geo.sub(to, d.from), state.parts[d.rigid].dir));
     const before = JSON.stringify(rigidCase()[d.rigid].travel);
     setTravel(d.rigid, Number(numText(Math.round(s / step) * step, step)));
     d.moved = true;
     drawEdits(); showRigid();
-    // The server keeps only a page's newest request while one is being solved: the bodies follow the part
-    // as fast as the solver goes, and the last answer is the release's.
-    if (JSON.stringify(rigidCase()[d.rigid].travel) !== before) request(true, t0);
+    if (JSON.stringify(rigidCase()[d.rigid].travel) !== before) request(false, t0);
     return;
   }
   let P;
