@@ -100,8 +100,10 @@ def _layer_on_a_layer_under_a_plate() -> dict:
 
 
 @pytest.mark.parametrize("case, named", [
-    (_block_squeezed_by_a_plate, r"bodies\[0\] 'b0' is crushed near \[5\.0\d*, 0\.0\d*\] \(compressed to \d+ % "),
-    (_layer_on_a_layer_under_a_plate, r"bodies\[0\] 'b0' and bodies\[1\] 'b1' press into each other near "),
+    (_block_squeezed_by_a_plate, r"bodies\[0\] 'b0' is crushed near \[5\.0\d*, -?0\.0\d*\] \(compressed to \d+ % "),
+    # the soft layer's side bulges over the one below and folds (which comes first depends on the load steps)
+    (_layer_on_a_layer_under_a_plate, r"(bodies\[0\] 'b0' and bodies\[1\] 'b1' press into each other|"
+                                      r"bodies\[1\] 'b1' folds onto itself) near "),
 ], ids=["crushed", "into-each-other"])
 def test_a_loading_that_cannot_go_on_names_the_physical_state_not_the_mesh(case, named):
     with pytest.raises(ConvergenceError, match=r"^rigid\[0\] 'plate': the loading cannot go on at load step") as info:

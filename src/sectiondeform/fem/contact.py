@@ -59,7 +59,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Boundary", "Obstacle", "ContactPhysics", "PartContact", "free_boundary", "contact_figures",
+__all__ = ["Boundary", "Obstacle", "ContactPhysics", "PartContact", "free_boundary", "contact_figures", "part_forces",
            "GAUSS", "PENALTY", "PENETRATION_FRACTION", "TANGENT_PENALTY"]
 
 GAUSS = 4
@@ -453,10 +453,7 @@ class ContactPhysics:
         b = self.boundary
         r = np.zeros((self._inner.n_nodes, 2))
         for k, (idx, p, n, _, s, _) in enumerate(self.evaluate(x) if contact is None else contact):
-            traction = p[:, None] * n
-            if self.obstacles[k].friction > 0 and len(idx):
-                q = self.friction(k, idx, p, s)[0]
-                traction = traction + q[:, None] * np.column_stack((-n[:, 1], n[:, 0]))
+            traction = _traction(self, k, idx, p, n, s)
             force = -b.weight[idx][:, None, None] * b.shape[idx][:, :, None] * traction[:, None, :]  # (m, 3, 2)
             np.add.at(r, b.nodes[idx], force)
         return r.ravel()
@@ -589,8 +586,28 @@ class PartContact:
                             "penetration_max": self.penetration_max, "pressure": self.pressure.tolist()}}
 
 
-def contact_figures(physics: ContactPhysics, x: np.ndarray, names, ring: float = 1.0, radius=None) -> list[PartContact]:
-    """Each part's force and contact figures at positions ``x``.
+def _traction(physics: ContactPhysics, k: int, idx, p, n, s) -> np.ndarray:
+    """Part ``k``'s traction on the body at its contact points ``(m, 2)``: the pressure along ``n``, friction along the outline."""
+    traction = p[:, None] * n
+    if physics.obstacles[k].friction > 0 and len(idx):
+        q = physics.friction(k, idx, p, s)[0]
+        traction = traction + q[:, None] * np.column_stack((-n[:, 1], n[:, 0]))
+    return traction
+
+
+def part_forces(physics: ContactPhysics, contact: list, ring: float = 1.0) -> list[tuple[float, float]]:
+    """Each part's force ``(fx, fy)`` from its contact (:meth:`ContactPhysics.evaluate`), as :func:`contact_figures`."""
+    b = physics.boundary
+    out = []
+    for k, (idx, p, n, _, s, _) in enumerate(contact):
+        force = -ring * b.weight[idx] @ _traction(physics, k, idx, p, n, s) if len(idx) else np.zeros(2)
+        out.append((float(force[0]), float(force[1])))
+    return out
+
+
+def contact_figures(physics: ContactPhysics, x: np.ndarray, names, ring: float = 1.0, radius=None,
+                    contact: list | None = None) -> list[PartContact]:
+    """Each part's force and contact figures at positions ``x`` (``contact``: :meth:`ContactPhysics.evaluate` there, if known).
 
     Parameters
     ----------
@@ -609,14 +626,10 @@ def contact_figures(physics: ContactPhysics, x: np.ndarray, names, ring: float =
     list of PartContact
     """
     b = physics.boundary
+    contact = physics.evaluate(x) if contact is None else contact
     out = []
-    for k, (name, obs, (idx, p, n, g, s, _)) in enumerate(zip(names, physics.obstacles, physics.evaluate(x))):
+    for name, obs, force, (idx, p, _, g, s, _) in zip(names, physics.obstacles, part_forces(physics, contact, ring), contact):
         w = b.weight[idx]
-        traction = p[:, None] * n
-        if obs.friction > 0 and len(idx):
-            q = physics.friction(k, idx, p, s)[0]
-            traction = traction + q[:, None] * np.column_stack((-n[:, 1], n[:, 0]))
-        force = -ring * w @ traction if len(idx) else np.zeros(2)
         xe = x[b.nodes[idx]]
         xq = np.einsum("pa,pai->pi", b.shape[idx], xe)
         tang = np.einsum("pa,pai->pi", b.dshape[idx], xe)
@@ -626,7 +639,7 @@ def contact_figures(physics: ContactPhysics, x: np.ndarray, names, ring: float =
         order = np.argsort(s, kind="stable")
         length = float(dl.sum())
         out.append(PartContact(
-            name=name, force=(float(force[0]), float(force[1])), length=length,
+            name=name, force=force, length=length,
             pressure_max=float(true.max(initial=0.0)),
             pressure_mean=float((true * dl).sum() / length) if length > 0 else 0.0,
             penetration_max=float(np.maximum(g, 0.0).max(initial=0.0)),

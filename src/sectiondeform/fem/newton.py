@@ -291,6 +291,11 @@ class NewtonSolver:
     def _merit(self, r: np.ndarray) -> float:
         return float(np.linalg.norm(r * self.row_scale))
 
+    def _merit_of(self, z: np.ndarray, lz: float) -> float:
+        """The residual's norm at ``z`` (infinite if a point is inverted there)."""
+        r, _ = self.residual(z, lz)
+        return math.inf if r is None else self._merit(r)
+
     def _state(self, z_free: np.ndarray, xd: np.ndarray, template: np.ndarray) -> np.ndarray:
         z = template.copy()
         z[self.pattern.free] = z_free
@@ -363,14 +368,22 @@ class NewtonSolver:
         return None, max_iter
 
     # -- the path ----------------------------------------------------------
-    def predict(self, state: State, xd: np.ndarray, lz: float, xd0: np.ndarray | None = None) -> np.ndarray:
-        """Linear predictor from ``state`` to the data ``(xd, lz)``; returns the full ``z``."""
+    def predict(self, state: State, xd: np.ndarray, lz: float, xd0: np.ndarray | None = None,
+                load: np.ndarray | None = None) -> np.ndarray:
+        """Linear predictor from ``state`` to the data ``(xd, lz)``; returns the full ``z``.
+
+        ``load`` ((f,), optional): the first-order change of the free residual from anything else that moves
+        on the way (a rigid part: :meth:`~sectiondeform.fem.contact.ContactPhysics.residual_rate`).
+        """
         d0 = state.z[self.pattern.fixed] if xd0 is None else xd0
         rhs = state.tangent.kfd_dot(xd - d0) + (np.log(lz) - np.log(state.lz)) * self.dres_dlnlz
+        if load is not None:
+            rhs = rhs + load
         dz = -state.tangent.solve(rhs)
         return self._state(state.z[self.pattern.free] + dz, xd, state.z)
 
-    def solve(self, start: State, xd: np.ndarray, lz: float, modified: bool = True, halvings: int | None = None) -> State:
+    def solve(self, start: State, xd: np.ndarray, lz: float, modified: bool = True, halvings: int | None = None,
+              load: np.ndarray | None = None) -> State:
         """Equilibrium for the prescribed ``xd`` and ``lz``, continuing from ``start``.
 
         Parameters
@@ -388,6 +401,10 @@ class NewtonSolver:
             :data:`MAX_HALVINGS`; a caller that steps another parameter
             itself, as the contact loading does the parts, gives up sooner
             and halves its own step instead).
+        load : (f,) float64 ndarray, optional
+            The first-order change of the free residual over the whole path
+            from anything else that moves along it (the parts of a contact
+            loading), for the predictor of each load step (its share).
 
         Returns
         -------
@@ -422,6 +439,9 @@ class NewtonSolver:
             xd_t = xd0 + t1 * (xd - xd0)
             lz_t = float(np.exp(lnl0 + t1 * (lnl1 - lnl0)))
             z = self.predict(state, xd_t, lz_t)
+            if load is not None:  # with the other loads' first-order response, if that leaves less residual
+                zl = self.predict(state, xd_t, lz_t, load=(t1 - t) * load)
+                z = zl if self._merit_of(zl, lz_t) < self._merit_of(z, lz_t) else z
             new, ran = self._correct(z, lz_t, state.tangent if modified else None, min(MAX_ITERATIONS, budget - used))
             used += 1 + ran  # the predictor counts as one
             if new is None:

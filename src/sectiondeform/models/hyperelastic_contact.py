@@ -40,6 +40,7 @@ from ..fem.contact import (
     PartContact,
     contact_figures,
     free_boundary,
+    part_forces,
     ring_factor,
 )
 from ..limits import MAX_SOLVE_WORK, work_budget
@@ -63,7 +64,7 @@ which moves the parts and the support together: none. The parts do not move with
 cannot ease a part's step, and they cost factorisations (measured: failed solves took 36 to 61 factorisations
 each, 142 of the bumper's 196 at 8 elements through; without them 71, the O-ring 144 instead of 462, every
 result the same to the bit)."""
-STEP_FRACTION = 0.25
+STEP_FRACTION = 0.5
 """A load step moves a part by at most this fraction of the smallest element size (within MIN_STEPS..MAX_STEPS steps)."""
 
 
@@ -190,21 +191,41 @@ class Contact:
         out[free] -= state.tangent.solve(change[free])
         return out
 
-    def _forces(self, cphys: ContactPhysics, solver, state) -> tuple[list, tuple]:
-        """Each part's contact and the support's force at ``state``."""
+    @staticmethod
+    def _load_rate(cphys: ContactPhysics, solver, state, t0: float, t1: float) -> np.ndarray | None:
+        """The first-order change of the free residual at ``state`` (solved with the parts at load fraction ``t0``) as
+        they move on to ``t1``, for the step's predictor; None if they stay."""
+        shifts = np.array([obs.at(t1) - obs.at(t0) for obs in cphys.obstacles])
+        if not shifts.any():
+            return None
+        n = cphys.inner.n_nodes
+        now, cphys.t = cphys.t, t0
+        try:
+            rate = cphys.residual_rate(cphys.positions(state.z), shifts)
+        finally:
+            cphys.t = now
+        full = np.zeros(len(state.z))
+        full[: 2 * n] = rate
+        return full[solver.pattern.free]
+
+    def _forces(self, cphys: ContactPhysics, solver, state, figures: bool = True) -> tuple[list, tuple]:
+        """Each part's contact (its force alone unless ``figures``) and the support's force at ``state``."""
         f = cphys.fields(state.z, state.lz)
         if f is None:  # a state with an element turned over has no forces (the start, never a solved state)
             raise ConvergenceError("contact: an element is turned over in the state the loading starts from; "
                                    "the target moves the bodies too far from where they are drawn")
         r = cphys.residual(f)[solver.pattern.fixed]
         support = (-self.ring * float(r[0::2].sum()), -self.ring * float(r[1::2].sum()))
-        parts = contact_figures(cphys, cphys.positions(state.z), self.names, self.ring, self.radius)
-        return parts, support
+        contact = cphys._contact_of(f)  # as the residual had it
+        if not figures:
+            return part_forces(cphys, contact, self.ring), support
+        return contact_figures(cphys, cphys.positions(state.z), self.names, self.ring, self.radius, contact), support
 
-    def _step(self, t: float, parts, support) -> HistoryStep:
-        forces = {p.name: p.force for p in parts}
-        forces["support"] = support
-        return HistoryStep(float(t), forces)
+    def _step(self, t: float, forces, support) -> HistoryStep:
+        """The history's step at ``t``: each part's force (or :class:`PartContact`) and the support's."""
+        out = {name: getattr(force, "force", force) for name, force in zip(self.names, forces)}
+        out["support"] = support
+        return HistoryStep(float(t), out)
 
     def solve(self, physics, solver, base, xd: np.ndarray, lz: float, warm, travels=None) -> tuple:
         """Solve with contact from ``base`` to the data ``(xd, lz)``, the parts travelling ``travels`` (None: the problem's).
@@ -254,7 +275,7 @@ class Contact:
         first = solver.factorisations
         allowed = work_budget(unknowns)
 
-        def run(t, to, halvings=None):
+        def run(t, to, halvings=None, t0=None):
             done = solver.factorisations - first
             if done > allowed:  # checked before each solve: the loading's work is bounded
                 raise _LoadingBound(
@@ -262,7 +283,8 @@ class Contact:
                     f"way, beyond its bound of {allowed} at this size ({MAX_SOLVE_WORK:.3g} factorisations x "
                     "unknowns^1.5)", "the parts' travel is too severe for these bodies and this mesh (a shorter travel, "
                     "a stiffer rubber, or fewer elements through the thickness, options.elements_through_thickness)", to)
-            new = solver.solve(to, xd0 + t * (xd - xd0), math.exp(ln0 + t * (ln1 - ln0)), halvings=halvings)
+            new = solver.solve(to, xd0 + t * (xd - xd0), math.exp(ln0 + t * (ln1 - ln0)), halvings=halvings,
+                               load=None if t0 is None else self._load_rate(cphys, solver, to, t0, t))
             totals[0] += new.iterations[0]
             totals[1] += new.iterations[1]
             totals[2] += new.iterations[2]
@@ -271,14 +293,14 @@ class Contact:
         if warm is None:
             cphys.t = 0.0
             cphys.commit(cphys.positions(state.z))
-            history.append(self._step(0.0, *self._forces(cphys, solver, state)))
+            history.append(self._step(0.0, *self._forces(cphys, solver, state, figures=False)))
             t, dt0 = 0.0, 1.0 / self.steps(obstacles)
             dt = dt0
             while t < 1.0:
                 t1 = min(1.0, t + dt)
                 cphys.t = t1
                 try:
-                    state = run(t1, state, STEP_HALVINGS)
+                    state = run(t1, state, STEP_HALVINGS, t)
                 except _LoadingBound as exc:
                     raise ConvergenceError(exc.stopped, exc.advice, exc.state) from None
                 except ConvergenceError as exc:
@@ -288,7 +310,7 @@ class Contact:
                     continue
                 t = t1
                 if t < 1.0:  # the forces before the anchors move (at the end: after the updates, below)
-                    history.append(self._step(t, *self._forces(cphys, solver, state)))
+                    history.append(self._step(t, *self._forces(cphys, solver, state, figures=False)))
                 cphys.commit(cphys.positions(state.z))
                 dt = min(dt0, 2.0 * dt)
         else:
