@@ -194,7 +194,8 @@ class Contact:
     @staticmethod
     def _load_rate(cphys: ContactPhysics, solver, state, t0: float, t1: float) -> np.ndarray | None:
         """The first-order change of the free residual at ``state`` (solved with the parts at load fraction ``t0``) as
-        they move on to ``t1``, for the step's predictor; None if they stay."""
+        they move on to ``t1``, for the step's predictor; None if they stay.
+        """
         shifts = np.array([obs.at(t1) - obs.at(t0) for obs in cphys.obstacles])
         if not shifts.any():
             return None
