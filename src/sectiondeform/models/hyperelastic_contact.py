@@ -223,8 +223,8 @@ class Contact:
         return contact_figures(cphys, cphys.positions(state.z), self.names, self.ring, self.radius, contact), support
 
     def _step(self, t: float, forces, support) -> HistoryStep:
-        """The history's step at ``t``: each part's force (or :class:`PartContact`) and the support's."""
-        out = {name: getattr(force, "force", force) for name, force in zip(self.names, forces)}
+        """The history's step at ``t``: each part's force and the support's."""
+        out = dict(zip(self.names, forces))
         out["support"] = support
         return HistoryStep(float(t), out)
 
@@ -248,6 +248,8 @@ class Contact:
             the same ``travels``): the parts are then at their end from the
             start.
         travels : sequence of (float, float), optional
+            Each part's travel, units, if not the problem's
+            (:meth:`obstacles_for`).
 
         Returns
         -------
@@ -326,7 +328,7 @@ class Contact:
             cphys.update(x)
             state = run(1.0, state)
         parts, support = self._forces(cphys, solver, state)
-        history.append(self._step(1.0, parts, support))
+        history.append(self._step(1.0, [p.force for p in parts], support))
         warnings = []
         if left > PENETRATION_WARNING:
             warnings.append(f"contact: a penetration of {left:.3g} element sizes is left after {MAX_UPDATES} "
