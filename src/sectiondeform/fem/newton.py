@@ -383,7 +383,7 @@ class NewtonSolver:
         return self._state(state.z[self.pattern.free] + dz, xd, state.z)
 
     def solve(self, start: State, xd: np.ndarray, lz: float, modified: bool = True, halvings: int | None = None,
-              load: np.ndarray | None = None) -> State:
+              load: np.ndarray | None = None, budget: int | None = None) -> State:
         """Equilibrium for the prescribed ``xd`` and ``lz``, continuing from ``start``.
 
         Parameters
@@ -405,6 +405,10 @@ class NewtonSolver:
             The first-order change of the free residual over the whole path
             from anything else that moves along it (the parts of a contact
             loading), for the predictor of each load step (its share).
+        budget : int, optional
+            At most this many Newton iterations (fewer than the solve's own
+            bound, :func:`~sectiondeform.limits.newton_budget`: what a
+            caller's own bound leaves).
 
         Returns
         -------
@@ -423,7 +427,7 @@ class NewtonSolver:
         total = [0, 0]
         steps = 0
         unknowns = len(self.pattern.free)
-        budget = newton_budget(unknowns)
+        budget = newton_budget(unknowns) if budget is None else min(budget, newton_budget(unknowns))
         used = 0
         while t < 1.0:
             if used >= budget:

@@ -278,16 +278,25 @@ class Contact:
         first = solver.factorisations
         allowed = work_budget(unknowns)
 
+        def bound(t, to) -> _LoadingBound:
+            return _LoadingBound(
+                f"contact: the loading took {solver.factorisations - first} factorisations of {unknowns} unknowns, "
+                f"{t:.3g} of the way, beyond its bound of {allowed} at this size ({MAX_SOLVE_WORK:.3g} factorisations x "
+                "unknowns^1.5)", "the parts' travel is too severe for these bodies and this mesh (a shorter travel, "
+                "a stiffer rubber, or fewer elements through the thickness, options.elements_through_thickness)", to)
+
         def run(t, to, halvings=None, t0=None):
             done = solver.factorisations - first
-            if done > allowed:  # checked before each solve: the loading's work is bounded
-                raise _LoadingBound(
-                    f"contact: the loading took {done} factorisations of {unknowns} unknowns, {t:.3g} of the "
-                    f"way, beyond its bound of {allowed} at this size ({MAX_SOLVE_WORK:.3g} factorisations x "
-                    "unknowns^1.5)", "the parts' travel is too severe for these bodies and this mesh (a shorter travel, "
-                    "a stiffer rubber, or fewer elements through the thickness, options.elements_through_thickness)", to)
-            new = solver.solve(to, xd0 + t * (xd - xd0), math.exp(ln0 + t * (ln1 - ln0)), halvings=halvings,
-                               load=None if t0 is None else self._load_rate(cphys, solver, to, t0, t))
+            if done > allowed:  # checked before each solve, and each solve takes no more than is left
+                raise bound(t, to)
+            try:
+                new = solver.solve(to, xd0 + t * (xd - xd0), math.exp(ln0 + t * (ln1 - ln0)), halvings=halvings,
+                                   load=None if t0 is None else self._load_rate(cphys, solver, to, t0, t),
+                                   budget=allowed + 1 - done)
+            except ConvergenceError:
+                if solver.factorisations - first >= allowed:  # stopped by what the loading had left
+                    raise bound(t, to) from None
+                raise
             totals[0] += new.iterations[0]
             totals[1] += new.iterations[1]
             totals[2] += new.iterations[2]
