@@ -66,6 +66,9 @@ def main(argv=None) -> int:
                         help="also run a generated fit, sweep, export-fe or convert every N-th input (0: never; default 20)")
     parser.add_argument("--only-commands", action="store_true",
                         help="draw only command runs (fit, sweep, export-fe, convert): --count of them")
+    parser.add_argument("--refusals", action="store_true",
+                        help="draw only undamaged assemblies for the hyperelastic model (--count of them) and count "
+                             "how each ends: answered, or refused, and whether the refusal names a physical reason")
     parser.add_argument("--limit", type=float, default=TIME_LIMIT_S, help=f"seconds per input (default {TIME_LIMIT_S:g})")
     parser.add_argument("--max-minutes", type=float, default=None,
                         help="stop drawing new inputs after this many minutes (the summary says how many ran)")
@@ -73,6 +76,8 @@ def main(argv=None) -> int:
                         help="folder for the failing inputs (default ./fuzz-failures)")
     args = parser.parse_args(argv)
 
+    if args.refusals:
+        return refusals(args.count, args.seed, args.limit)
     counts: collections.Counter[str] = collections.Counter()
     by_model: dict[str, collections.Counter[str]] = collections.defaultdict(collections.Counter)
     newton = collections.Counter()  # hyperelastic assemblies without damage: answered, Newton refusals
@@ -117,13 +122,7 @@ def main(argv=None) -> int:
         seconds.append(outcome.seconds)
         record(case, outcome, "api v2" if pick < share else "api")
         if pick < share and case.get("options", {}).get("model") == "hyperelastic" and case.get("name") == "fuzz-assembly":
-            unstable = "is unstable" in outcome.detail
-            named = "at the last equilibrium reached, " in outcome.detail  # a body folded, crushed... (fem/diagnosis.py)
-            stopped = not unstable and ("Newton stopped" in outcome.detail or "did not converge" in outcome.detail
-                                        or "the loading took" in outcome.detail)
-            newton["answered" if outcome.kind == "ok" else "unstable material (named)" if unstable
-                   else "no equilibrium reached, physical state named" if named
-                   else "Newton stopped / did not converge / loading bound" if stopped else f"other {outcome.kind}"] += 1
+            newton[refusal_class(outcome)] += 1
         if args.commands_every and n[0] % args.commands_every == 0:
             with tempfile.TemporaryDirectory() as folder:
                 record(command, outcome_command_run(command, Path(folder), args.limit), f"cmd {command['command']}")
@@ -153,6 +152,45 @@ def main(argv=None) -> int:
         print(f"  {value:6d}  ({100 * value / total:.1f} %)  {key}")
     print(f"failures: {len(failures)}" + (f", saved in {args.failures}" if failures else ""))
     return 1 if failures else 0
+
+
+def refusal_class(outcome) -> str:
+    """How a hyperelastic solve ended: answered, a refusal naming a physical reason, a convergence refusal without one,
+    or the kind of another refusal (geometry, mesh: the input itself).
+    """
+    detail = outcome.detail
+    if outcome.kind == "ok":
+        return "answered"
+    if "is unstable" in detail:
+        return "no equilibrium: an unstable rubber named"
+    if "at the last equilibrium reached, " in detail:
+        return "no equilibrium: the physical state named (fem/diagnosis.py)"
+    if "Newton stopped" in detail or "did not converge" in detail or "the loading took" in detail:
+        return "convergence refusal, no physical reason named"
+    return outcome.kind
+
+
+def refusals(count: int, seed_: int, limit: float) -> int:
+    """Issue 25's count: undamaged generated assemblies and bodies of revolution, hyperelastic, by how they end."""
+    classes: collections.Counter[str] = collections.Counter()
+    slowest = [0.0]
+
+    @seed(seed_)
+    @settings(max_examples=count, database=None, deadline=None, phases=[Phase.generate],
+              suppress_health_check=list(HealthCheck))
+    @given(case=assemblies(damage=0.0, models=("hyperelastic",)))
+    def run(case):
+        outcome = outcome_api(case, limit)
+        slowest[0] = max(slowest[0], outcome.seconds)
+        classes[refusal_class(outcome)] += 1
+
+    run()
+    total = sum(classes.values())
+    print(f"hyperelastic model, {total} undamaged generated assemblies and bodies of revolution (seed {seed_}), "
+          f"slowest {slowest[0]:.1f} s of CPU:")
+    for key, value in classes.most_common():
+        print(f"  {value:6d}  ({100 * value / total:5.1f} %)  {key}")
+    return 1 if any(k.startswith("failure") for k in classes) else 0
 
 
 if __name__ == "__main__":
