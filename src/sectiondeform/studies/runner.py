@@ -74,19 +74,18 @@ def _kept(key, build):
     return _SECTIONS[key]
 
 
-def _with_rigid(problem, row: Row):
-    """The problem with every rigid part's travel scaled from the same start and its friction set, as the row asks."""
-    if row.travel_scale is None and row.friction is None:
+def _with_friction(problem, row: Row):
+    """The problem with every rigid part's friction set, as the row asks."""
+    if row.friction is None:
         return problem
-    parts = []
-    for part in problem.rigid:
-        contour, travel = part.contour, part.travel
-        if row.travel_scale is not None:
-            shift = (row.travel_scale - 1.0) * np.asarray(part.travel)
-            contour, travel = contour.transformed(np.eye(2), shift), tuple(row.travel_scale * np.asarray(part.travel))
-        parts.append(dataclasses.replace(part, contour=contour, travel=travel,
-                                         friction=part.friction if row.friction is None else row.friction))
-    return problem.replace(rigid=tuple(parts))
+    return problem.replace(rigid=tuple(dataclasses.replace(part, friction=row.friction) for part in problem.rigid))
+
+
+def _travels(row: Row, problem) -> list | None:
+    """Every rigid part's travel scaled from the same start, as the row asks (None: the case's)."""
+    if row.travel_scale is None:
+        return None
+    return [tuple(row.travel_scale * np.asarray(part.travel, dtype=np.float64)) for part in problem.rigid]
 
 
 def _contact(result) -> str | None:
@@ -101,7 +100,7 @@ def _contact(result) -> str | None:
 
 def _section(row: Row):
     """The case's own section prepared for ``row``'s model and element size (a Deformer, or the exception)."""
-    return _kept((row.section_key, None), lambda: Deformer(_with_rigid(load_case(row.case_path), row), model=row.model,
+    return _kept((row.section_key, None), lambda: Deformer(_with_friction(load_case(row.case_path), row), model=row.model,
                                                            element_size=row.element_size))
 
 
@@ -114,9 +113,9 @@ def _sampling(stack: Stack) -> bytes:
 def row_deformer(row: Row, deformer: Deformer, target, law) -> Deformer:
     """A deformer of ``row``'s own problem (the case with ``target`` and ``law``), prepared only when needed.
 
-    ``deformer.deform()`` of the returned one is what
-    ``deform(problem, row.model, row.element_size)`` gives for the row's
-    problem: the row's sections are built (cheap) and, when they come out
+    ``deformer.deform(travel=...)`` of the returned one (the row's
+    travels) is what ``deform(problem, row.model, row.element_size)`` gives
+    for the row's problem: the row's sections are built (cheap) and, when they come out
     sampled as a kept prepared section's, that one is reused with the row's
     problem; otherwise the row's problem is prepared (and kept).
     """
@@ -227,7 +226,7 @@ def run_row(row: Row, deformer, save: str = "none", outdir: str | None = None) -
             base = transformed_target(base if base is not None else deformer.problem.target, **amounts)
         deformer = row_deformer(row, deformer, base, None if row.area_ratio is None else AreaRatio(row.area_ratio))
         rec["prepare_s"] = deformer.prepare_seconds
-        result = deformer.deform()
+        result = deformer.deform(travel=_travels(row, deformer.problem))
         rec.update(ok=True, **_figures(result), rigid=_contact(result), warnings=list(result.warnings),
                    place_s=result.timings.get("place_s"))
         if row.reference_path is not None:

@@ -92,8 +92,12 @@ class Row:
 
     @property
     def section_key(self) -> tuple:
-        """Rows with the same key share one prepared section: (case file, model, element size, rigid parts' changes)."""
-        return (self.case_path, self.model, self.element_size, self.travel_scale, self.friction)
+        """Rows with the same key share one prepared section: (case file, model, element size, rigid parts' friction).
+
+        The travel is not in it: a row's travel is an argument of its
+        deformation (:meth:`~sectiondeform.deform.Deformer.deform`'s ``travel``).
+        """
+        return (self.case_path, self.model, self.element_size, self.friction)
 
     def inputs(self) -> dict:
         """The row's inputs as the table records them."""
