@@ -450,10 +450,14 @@ class ContactPhysics:
 
     def contact_residual(self, x: np.ndarray, contact: list | None = None) -> np.ndarray:
         """The contact terms of the position residual, ``(2 N,)`` (``contact``: :meth:`evaluate` at ``x``, if known)."""
+        contact = self.evaluate(x) if contact is None else contact
+        return self._assembled([(idx, _traction(self, k, idx, p, n, s)) for k, (idx, p, n, _, s, _) in enumerate(contact)])
+
+    def _assembled(self, tractions) -> np.ndarray:
+        """``−∫ t N_a ds0`` at the nodes, ``(2 N,)``, from ``(idx, t)`` pairs: tractions ``(m, 2)`` at boundary points ``idx``."""
         b = self.boundary
         r = np.zeros((self._inner.n_nodes, 2))
-        for k, (idx, p, n, _, s, _) in enumerate(self.evaluate(x) if contact is None else contact):
-            traction = _traction(self, k, idx, p, n, s)
+        for idx, traction in tractions:
             force = -b.weight[idx][:, None, None] * b.shape[idx][:, :, None] * traction[:, None, :]  # (m, 3, 2)
             np.add.at(r, b.nodes[idx], force)
         return r.ravel()
@@ -466,13 +470,9 @@ class ContactPhysics:
         contact at ``x`` stays out (first order), and the tangential force
         is held.
         """
-        b = self.boundary
-        r = np.zeros((self._inner.n_nodes, 2))
-        for k, (idx, _, n, _, _, slope) in enumerate(self.evaluate(x)):
-            dp = slope * b.penalty[idx] * (n @ np.asarray(shifts[k], dtype=np.float64))
-            force = -b.weight[idx][:, None, None] * b.shape[idx][:, :, None] * (dp[:, None] * n)[:, None, :]
-            np.add.at(r, b.nodes[idx], force)
-        return r.ravel()
+        penalty = self.boundary.penalty
+        return self._assembled([(idx, (slope * penalty[idx] * (n @ np.asarray(shift, dtype=np.float64)))[:, None] * n)
+                                for (idx, _, n, _, _, slope), shift in zip(self.evaluate(x), shifts)])
 
     def residual(self, f) -> np.ndarray:
         r = self._inner.residual(f)

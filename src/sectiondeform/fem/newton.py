@@ -291,10 +291,6 @@ class NewtonSolver:
     def _merit(self, r: np.ndarray) -> float:
         return float(np.linalg.norm(r * self.row_scale))
 
-    def _merit_of(self, z: np.ndarray, lz: float) -> float:
-        """The residual's norm at ``z`` (infinite if a point is inverted there)."""
-        r, _ = self.residual(z, lz)
-        return math.inf if r is None else self._merit(r)
 
     def _state(self, z_free: np.ndarray, xd: np.ndarray, template: np.ndarray) -> np.ndarray:
         z = template.copy()
@@ -320,10 +316,10 @@ class NewtonSolver:
         """
         return self._correct(z, lz, tangent, max_iter)[0]
 
-    def _correct(self, z: np.ndarray, lz: float, tangent: Tangent | None, max_iter: int):
-        """:meth:`correct`, and the number of iterations it ran."""
+    def _correct(self, z: np.ndarray, lz: float, tangent: Tangent | None, max_iter: int, at=None):
+        """:meth:`correct`, and the number of iterations it ran (``at``: the residual and fields at ``z``, if known)."""
         free = self.pattern.free
-        r, f = self.residual(z, lz)
+        r, f = self.residual(z, lz) if at is None else at
         if r is None:
             return None, 0
         merit = self._merit(r)
@@ -442,11 +438,13 @@ class NewtonSolver:
             t1 = min(1.0, t + dt)
             xd_t = xd0 + t1 * (xd - xd0)
             lz_t = float(np.exp(lnl0 + t1 * (lnl1 - lnl0)))
-            z = self.predict(state, xd_t, lz_t)
+            z, at = self.predict(state, xd_t, lz_t), None
             if load is not None:  # with the other loads' first-order response, if that leaves less residual
                 zl = self.predict(state, xd_t, lz_t, load=(t1 - t) * load)
-                z = zl if self._merit_of(zl, lz_t) < self._merit_of(z, lz_t) else z
-            new, ran = self._correct(z, lz_t, state.tangent if modified else None, min(MAX_ITERATIONS, budget - used))
+                at, at_l = self.residual(z, lz_t), self.residual(zl, lz_t)
+                if at_l[0] is not None and (at[0] is None or self._merit(at_l[0]) < self._merit(at[0])):
+                    z, at = zl, at_l
+            new, ran = self._correct(z, lz_t, state.tangent if modified else None, min(MAX_ITERATIONS, budget - used), at)
             used += 1 + ran  # the predictor counts as one
             if new is None:
                 dt *= 0.5

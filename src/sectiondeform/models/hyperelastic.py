@@ -530,7 +530,7 @@ class HyperelasticPrepared(Prepared):
         xd = curve.at_fractions(self.fixed_fractions)
         guess = self.stretches_of(laws)
         if self.contact is not None and start is not None and start.contact is not None and \
-                start.contact.travels != self.contact.travels_of(self.contact.obstacles_for(travels)):
+                self.contact.end_shifts(start.contact, travels).any():
             start = None  # the parts moved: loaded again from where they start (a result independent of the path)
         base = self._base(xd, start, guess, drawn=self.contact is not None)
         stretches = start.stretches if start is not None and base is start.state else guess

@@ -157,6 +157,11 @@ class Contact:
         """Each part's travel, ``((dx, dy), ...)``, units."""
         return tuple((float(o.travel[0]), float(o.travel[1])) for o in obstacles)
 
+    def end_shifts(self, warm: ContactState, travels=None) -> np.ndarray:
+        """How far each part's end moves from where ``warm`` was solved to ``travels`` (None: the problem's), ``(K, 2)``."""
+        now = self.travels_of(self.obstacles) if travels is None else travels
+        return np.asarray(now, dtype=np.float64) - np.asarray(warm.travels, dtype=np.float64)
+
     def steps(self, obstacles) -> int:
         """Load steps moving each of ``obstacles`` by at most :data:`STEP_FRACTION` of the smallest element size."""
         travel = max(float(np.hypot(*obs.travel)) for obs in obstacles)
@@ -178,13 +183,13 @@ class Contact:
         contact set is ``state``'s, so a point the parts reach only now
         does not push back yet (the full solve on release does).
         """
-        new, old = self.obstacles_for(travels), self.obstacles_for(warm.travels)
-        shifts = np.array([a.travel - b.travel for a, b in zip(new, old)])
+        shifts = self.end_shifts(warm, travels)
         if not shifts.any():
             return z
         n = physics.n_nodes
         x = state.z[: 2 * n].reshape(n, 2)
         change = np.zeros(len(z))
+        old = self.obstacles_for(warm.travels)
         change[: 2 * n] = self.physics(physics, warm.lam, warm.anchor, old).residual_rate(x, shifts)
         free = solver.pattern.free
         out = z.copy()
