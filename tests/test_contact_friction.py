@@ -91,8 +91,10 @@ def test_the_bumper_slides_fully_under_low_friction():
     assert abs(-fx / fy - 0.1) < 2e-3
 
 
-def test_the_friction_tangent_is_the_derivative_of_the_residual():
-    d = sd.Deformer(case_from_dict(_block(0.3)))
+@pytest.mark.parametrize("friction", [0.0, 0.3])
+def test_the_contact_tangent_is_the_derivative_of_the_residual(friction):
+    """Normal and friction stiffness alike, the coupling of neighbouring edges through a node's pressure included."""
+    d = sd.Deformer(case_from_dict(_block(friction)))
     prepared = d.prepared
     physics = prepared.contact.physics(prepared.physics)
     physics.t = 0.5
@@ -108,8 +110,8 @@ def test_the_friction_tangent_is_the_derivative_of_the_residual():
     f = physics.fields(z, 1.0)
     touching = physics.evaluate(moved)[0][0]
     assert len(touching) > 10  # in contact, some sticking and some sliding
-    pattern = Pattern(prepared.physics.edofs, len(z), np.array([], dtype=np.int64))
-    k = pattern.matrix_ff(physics.element_matrices(f))
+    pattern = Pattern(prepared.physics.edofs, len(z), np.array([], dtype=np.int64), coupling=prepared.boundary.pair_dofs)
+    k = pattern.matrix_ff(physics.element_matrices(f), physics.coupling_matrices(f))
     rng = np.random.default_rng(0)
     for _ in range(3):
         v = np.zeros_like(z)

@@ -1,30 +1,46 @@
-r"""Frictionless contact of the bodies' free boundary with rigid parts: penalty with augmented-Lagrangian updates.
+r"""Contact of the bodies' free boundary with rigid parts: nodal pressures on weighted penetrations (mortar), penalty with augmented-Lagrangian updates.
 
-The method (as FElupe's rigid-obstacle contact and the penalty contact of
-CalculiX, with Uzawa's augmented-Lagrangian updates; the semismooth active
-set of Hüeber, Stadler and Wohlmuth 2008 was the other choice, but it adds
-multiplier unknowns and changes the sparse pattern with the active set):
+The method (the segment-to-rigid mortar of Puso and Laursen, and of
+Popp, Wohlmuth and Wall for quadratic elements, with the penalty and
+Uzawa's augmented-Lagrangian updates of FElupe's rigid-obstacle contact and
+CalculiX; the semismooth active set of Hüeber, Stadler and Wohlmuth 2008
+was the other choice, but it adds multiplier unknowns and changes the
+sparse pattern with the active set):
 
-* the contact is integrated at Gauss points of the mesh's free boundary
-  edges (quadratic, isoparametric: :data:`GAUSS` points per edge, in the
-  reference configuration), not at its nodes;
-* at each point ``x``, for each rigid part (a closed polygon at its current
-  position), the signed penetration ``g`` (the distance to the part's
-  outline, positive inside) and the part's outward normal ``n`` at the
-  closest point; the pressure per reference length
-  ``p = max(0, λ + ε g)``; the energy ``∫ (max(0, λ + ε g)² − λ²) / (2 ε) ds0``
-  gives the residual ``R_a = −∫ p n N_a ds0`` and the tangent
-  ``K_ab = ∫ [p > 0] ε n nᵀ N_a N_b ds0`` (the curvature term of a vertex
-  of the outline left out: a quasi-Newton tangent there);
+* each node ``v`` of the free boundary's quadratic edges (corners and
+  mid-edge nodes) carries a pressure per reference length ``P_v``; the
+  pressure along an edge is linear on each of its halves between them
+  (hat functions ``ψ_v``, :data:`_PSI`);
+* the penetration ``g`` (the distance to the part's outline, positive
+  inside) and the part's outward normal ``n`` at the closest point are
+  taken at :data:`GAUSS` Gauss points per edge (in the reference
+  configuration); a node's *weighted penetration* is their average with
+  its hat, ``ĝ_v = ∫ ψ_v g ds0 / D_v``, ``D_v = ∫ ψ_v ds0``;
+* ``P_v = max(0, λ_v + ε_v ĝ_v)`` (the ramp rounded by :data:`SMOOTHING`);
+  the energy ``Σ_v D_v (max(0, λ_v + ε ĝ_v)² − λ_v²) / (2 ε)`` gives the
+  residual ``R_a = −∫ p n N_a ds0`` (``p = Σ P_v ψ_v``) and the tangent
+  ``Σ_v ε_v ramp′_v / D_v a_v a_vᵀ``, ``a_v = ∫ ψ_v n N ds0`` (the
+  curvature of the outline left out: a quasi-Newton tangent there);
 * ``ε = PENALTY μ / h``, ``μ`` the shear modulus of the edge's body and
-  ``h`` its element size; after a solve ``λ ← p`` (an Uzawa update) and
-  the solve is repeated until the largest penetration is at most
-  :data:`PENETRATION_FRACTION` of the element size;
-* an edge's three nodes belong to one cell, so the contact tangent adds to
-  that cell's element matrix: the sparse pattern is the one without contact.
+  ``h`` its element size; after a solve ``λ ← P`` (an Uzawa update) and
+  the solve is repeated until the largest weighted penetration is at
+  most :data:`PENETRATION_FRACTION` of the element size;
+* a mid-edge node's hat lies within its edge's cell; a corner's spans the
+  two edges meeting there, which belong to two cells: the sparse pattern
+  gains those pairs of edges once (:attr:`Boundary.pair_dofs`,
+  :meth:`ContactPhysics.coupling_matrices`), whatever is in contact.
+
+Why not pointwise: a penalty at each Gauss point constrains four points
+per edge where a quadratic edge has two nodes' worth of freedom; the
+pressure then alternates from point to point, some points inside the
+contact let go, and a plane Hertz contact came out 39 % narrow with twice
+the peak. With one constraint per node the edge still lies on the part,
+and what alternates from a corner to a mid-edge node is removed from the
+pressure reported by projecting it on the corners' coarser hats
+(:func:`_corner_pressure`); its integral, the force, is unchanged.
 
 Coulomb friction (a part's ``friction`` μ_f > 0) is a regularised
-tangential penalty at the same Gauss points: each point has an anchor, the
+tangential penalty at the Gauss points: each point has an anchor, the
 place along the part's outline (arc length ``s_a``) it is held to; with
 ``d = s − s_a`` (``s`` the point's closest place on the outline) the
 tangential force per reference length is
@@ -39,8 +55,9 @@ continuous slope. A stick/slip switch (``q = −ε_t d`` capped at ``μ_f p``)
 makes Newton cycle where a point sits at the switch, or where a point just
 touching (``p`` ≈ 0) slips back and forth about its anchor; this law has
 neither. The force on the body is ``p n + q τ`` (``τ`` the outline's
-tangent); the tangent gains ``−(∂q/∂d / ε) τ τᵀ + (∂q/∂p) ramp′ τ nᵀ``
-(not symmetric; the pattern is the same). The anchors are history:
+tangent, ``p`` the pressure there from its nodes'); the tangent gains the
+slip's ``−(∂q/∂d / ε) τ τᵀ`` at each point and the pressure's share
+through ``q`` at each node (not symmetric; the pattern is the same). The anchors are history:
 :meth:`ContactPhysics.commit` drags them after each converged load step so
 that no point is more than 1.5 δ from its anchor (the force unchanged), so
 a reversed slip turns the force round after a motion of 3 δ. With μ_f = 0
@@ -48,7 +65,8 @@ none of this is computed: the frictionless result, exactly.
 
 For a body of revolution every integral is per radian, weighted by the
 initial distance from the axis (as :mod:`~sectiondeform.fem.axisymmetric`);
-the forces reported are the whole ring's, 2π times.
+the forces reported are the whole ring's, 2π times. An edge lying on the
+axis is no surface of the solid and is not part of the boundary.
 """
 
 from __future__ import annotations
@@ -56,14 +74,15 @@ from __future__ import annotations
 import copy
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["Boundary", "Obstacle", "ContactPhysics", "PartContact", "free_boundary", "contact_figures", "part_forces",
+__all__ = ["Boundary", "Obstacle", "ContactPhysics", "Touch", "PartContact", "free_boundary", "contact_figures", "part_forces",
            "GAUSS", "PENALTY", "PENETRATION_FRACTION", "TANGENT_PENALTY"]
 
 GAUSS = 4
-"""Gauss points per boundary edge."""
+"""Gauss points per boundary edge: two on each half, where the pressure is linear (exact for cubics there)."""
 PENALTY = 1000.0
 """The penalty ε in units of the body's shear modulus over its element size."""
 PENETRATION_FRACTION = 1e-3
@@ -99,17 +118,28 @@ def ramp(u: np.ndarray, c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     slope = np.where(mid, (u + c) / (2.0 * c), slope)
     return p, slope
 
-_GX, _GW = np.polynomial.legendre.leggauss(GAUSS)
-_S = 0.5 * (_GX + 1.0)  # Gauss points on [0, 1]
-_W = 0.5 * _GW
+_GX, _GW = np.polynomial.legendre.leggauss(GAUSS // 2)
+_S = np.concatenate((0.25 * (_GX + 1.0), 0.5 + 0.25 * (_GX + 1.0)))  # Gauss points on [0, 1/2] and [1/2, 1]
+_W = np.concatenate((0.25 * _GW, 0.25 * _GW))
 _N = np.stack(((1 - _S) * (1 - 2 * _S), _S * (2 * _S - 1), 4 * _S * (1 - _S)), axis=1)  # (g, 3): corner a, corner b, mid
 _DN = np.stack((4 * _S - 3, 4 * _S - 1, 4 - 8 * _S), axis=1)
-_EDGES = np.array([[0, 1, 3], [1, 2, 4], [2, 0, 5]])  # a cell's edges: corner, corner, mid (counter-clockwise)
+_PSI = np.column_stack((np.maximum(1.0 - 2.0 * _S, 0.0), np.maximum(2.0 * _S - 1.0, 0.0), 1.0 - np.abs(2.0 * _S - 1.0)))
+"""(g, 3): the pressure's hat functions at the Gauss points, linear on each half of an edge (corner a, corner b, mid)."""
+_EDGES = np.array([[0, 1, 3], [1, 2, 4], [2, 0, 5]])
+_FINE_S = np.linspace(0.0, 1.0, 129)
+_FINE = np.stack([np.interp(_FINE_S, _S, np.eye(GAUSS)[i]) for i in range(GAUSS)], axis=1)
+"""(129, g): a quantity at the Gauss points, linear between them (constant beyond), at 129 places along an edge."""  # a cell's edges: corner, corner, mid (counter-clockwise)
 
 
 @dataclass(frozen=True, eq=False)
 class Boundary:
-    """The Gauss points of the bodies' free boundary edges.
+    """The bodies' free boundary edges: their Gauss points, and the nodes carrying the contact pressure.
+
+    Point ``q`` lies on edge ``q // GAUSS``; a *vertex* is a node of a free
+    edge (corner or mid-edge) and carries a pressure, linear on each half
+    edge between nodes (hat ``ψ_v``); its constraint is the penetration
+    averaged with that hat (a weighted gap, as mortar methods have for a
+    rigid obstacle).
 
     Attributes
     ----------
@@ -130,6 +160,21 @@ class Boundary:
         ε at the point: ``PENALTY μ / h`` of the edge's body.
     size : (P,) float64 ndarray
         The edge's body's element size h, units.
+    vertex : (P, 3) int64 ndarray
+        The vertices at the point's edge's nodes (corner, corner, mid-edge).
+    psi : (P, 3) float64 ndarray
+        Their hats at the point (two of them nonzero).
+    vertex_weight : (V,) float64 ndarray
+        ``D_v = Σ w ψ_v`` over the vertex's edges' points, units (units² per radian).
+    vertex_penalty, vertex_size : (V,) float64 ndarray
+        ε and h at the vertex (its edges' values weighted by ``w ψ_v``).
+    vertex_node : (V,) int64 ndarray
+        The mesh node of each vertex.
+    pairs : (Q, 4) int64 ndarray
+        ``[e, j, e', j']``: edges ``e`` and ``e'`` meeting at their corners ``j`` and ``j'`` (0 or 1), one row per
+        vertex two free edges share: the contact's stiffness couples their nodes.
+    pair_dofs : (Q, 12) int64 ndarray
+        The dofs of ``e``'s three nodes, then of ``e'``'s: the sparse pattern's entries the coupling needs.
     """
 
     nodes: np.ndarray
@@ -140,11 +185,39 @@ class Boundary:
     local: np.ndarray
     penalty: np.ndarray
     size: np.ndarray
+    vertex: np.ndarray
+    psi: np.ndarray
+    vertex_weight: np.ndarray
+    vertex_penalty: np.ndarray
+    vertex_size: np.ndarray
+    vertex_node: np.ndarray
+    pairs: np.ndarray
+    pair_dofs: np.ndarray
+
+    @property
+    def edges(self) -> int:
+        """The number of free edges."""
+        return len(self.weight) // GAUSS
+
+
+def _pairs(corner_vertex: np.ndarray) -> np.ndarray:
+    """``[e, j, e', j']`` for every two edges meeting at a vertex (``corner_vertex``: (k, 2) vertex of each edge's corners), ``(Q, 4)``."""
+    v = corner_vertex.ravel()
+    order = np.argsort(v, kind="stable")
+    starts = np.flatnonzero(np.r_[True, v[order][1:] != v[order][:-1]])
+    counts = np.diff(np.r_[starts, len(v)])
+    rows = []
+    for start, count in zip(starts[counts > 1], counts[counts > 1]):
+        inc = order[start:start + count]  # incidences 2 e + j
+        for i in range(count):
+            for k in range(i + 1, count):
+                rows.append((inc[i] // 2, inc[i] % 2, inc[k] // 2, inc[k] % 2))
+    return np.array(rows, dtype=np.int64).reshape(-1, 4)
 
 
 def free_boundary(nodes: np.ndarray, cells: np.ndarray, body: np.ndarray, fixed_nodes: np.ndarray, mu: np.ndarray,
                   size: np.ndarray, radius=None) -> Boundary:
-    """The Gauss points of the mesh's free boundary: edges of one cell only, not bonded to the support.
+    """The mesh's free boundary: edges of one cell only, not bonded to the support.
 
     Parameters
     ----------
@@ -171,6 +244,11 @@ def free_boundary(nodes: np.ndarray, cells: np.ndarray, body: np.ndarray, fixed_
     >>> b = free_boundary(pts, np.arange(6)[None], np.zeros(1, int), np.array([0, 1, 3]), np.ones(1), np.ones(1))
     >>> len(b.weight), round(float(b.weight.sum()), 12) == round(1 + 2 ** 0.5, 12)
     (8, True)
+    >>> # A quarter of an edge at a corner, half at a mid-node; bonded nodes 0 and 1 give theirs to the mid-nodes.
+    >>> b.vertex_node.tolist(), b.vertex_weight.round(4).tolist()
+    ([0, 1, 2, 4, 5], [0.0, 0.0, 0.6036, 1.0607, 0.75])
+    >>> b.pairs.tolist()  # the two free edges meet at node 2: the second's corner 0 and the first's corner 1
+    [[0, 1, 1, 0]]
     """
     corners = cells[:, _EDGES[:, :2]].reshape(-1, 2)
     key = np.sort(corners, axis=1)
@@ -187,11 +265,35 @@ def free_boundary(nodes: np.ndarray, cells: np.ndarray, body: np.ndarray, fixed_
     pts = np.einsum("ga,kai->kgi", _N, xe)
     tang = np.einsum("ga,kai->kgi", _DN, xe)
     w = _W[None] * np.hypot(tang[..., 0], tang[..., 1])
-    if radius is not None:
+    if radius is not None:  # an edge on the axis is no surface of the solid of revolution: dropped
         w = w * radius(pts)
+        r = np.abs(radius(xe))  # (k, 3)
+        on_surface = r.max(axis=1) > 1e-9 * max(float(r.max(initial=0.0)), 1e-300)
+        k, en, xe, w = k[on_surface], en[on_surface], xe[on_surface], w[on_surface]
+        cell = np.repeat(k // 3, GAUSS)
+        local = np.repeat(_EDGES[k % 3], GAUSS, axis=0)
+    w = w.ravel()
     b = body[cell]
-    return Boundary(np.repeat(en, GAUSS, axis=0), np.tile(_N, (len(k), 1)), np.tile(_DN, (len(k), 1)), w.ravel(),
-                    cell, local, PENALTY * mu[b] / size[b], size[b])
+    penalty = PENALTY * mu[b] / size[b]
+    vnodes, vinv = np.unique(en, return_inverse=True)
+    edge_vertex = vinv.reshape(-1, 3)
+    vertex = np.repeat(edge_vertex, GAUSS, axis=0)
+    psi = np.tile(_PSI, (len(k), 1))
+    # A node bonded to the support cannot answer a pressure: its hat goes to the edge's mid-node (as mortar
+    # methods modify the multipliers at the slave surface's boundary), so the pressure stays constant up to it.
+    held = np.repeat(is_fixed[en[:, :2]], GAUSS, axis=0)  # (P, 2)
+    psi[:, 2] += (psi[:, :2] * held).sum(axis=1)
+    psi[:, :2] *= ~held
+    share = (psi * w[:, None]).ravel()
+    vw = np.bincount(vertex.ravel(), weights=share, minlength=len(vnodes))
+    per_vertex = np.where(vw > 0, vw, 1.0)
+    vpen = np.bincount(vertex.ravel(), weights=share * np.repeat(penalty, 3), minlength=len(vnodes)) / per_vertex
+    vsize = np.bincount(vertex.ravel(), weights=share * np.repeat(size[b], 3), minlength=len(vnodes)) / per_vertex
+    pairs = _pairs(edge_vertex[:, :2])
+    edofs = (2 * en[:, :, None] + np.arange(2)).reshape(-1, 6)
+    pair_dofs = np.concatenate((edofs[pairs[:, 0]], edofs[pairs[:, 2]]), axis=1) if len(pairs) else np.zeros((0, 12), np.int64)
+    return Boundary(np.repeat(en, GAUSS, axis=0), np.tile(_N, (len(k), 1)), np.tile(_DN, (len(k), 1)), w,
+                    cell, local, penalty, size[b], vertex, psi, vw, vpen, vsize, vnodes, pairs, pair_dofs)
 
 
 class Obstacle:
@@ -327,8 +429,8 @@ class ContactPhysics:
         The mixed problem (plane or axisymmetric).
     boundary : Boundary
     obstacles : list of Obstacle
-    lam : (K, P) float64 ndarray, optional
-        Multipliers per part and boundary point (pressure per reference length); zeros by default.
+    lam : (K, V) float64 ndarray, optional
+        Multipliers per part and boundary vertex (pressure per reference length); zeros by default.
     anchor : (K, P) float64 ndarray, optional
         Friction's anchors: where along each part's outline (arc length,
         units) each point sticks; NaN where none is set (the point's own
@@ -340,9 +442,11 @@ class ContactPhysics:
         object.__setattr__(self, "boundary", boundary)
         object.__setattr__(self, "obstacles", list(obstacles))
         object.__setattr__(self, "t", 1.0)
-        shape = (len(obstacles), len(boundary.weight))
-        object.__setattr__(self, "lam", np.zeros(shape) if lam is None else np.array(lam, dtype=np.float64))
-        object.__setattr__(self, "anchor", np.full(shape, np.nan) if anchor is None else np.array(anchor, dtype=np.float64))
+        k = len(obstacles)
+        object.__setattr__(self, "lam", np.zeros((k, len(boundary.vertex_weight))) if lam is None
+                           else np.array(lam, dtype=np.float64))
+        object.__setattr__(self, "anchor", np.full((k, len(boundary.weight)), np.nan) if anchor is None
+                           else np.array(anchor, dtype=np.float64))
         object.__setattr__(self, "_cache", [])
         object.__setattr__(self, "_memo", [])
 
@@ -385,18 +489,47 @@ class ContactPhysics:
                 return x
         raise RuntimeError("ContactPhysics: fields of a state not computed here")
 
-    def evaluate(self, x: np.ndarray):
-        """Per part the points in contact: ``(idx, p, n, g, s, slope)`` (pressure per reference length, ``p > 0``)."""
+    def evaluate(self, x: np.ndarray) -> list[Touch]:
+        """Per part, where it presses on the bodies at node positions ``x`` ``(N, 2)``: a :class:`Touch`.
+
+        A vertex's pressure (per reference length) is ``ramp(λ_v + ε_v ĝ_v)``
+        with ``ĝ_v = Σ w ψ_v g / D_v`` the penetration ``g`` of its edges'
+        Gauss points averaged with its linear weight ``ψ_v``; a point's is the
+        linear interpolation of its edge's two corners'.
+        """
         b = self.boundary
         xq = np.einsum("pa,pai->pi", b.shape, x[b.nodes])
         margin = float((self.lam.max(initial=0.0) / b.penalty.min()) + SMOOTHING / PENALTY * b.size.max()) + 1e-9 * (1.0 + float(np.abs(xq).max()))
+        corner = b.vertex[::GAUSS]  # (edges, 2)
         out = []
         for k, obs in enumerate(self.obstacles):
-            idx, g, n, s = obs.query(xq, obs.at(self.t), margin)
-            eps = b.penalty[idx]
-            p, slope = ramp(self.lam[k, idx] + eps * g, SMOOTHING / PENALTY * eps * b.size[idx])
-            on = p > 0
-            out.append((idx[on], p[on], n[on], g[on], s[on], slope[on]))
+            near = obs.query(xq, obs.at(self.t), margin)[0]
+            if not len(near):
+                out.append(_NO_TOUCH)
+                continue
+            candidates = np.zeros(len(b.vertex_weight), bool)
+            candidates[b.vertex[near].ravel()] = True
+            edges = np.flatnonzero(candidates[corner].any(axis=1))  # every edge of a candidate vertex
+            pts = (edges[:, None] * GAUSS + np.arange(GAUSS)).ravel()
+            _, g, n, s = obs.query(xq[pts], obs.at(self.t), np.inf)
+            share = b.psi[pts] * b.weight[pts, None]
+            vs = b.vertex[pts].ravel()
+            seen = np.bincount(vs, weights=share.ravel(), minlength=len(candidates))
+            vidx = np.flatnonzero(seen > 0)  # the candidates, and the far corners of their edges (partial sums)
+            gap = np.bincount(vs, weights=(share * g[:, None]).ravel(), minlength=len(candidates))[vidx] / seen[vidx]
+            eps = b.vertex_penalty[vidx]
+            u = self.lam[k, vidx] + eps * gap
+            vp, vslope = ramp(u, SMOOTHING / PENALTY * eps * b.vertex_size[vidx])
+            vp[~candidates[vidx]] = 0.0  # a far corner: none of its points is near the part
+            vslope[~candidates[vidx]] = 0.0
+            full_p = np.zeros(len(candidates))
+            full_p[vidx] = vp
+            full_s = np.zeros(len(candidates))
+            full_s[vidx] = vslope
+            p = np.einsum("pj,pj->p", b.psi[pts], full_p[b.vertex[pts]])
+            slope = np.einsum("pj,pj->p", b.psi[pts], full_s[b.vertex[pts]])
+            on = np.repeat((full_p[corner[edges]] > 0).any(axis=1), GAUSS)  # whole edges: those with a pressed node
+            out.append(Touch(pts[on], p[on], n[on], g[on], s[on], slope[on], vidx, vp, gap, vslope, u))
         return out
 
     def friction(self, k: int, idx: np.ndarray, p: np.ndarray, s: np.ndarray):
@@ -451,7 +584,7 @@ class ContactPhysics:
     def contact_residual(self, x: np.ndarray, contact: list | None = None) -> np.ndarray:
         """The contact terms of the position residual, ``(2 N,)`` (``contact``: :meth:`evaluate` at ``x``, if known)."""
         contact = self.evaluate(x) if contact is None else contact
-        return self._assembled([(idx, _traction(self, k, idx, p, n, s)) for k, (idx, p, n, _, s, _) in enumerate(contact)])
+        return self._assembled([(idx, _traction(self, k, idx, p, n, s)) for k, (idx, p, n, _, s, *_) in enumerate(contact)])
 
     def _assembled(self, tractions) -> np.ndarray:
         """``−∫ t N_a ds0`` at the nodes, ``(2 N,)``, from ``(idx, t)`` pairs: tractions ``(m, 2)`` at boundary points ``idx``."""
@@ -465,14 +598,24 @@ class ContactPhysics:
     def residual_rate(self, x: np.ndarray, shifts: np.ndarray) -> np.ndarray:
         """The first-order change of the contact residual at ``x`` as the parts move by ``shifts`` ((K, 2), units), ``(2 N,)``.
 
-        At a point in contact the penetration grows by ``n · shift``, so its
-        pressure by ``ramp′ ε n · shift``, along ``n``; a point out of
-        contact at ``x`` stays out (first order), and the tangential force
-        is held.
+        A point's penetration grows by ``n · shift``, so a pressed vertex's
+        weighted one by its average and its pressure by ``ramp′ ε_v`` times
+        that, along each point's ``n``; a vertex not pressed at ``x`` stays
+        so (first order), and the tangential force is held.
         """
-        penalty = self.boundary.penalty
-        return self._assembled([(idx, (slope * penalty[idx] * (n @ np.asarray(shift, dtype=np.float64)))[:, None] * n)
-                                for (idx, _, n, _, _, slope), shift in zip(self.evaluate(x), shifts)])
+        b = self.boundary
+        tractions = []
+        for touch, shift in zip(self.evaluate(x), shifts):
+            idx = touch.idx
+            if not len(idx):
+                continue
+            grow = touch.n @ np.asarray(shift, dtype=np.float64)
+            dgap = _vertex_mean(b, idx, grow, touch.vidx)
+            dp = np.zeros(len(b.vertex_weight))
+            dp[touch.vidx] = touch.vslope * b.vertex_penalty[touch.vidx] * dgap
+            rate = np.einsum("pj,pj->p", b.psi[idx], dp[b.vertex[idx]])
+            tractions.append((idx, rate[:, None] * touch.n))
+        return self._assembled(tractions)
 
     def residual(self, f) -> np.ndarray:
         r = self._inner.residual(f)
@@ -481,26 +624,80 @@ class ContactPhysics:
         return r
 
     def element_matrices(self, f) -> np.ndarray:
+        """The bodies' element matrices with the contact's stiffness within each free edge added, ``(E, k, k)``.
+
+        A node ``v`` carrying the pressure adds ``ε_v ramp′_v / D_v r_v a_vᵀ``:
+        ``a_v = Σ w ψ_v n N`` over its edges' points is the derivative of its
+        weighted penetration (times ``−D_v``), ``r_v = a_v + Σ w ψ_v ∂q/∂p τ N``
+        where the force depends on its pressure (friction's share through
+        ``q``), the curvature of the parts' outlines left out (a quasi-Newton
+        tangent there). Friction's dependence on the slip is pointwise. The
+        products of one edge's parts go to that edge's cell, those of two
+        edges meeting at a corner to :meth:`coupling_matrices`.
+        """
         ke = self._inner.element_matrices(f)
         b = self.boundary
-        for k, (idx, p, n, _, s, slope) in enumerate(self._contact_of(f)):
+        for k, touch in enumerate(self._contact_of(f)):
+            idx = touch.idx
             if not len(idx):
                 continue
-            c = (b.penalty[idx] * b.weight[idx])[:, None, None, None, None]
-            nn = slope[:, None, None] * n[:, :, None] * n[:, None, :]  # (m, 2, 2)
-            if self.obstacles[k].friction > 0:
-                _, dq_dd, dq_dp, _ = self.friction(k, idx, p, s)
-                tau = np.column_stack((-n[:, 1], n[:, 0]))
-                along = (-dq_dd / b.penalty[idx])[:, None, None] * tau[:, :, None] * tau[:, None, :]
-                pressed = (dq_dp * slope)[:, None, None] * tau[:, :, None] * n[:, None, :]
-                nn = nn + along + pressed
-            block = c * b.shape[idx][:, :, None, None, None] * b.shape[idx][:, None, :, None, None] * nn[:, None, None]
-            # block[m, a, c, i, j] -> ke[cell, 2 local_a + i, 2 local_c + j]
-            rows = 2 * b.local[idx][:, :, None, None, None] + np.arange(2)[None, None, None, :, None]
-            cols = 2 * b.local[idx][:, None, :, None, None] + np.arange(2)[None, None, None, None, :]
-            cells = np.broadcast_to(b.cell[idx][:, None, None, None, None], block.shape)
+            edges, a, r, c, along = self._edge_vectors(k, touch)
+            cell, local = b.cell[edges * GAUSS], b.local[edges * GAUSS]  # (e,), (e, 3)
+            block = np.einsum("ej,ejai,ejbl->eaibl", c[b.vertex[edges * GAUSS]], r, a)  # (e, 3, 2, 3, 2)
+            if along is not None:
+                w = (b.penalty[idx] * b.weight[idx])[:, None, None, None, None]
+                pointwise = w * b.shape[idx][:, :, None, None, None] * b.shape[idx][:, None, :, None, None] * along[:, None, None]
+                block = block + pointwise.reshape(len(edges), GAUSS, 3, 3, 2, 2).sum(axis=1).transpose(0, 1, 3, 2, 4)
+            rows = (2 * local[:, :, None] + np.arange(2))[:, :, :, None, None]
+            cols = (2 * local[:, :, None] + np.arange(2))[:, None, None, :, :]
+            cells = np.broadcast_to(cell[:, None, None, None, None], block.shape)
             np.add.at(ke, (cells, np.broadcast_to(rows, block.shape), np.broadcast_to(cols, block.shape)), block)
         return ke
+
+    def coupling_matrices(self, f) -> np.ndarray:
+        """The contact's stiffness between two free edges meeting at a pressed corner, ``(Q, 12, 12)``.
+
+        Row and column order of :attr:`Boundary.pair_dofs`: the first
+        edge's three nodes, then the second's.
+        """
+        b = self.boundary
+        out = np.zeros((len(b.pairs), 12, 12))
+        for k, touch in enumerate(self._contact_of(f)):
+            if not len(touch.idx):
+                continue
+            edges, a, r, c, _ = self._edge_vectors(k, touch)
+            where = np.full(b.edges, -1)
+            where[edges] = np.arange(len(edges))
+            e1, e2 = where[b.pairs[:, 0]], where[b.pairs[:, 2]]
+            q = np.flatnonzero((e1 >= 0) & (e2 >= 0))
+            if not len(q):
+                continue
+            e1, e2, j1, j2 = e1[q], e2[q], b.pairs[q, 1], b.pairs[q, 3]
+            cv = c[b.vertex[edges[e1] * GAUSS, j1]][:, None, None]
+            out[q, :6, 6:] += cv * np.einsum("qai,qbl->qaibl", r[e1, j1], a[e2, j2]).reshape(len(q), 6, 6)
+            out[q, 6:, :6] += cv * np.einsum("qai,qbl->qaibl", r[e2, j2], a[e1, j1]).reshape(len(q), 6, 6)
+        return out
+
+    def _edge_vectors(self, k: int, touch: Touch):
+        """Part ``k``'s pressed edges and their shares of each node's ``a_v`` and ``r_v`` ``(e, 3, 3, 2)``;
+        ``ε_v ramp′_v / D_v`` ``(V,)``; friction's pointwise slip stiffness ``(m, 2, 2)`` (None without friction).
+        """
+        b = self.boundary
+        idx = touch.idx  # whole edges
+        edges = idx[::GAUSS] // GAUSS
+        wpsi = (b.weight[idx, None] * b.psi[idx]).reshape(len(edges), GAUSS, 3)
+        shape = b.shape[idx].reshape(len(edges), GAUSS, 3)
+        a = np.einsum("egj,ega,egi->ejai", wpsi, shape, touch.n.reshape(len(edges), GAUSS, 2))
+        c = np.zeros(len(b.vertex_weight))
+        c[touch.vidx] = touch.vslope * b.vertex_penalty[touch.vidx] / b.vertex_weight[touch.vidx]
+        if self.obstacles[k].friction <= 0:
+            return edges, a, a, c, None
+        n = touch.n
+        _, dq_dd, dq_dp, _ = self.friction(k, idx, touch.p, touch.s)
+        tau = np.column_stack((-n[:, 1], n[:, 0]))
+        r = a + np.einsum("egj,ega,egi->ejai", wpsi, shape, (dq_dp[:, None] * tau).reshape(len(edges), GAUSS, 2))
+        along = (-dq_dd / b.penalty[idx])[:, None, None] * tau[:, :, None] * tau[:, None, :]
+        return edges, a, r, c, along
 
     def commit(self, x: np.ndarray) -> None:
         """Move the friction anchors to the converged state ``x`` (the return mapping's history).
@@ -520,7 +717,7 @@ class ContactPhysics:
                 continue
             near, _, _, s_all = obs.query(xq, obs.at(self.t), 2.0 * float(b.size.max()))
             anchor[k, near] = s_all
-            idx, p, _, _, s, _ = contact[k]
+            idx, p, s = contact[k].idx, contact[k].p, contact[k].s
             if len(idx):
                 d = self.friction(k, idx, p, s)[3]
                 reach = SLIP_MEMORY * self._slip_scale(idx, obs.friction * p)[0]  # q unchanged
@@ -528,23 +725,76 @@ class ContactPhysics:
         object.__setattr__(self, "anchor", anchor)
 
     def update(self, x: np.ndarray) -> float:
-        """Uzawa's update ``λ ← max(0, λ + ε g)`` at ``x``; the largest penetration relative to the element size before it."""
+        """Uzawa's update ``λ ← max(0, λ + ε ĝ)`` at ``x``; the largest penetration relative to the element size before it."""
         lam = np.zeros_like(self.lam)
-        worst = 0.0
-        for k, (idx, p, _, g, _, _) in enumerate(self.evaluate(x)):
-            lam[k, idx] = p
-            if len(idx):
-                worst = max(worst, float((np.maximum(g, 0.0) / self.boundary.size[idx]).max()))
+        contact = self.evaluate(x)
+        for k, touch in enumerate(contact):
+            lam[k, touch.vidx] = touch.vp
         object.__setattr__(self, "lam", lam)
-        return worst
+        return _penetration(self.boundary, contact)
 
     def penetration(self, x: np.ndarray) -> float:
-        """The largest penetration at ``x`` relative to the element size."""
-        worst = 0.0
-        for idx, _, _, g, _, _ in self.evaluate(x):
-            if len(idx):
-                worst = max(worst, float((np.maximum(g, 0.0) / self.boundary.size[idx]).max()))
-        return worst
+        """The largest weighted penetration of a pressed vertex at ``x``, relative to the element size."""
+        return _penetration(self.boundary, self.evaluate(x))
+
+
+class Touch(NamedTuple):
+    """Where one part presses on the bodies: its pressed boundary points and vertices.
+
+    Attributes
+    ----------
+    idx : (m,) int64 ndarray
+        The points of the pressed edges (those with a pressed node), whole edges in order.
+    p : (m,) float64 ndarray
+        Their pressure per reference length (interpolated from the nodes'; 0 on the unpressed half of an edge).
+    n : (m, 2) float64 ndarray
+        The part's outward normal at each point's closest place.
+    g : (m,) float64 ndarray
+        Each point's penetration, units.
+    s : (m,) float64 ndarray
+        Each point's closest place along the part's outline, units.
+    slope : (m,) float64 ndarray
+        The pressure ramp's slope interpolated at each point (friction's tangent).
+    vidx : (a,) int64 ndarray
+        The vertices looked at (corners of edges near the part).
+    vp, vgap, vslope, vu : (a,) float64 ndarray
+        Their pressure per reference length (0 when not pressed), weighted
+        penetration (units), ramp slope, and the ramp's argument ``λ + ε ĝ``.
+    """
+
+    idx: np.ndarray
+    p: np.ndarray
+    n: np.ndarray
+    g: np.ndarray
+    s: np.ndarray
+    slope: np.ndarray
+    vidx: np.ndarray
+    vp: np.ndarray
+    vgap: np.ndarray
+    vslope: np.ndarray
+    vu: np.ndarray
+
+
+_EMPTY = np.zeros(0)
+_NO_TOUCH = Touch(np.zeros(0, np.int64), _EMPTY, np.zeros((0, 2)), _EMPTY, _EMPTY, _EMPTY, np.zeros(0, np.int64),
+                  _EMPTY, _EMPTY, _EMPTY, _EMPTY)
+
+
+def _vertex_mean(b: Boundary, idx: np.ndarray, values: np.ndarray, vidx: np.ndarray) -> np.ndarray:
+    """``Σ w ψ_v value / D_v`` at the vertices ``vidx`` of the point values ``values`` at points ``idx``."""
+    share = b.psi[idx] * (b.weight[idx] * values)[:, None]
+    total = np.bincount(b.vertex[idx].ravel(), weights=share.ravel(), minlength=len(b.vertex_weight))
+    return total[vidx] / b.vertex_weight[vidx]
+
+
+def _penetration(b: Boundary, contact: list) -> float:
+    """The largest weighted penetration of a pressed vertex, relative to its element size."""
+    worst = 0.0
+    for touch in contact:
+        on = touch.vp > 0
+        if on.any():
+            worst = max(worst, float((np.maximum(touch.vgap[on], 0.0) / b.vertex_size[touch.vidx[on]]).max()))
+    return worst
 
 
 @dataclass(frozen=True, eq=False)
@@ -565,7 +815,8 @@ class PartContact:
     penetration_max : float
         The largest penetration left, units.
     pressure : (m, 3) float64 ndarray
-        ``[x, y, p]`` at the contact's Gauss points, in order along the part's outline.
+        ``[x, y, p]`` at the pressed boundary vertices (the corner nodes carrying the pressure), in order along
+        the part's outline.
     outline : (k, 2) float64 ndarray
         The part's outline where it is (for figures; not written to JSON).
     """
@@ -599,7 +850,7 @@ def part_forces(physics: ContactPhysics, contact: list, ring: float = 1.0) -> li
     """Each part's force ``(fx, fy)`` from its contact (:meth:`ContactPhysics.evaluate`), as :func:`contact_figures`."""
     b = physics.boundary
     out = []
-    for k, (idx, p, n, _, s, _) in enumerate(contact):
+    for k, (idx, p, n, _, s, *_) in enumerate(contact):
         force = -ring * b.weight[idx] @ _traction(physics, k, idx, p, n, s) if len(idx) else np.zeros(2)
         out.append((float(force[0]), float(force[1])))
     return out
@@ -628,25 +879,93 @@ def contact_figures(physics: ContactPhysics, x: np.ndarray, names, ring: float =
     b = physics.boundary
     contact = physics.evaluate(x) if contact is None else contact
     out = []
-    for name, obs, force, (idx, p, _, g, s, _) in zip(names, physics.obstacles, part_forces(physics, contact, ring), contact):
-        w = b.weight[idx]
+    for name, obs, force, touch in zip(names, physics.obstacles, part_forces(physics, contact, ring), contact):
+        idx = touch.idx
         xe = x[b.nodes[idx]]
         xq = np.einsum("pa,pai->pi", b.shape[idx], xe)
         tang = np.einsum("pa,pai->pi", b.dshape[idx], xe)
         dl = _W[idx % GAUSS] * np.hypot(tang[:, 0], tang[:, 1])  # the current length of each point's share
         cur = dl * (radius(xq) if radius is not None else 1.0)
-        true = p * w / np.where(cur > 0, cur, np.inf)
-        order = np.argsort(s, kind="stable")
-        length = float(dl.sum())
+        vidx, true = _corner_pressure(b, idx, touch.p, cur)
+        at = x[b.vertex_node[vidx]]
+        order = np.argsort(obs.query(at, obs.at(physics.t), np.inf)[3], kind="stable")
+        length = _contact_length(b, touch, dl)
+        area = float((touch.p * b.weight[idx] * dl / np.where(cur > 0, cur, np.inf)).sum())  # ∫ p dl, current
         out.append(PartContact(
             name=name, force=force, length=length,
             pressure_max=float(true.max(initial=0.0)),
-            pressure_mean=float((true * dl).sum() / length) if length > 0 else 0.0,
-            penetration_max=float(np.maximum(g, 0.0).max(initial=0.0)),
-            pressure=np.column_stack((xq, true))[order],
+            pressure_mean=area / length if length > 0 else 0.0,
+            penetration_max=float(np.maximum(touch.g, 0.0).max(initial=0.0)),
+            pressure=np.column_stack((at, true))[order],
             outline=obs.ring + obs.at(physics.t),
         ))
     return out
+
+
+def _corner_pressure(b: Boundary, idx: np.ndarray, p: np.ndarray, cur: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The pressure at the edges' corners: its projection on the functions linear along each edge, true (per current length).
+
+    The pressure carried by every node of a quadratic edge oscillates from
+    node to node (the price of constraining every node: it keeps the
+    quadratic edge on the part); its L2 projection on the coarser hats of
+    the corners, ``∫ φ_v p ds0 / ∫ φ_v ds0``, removes that and keeps its
+    integral. Converted to the true pressure with the current length
+    (``cur``: each point's current share, times its distance from the axis
+    for a body of revolution) as ``∫ φ_v p ds0 / ∫ φ_v ds``.
+
+    Returns
+    -------
+    vidx : (c,) int64 ndarray
+        The corners with a positive pressure.
+    true : (c,) float64 ndarray
+        Their pressure, units of the moduli.
+    """
+    hat = np.column_stack((1.0 - _S, _S))  # (g, 2): corner a, corner b
+    corners = b.vertex[idx][:, :2]
+    share = np.tile(hat, (len(idx) // GAUSS, 1))
+    n = len(b.vertex_weight)
+    load = np.bincount(corners.ravel(), weights=(share * (b.weight[idx] * p)[:, None]).ravel(), minlength=n)
+    now = np.bincount(corners.ravel(), weights=(share * cur[:, None]).ravel(), minlength=n)
+    vidx = np.flatnonzero(load > 0)
+    return vidx, load[vidx] / now[vidx]
+
+
+def _contact_length(b: Boundary, touch: Touch, dl: np.ndarray) -> float:
+    """The pressed length along the bodies' outline, units (``dl``: the current length of each pressed point's share).
+
+    The outline is cut at the nodes carrying the pressure into segments
+    (half edges). A segment with both ends pressed counts whole. On a
+    segment from a pressed node to one not pressed, the contact runs from
+    the pressed node until the body leaves the part: to the last place
+    where the penetration, linear between the edge's Gauss points, is
+    above ``−PENETRATION_FRACTION h`` (the contact's own tolerance; within a
+    contact the pointwise penetration wavers about 0 by more than that, so
+    the last such place, not the first one below it).
+    """
+    if not len(touch.idx):
+        return 0.0
+    pv = np.zeros(len(b.vertex_weight))
+    pv[touch.vidx] = touch.vp
+    edges = touch.idx[::GAUSS] // GAUSS
+    first = np.where(_S < 0.5, 1.0, np.where(_S == 0.5, 0.5, 0.0))
+    shares = dl.reshape(len(edges), GAUSS)
+    nodes = b.vertex[edges * GAUSS]  # (e, 3): corner a, corner b, mid
+    pressed = pv[nodes] > 0
+    halves = np.stack((shares @ first, shares @ (1.0 - first)), axis=1)  # (e, 2): a-m, m-b
+    whole = np.stack((pressed[:, 0] & pressed[:, 2], pressed[:, 2] & pressed[:, 1]), axis=1)
+    total = float(halves[whole].sum())
+    ends = np.stack((pressed[:, 0] != pressed[:, 2], pressed[:, 2] != pressed[:, 1]), axis=1)
+    if not ends.any():
+        return total
+    gap = (touch.g.reshape(len(edges), GAUSS) @ _FINE.T) / b.size[touch.idx[::GAUSS], None]  # (e, F) along the edge
+    for e, half in zip(*np.nonzero(ends)):
+        grid = _FINE_S <= 0.5 if half == 0 else _FINE_S >= 0.5
+        run = gap[e, grid]  # from node a (or the mid-node) to the mid-node (or node b)
+        outward = pressed[e, 0] if half == 0 else pressed[e, 2]  # the pressed node is the segment's start
+        run = run if outward else run[::-1]
+        on = np.flatnonzero(run >= -PENETRATION_FRACTION)
+        total += float(halves[e, half] * (on[-1] / (len(run) - 1) if len(on) else 0.0))
+    return total
 
 
 def ring_factor(plane: bool) -> float:

@@ -232,6 +232,10 @@ class Pattern:
     order : (f,) int64 ndarray, optional
         Free dofs in the order wanted for the matrix (a fill-reducing order);
         by default increasing.
+    coupling : (Q, m) int64 ndarray, optional
+        Dofs of further blocks that couple dofs of different elements (the
+        contact's between two boundary edges): :meth:`matrices` then takes
+        their ``(Q, m, m)`` matrices too.
 
     Attributes
     ----------
@@ -239,7 +243,8 @@ class Pattern:
         Free dofs in matrix order.
     """
 
-    def __init__(self, edofs: np.ndarray, n_dofs: int, fixed: np.ndarray, order: np.ndarray | None = None):
+    def __init__(self, edofs: np.ndarray, n_dofs: int, fixed: np.ndarray, order: np.ndarray | None = None,
+                 coupling: np.ndarray | None = None):
         self.n_dofs = n_dofs
         self.fixed = np.asarray(fixed, dtype=np.int64)
         is_fixed = np.zeros(n_dofs, bool)
@@ -250,9 +255,13 @@ class Pattern:
         num[free] = np.arange(len(free))
         dnum = np.full(n_dofs, -1)
         dnum[self.fixed] = np.arange(len(self.fixed))
-        k = edofs.shape[1]
-        rows = np.broadcast_to(edofs[:, :, None], (len(edofs), k, k)).ravel()
-        cols = np.broadcast_to(edofs[:, None, :], (len(edofs), k, k)).ravel()
+        self.coupling = None if coupling is None or not len(coupling) else np.asarray(coupling, dtype=np.int64)
+        rows, cols = [], []
+        for dofs in (edofs,) if self.coupling is None else (edofs, self.coupling):
+            k = dofs.shape[1]
+            rows.append(np.broadcast_to(dofs[:, :, None], (len(dofs), k, k)).ravel())
+            cols.append(np.broadcast_to(dofs[:, None, :], (len(dofs), k, k)).ravel())
+        rows, cols = np.concatenate(rows), np.concatenate(cols)
         self._ff = self._block(num[rows], num[cols], len(free), len(free))
         self._fd = self._block(num[rows], dnum[cols], len(free), len(self.fixed))
         self.edofs = edofs
@@ -270,14 +279,21 @@ class Pattern:
         data = np.bincount(inv, weights=flat[keep], minlength=nnz)
         return sp.csc_matrix((data, indices, indptr), shape=shape)
 
-    def matrices(self, ke: np.ndarray) -> tuple[sp.csc_matrix, sp.csc_matrix]:
-        """``(K_ff, K_fd)`` from element matrices ``(E, k, k)``."""
-        flat = ke.ravel()
+    def _flat(self, ke: np.ndarray, kc: np.ndarray | None) -> np.ndarray:
+        if self.coupling is None:
+            return ke.ravel()
+        if kc is None:
+            kc = np.zeros((len(self.coupling), self.coupling.shape[1], self.coupling.shape[1]))
+        return np.concatenate((ke.ravel(), kc.ravel()))
+
+    def matrices(self, ke: np.ndarray, kc: np.ndarray | None = None) -> tuple[sp.csc_matrix, sp.csc_matrix]:
+        """``(K_ff, K_fd)`` from element matrices ``(E, k, k)`` and the coupling's ``(Q, m, m)`` (zeros if None)."""
+        flat = self._flat(ke, kc)
         return self._matrix(self._ff, flat), self._matrix(self._fd, flat)
 
-    def matrix_ff(self, ke: np.ndarray) -> sp.csc_matrix:
+    def matrix_ff(self, ke: np.ndarray, kc: np.ndarray | None = None) -> sp.csc_matrix:
         """``K_ff`` alone."""
-        return self._matrix(self._ff, ke.ravel())
+        return self._matrix(self._ff, self._flat(ke, kc))
 
     def vector(self, re: np.ndarray) -> np.ndarray:
         """Assembled global vector ``(n_dofs,)`` from element vectors ``(E, k)``."""

@@ -267,7 +267,9 @@ class NewtonSolver:
 
     def tangent(self, fields) -> Tangent:
         """Assemble and factorise the tangent for ``fields``."""
-        kff, kfd = self.pattern.matrices(self.physics.element_matrices(fields))
+        coupled = self.pattern.coupling is not None and hasattr(self.physics, "coupling_matrices")
+        kff, kfd = self.pattern.matrices(self.physics.element_matrices(fields),
+                                         self.physics.coupling_matrices(fields) if coupled else None)
         self.factorisations += 1
         reordering = self._reordering
         try:

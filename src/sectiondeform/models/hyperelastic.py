@@ -348,7 +348,13 @@ class HyperelasticPrepared(Prepared):
         n = len(mesh.nodes)
         axis_dofs, self.axis_values, self.axis_vertices = self._on_axis(mesh, ids)
         fixed = np.concatenate(((2 * ids[:, None] + np.arange(2)).ravel(), axis_dofs))
-        pattern = Pattern(self.physics.edofs, 2 * n + mesh.n_pressures, fixed)
+        self.boundary = None
+        if a.rigid:  # the free boundary the parts press on: its pressure couples neighbouring edges' nodes
+            from .hyperelastic_contact import contact_boundary
+
+            self.boundary = contact_boundary(self)
+        pattern = Pattern(self.physics.edofs, 2 * n + mesh.n_pressures, fixed,
+                          coupling=None if self.boundary is None else self.boundary.pair_dofs)
         bounded(len(pattern.free), MAX_FE_UNKNOWNS, "unknowns",  # each factorisation grows faster than the unknowns
                 "lower options.elements_through_thickness, or simplify the bodies' thin or small features", MeshError, "mesh")
         self.solver = NewtonSolver(self.physics, pattern, thickness, options.newton_tolerance)

@@ -35,6 +35,7 @@ from ..errors import ConvergenceError
 from ..fem.contact import (
     MAX_UPDATES,
     PENETRATION_FRACTION,
+    Boundary,
     ContactPhysics,
     Obstacle,
     PartContact,
@@ -45,7 +46,7 @@ from ..fem.contact import (
 )
 from ..limits import MAX_SOLVE_WORK, work_budget
 
-__all__ = ["Contact", "ContactState", "HistoryStep", "PENETRATION_WARNING", "MAX_HALVINGS"]
+__all__ = ["contact_boundary", "Contact", "ContactState", "HistoryStep", "PENETRATION_WARNING", "MAX_HALVINGS"]
 
 PENETRATION_WARNING = 1e-2
 """A penetration left above this fraction of the element size is a warning."""
@@ -116,6 +117,21 @@ class ContactState:
     travels: tuple = ()
 
 
+def _radius(prepared):
+    """The distance from the axis of points ``(..., 2)`` for a body of revolution; None for a plane section."""
+    if prepared.plane:
+        return None
+    physics = prepared.physics
+    return lambda p: (p[..., 0] - physics.origin[0]) * physics.normal[0] + (p[..., 1] - physics.origin[1]) * physics.normal[1]
+
+
+def contact_boundary(prepared) -> Boundary:
+    """The free boundary of a prepared problem's mesh (its physics, support nodes, materials and sizes set)."""
+    mesh = prepared.mesh
+    mu = np.array([m.shear_modulus for m in prepared.materials], dtype=np.float64)
+    return free_boundary(mesh.nodes, mesh.cells, mesh.body, prepared.fixed_ids, mu, prepared.sizes, _radius(prepared))
+
+
 class Contact:
     """The rigid parts of a prepared problem and how to load them.
 
@@ -128,13 +144,9 @@ class Contact:
 
     def __init__(self, prepared):
         problem = prepared.problem
-        mesh = prepared.mesh
-        physics = prepared.physics
         self.plane = prepared.plane
-        self.radius = None if self.plane else (lambda p: (p[..., 0] - physics.origin[0]) * physics.normal[0]
-                                               + (p[..., 1] - physics.origin[1]) * physics.normal[1])
-        mu = np.array([m.shear_modulus for m in prepared.materials], dtype=np.float64)
-        self.boundary = free_boundary(mesh.nodes, mesh.cells, mesh.body, prepared.fixed_ids, mu, prepared.sizes, self.radius)
+        self.radius = _radius(prepared)
+        self.boundary = prepared.boundary
         tol = 1e-6 * problem.size
         self.obstacles = [Obstacle(part.contour.discretise(tol)[0], part.travel, part.friction) for part in problem.rigid]
         self.names = tuple(part.name for part in problem.rigid)
@@ -352,8 +364,11 @@ class Contact:
                 warnings.append(f"{label}: touches no body from start to end; check its contour and travel")
         cphys.commit(x)
         cphys.update(x)  # the multipliers and anchors of this state, for the next warm start
+        # The tangent a preview and the next solve start from: at this state and these multipliers (Newton's last
+        # one may be a step older, and a preview's error is then first order in the parts' move).
+        tangent = solver.tangent(cphys.fields(state.z, state.lz))
         given.assemblies, given.factorisations = solver.assemblies, solver.factorisations  # the work counted as without contact
-        out = type(state)(state.z, state.lz, state.tangent, tuple(totals), None)
+        out = type(state)(state.z, state.lz, tangent, tuple(totals), None)
         return out, ContactState(cphys.lam, tuple(parts), support, tuple(history), tuple(warnings), cphys.anchor,
                                  self.travels_of(obstacles))
 
