@@ -55,8 +55,12 @@ def test_bumper_history_is_a_rising_load_deflection_curve(bumper):
     assert travel[0] == 0.0 and travel[-1] == 1.0 and np.all(np.diff(travel) > 0)
     assert force[0] == 0.0 and np.all(np.diff(force) > 0)
     assert force[-1] == r.rigid[0].force[1]
+    # In balance to Newton's tolerance, which is on the positions (1e-7 of the thickness): through the contact's
+    # stiffness (300 mu / h) that is about 1e-4 of the load at a load step, 1e-6 at the end (after the
+    # augmented-Lagrangian solves).
     for s in r.history:
-        np.testing.assert_allclose(np.add(s.forces["plate"], s.forces["support"]), 0.0, atol=1e-6 * max(1.0, force[-1]))
+        tolerance = 1e-6 if s.travel == 1.0 else 1e-3
+        np.testing.assert_allclose(np.add(s.forces["plate"], s.forces["support"]), 0.0, atol=tolerance * max(1.0, force[-1]))
 
 
 def test_bumper_warm_start_carries_the_contact(bumper):
@@ -249,20 +253,23 @@ def test_a_travel_given_to_deform_is_the_case_with_that_travel_to_the_bit(bumper
 
 
 def test_a_dragged_part_is_previewed_to_first_order(bumper_deformer, bumper):
-    """The preview moves the parts in the linear step: within the start's contact set (the first node not pressed
-    is 0.037 from the plate) it is within 1 % of the move from the full solve, where the start is the whole move
-    away (measured: 0.8 % of the move at 0.02, 0.6 % at 0.005).
-    """
+    """The preview moves the parts in the linear step (and its augmented-Lagrangian updates): within the start's
+    contact set (the first node not pressed is 0.037 from the plate) its error is second order, falling about
+    threefold as the move halves (measured: 0.5 % of the move at 0.02, 0.18 % at 0.005), where the start is the
+    whole move away."""
     start = bumper[1]
     same = bumper_deformer.preview(travel=[(0.0, -1.2)], start=start)
     np.testing.assert_allclose(same.bodies[0].upper, start.bodies[0].upper, atol=1e-12)
+    errors = []
     for move in (0.02, 0.01, 0.005):
         travel = [(0.0, -1.2 - move)]
         full = bumper_deformer.deform(travel=travel, start=start).bodies[0].upper
         preview = bumper_deformer.preview(travel=travel, start=start)
         assert all(b.info.preview for b in preview.bodies)
         assert float(np.abs(start.bodies[0].upper - full).max()) > 0.9 * move
-        assert float(np.abs(preview.bodies[0].upper - full).max()) < 0.01 * move
+        errors.append(float(np.abs(preview.bodies[0].upper - full).max()))
+        assert errors[-1] < 0.01 * move
+    assert errors[0] / errors[1] > 2.5 and errors[1] / errors[2] > 2.5, errors
 
 
 @pytest.mark.parametrize("travel, field", [

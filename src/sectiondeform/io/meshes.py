@@ -287,7 +287,7 @@ def contact_point_data(result) -> np.ndarray:
     A boundary node (of an edge of one element) is in contact with a part
     when it lies on the part's outline (within twice the penetration left,
     or 10⁻⁴ of the body's size), and takes the pressure of the nearest
-    point where the part's pressure is known (its Gauss points,
+    point where the part's pressure is known (the corners of its edges,
     :attr:`~sectiondeform.fem.contact.PartContact.pressure`). Units of the moduli.
     """
     import shapely

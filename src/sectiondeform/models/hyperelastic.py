@@ -642,8 +642,10 @@ class HyperelasticPrepared(Prepared):
         base = self._base(xd, start, guess)
         stretches = start.stretches if start is not None and base is start.state else guess
         physics, solver = self._problem(stretches)
-        z = solver.predict(base, self._data(xd), math.e)
         warm = start.contact if start is not None and base is start.state else None
+        if self.contact is not None and warm is not None:
+            base = self.contact.tangent_at(physics, solver, base, warm)
+        z = solver.predict(base, self._data(xd), math.e)
         if self.contact is not None and warm is not None:
             z = self.contact.preview(physics, solver, base, z, warm, travels)
         f = physics.fields(z, math.e)

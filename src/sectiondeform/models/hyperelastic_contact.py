@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import copy
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -59,6 +59,8 @@ class _LoadingBound(ConvergenceError):
 
 
 MIN_STEPS, MAX_STEPS = 2, 32
+PREVIEW_UPDATES = 2
+"""Linear augmented-Lagrangian updates of a preview that moves the parts (one back-substitution each)."""
 STEP_HALVINGS = 0
 """Halvings a load step's solve makes of its own step (the support's motion) before the loading halves the step,
 which moves the parts and the support together: none. The parts do not move within a solve, so its own halvings
@@ -95,8 +97,8 @@ class ContactState:
 
     Attributes
     ----------
-    lam : (K, P) float64 ndarray
-        The multipliers for the next solve (a warm start carries them).
+    lam : (K, V) float64 ndarray
+        The multipliers for the next solve, per part and boundary node (a warm start carries them).
     parts : tuple of PartContact
     support_force : (float, float)
         The force the bodies exert on the support (per unit length, or the whole ring's).
@@ -106,6 +108,9 @@ class ContactState:
         Friction's anchors (a warm start carries them too).
     travels : tuple of (float, float)
         Each part's travel the state was solved for, units.
+    tangent : dict
+        The tangent factorised at this state and these multipliers, once a
+        preview asked for it (:meth:`Contact.tangent_at`); empty before.
     """
 
     lam: np.ndarray
@@ -115,6 +120,7 @@ class ContactState:
     warnings: tuple = ()
     anchor: np.ndarray = None
     travels: tuple = ()
+    tangent: dict = field(default_factory=dict, repr=False, compare=False)
 
 
 def _radius(prepared):
@@ -185,27 +191,52 @@ class Contact:
         """
         return ContactPhysics(physics, self.boundary, self.obstacles if obstacles is None else obstacles, lam, anchor)
 
+    def tangent_at(self, physics, solver, state, warm: ContactState):
+        """``state`` with the tangent at itself and ``warm``'s multipliers, factorised once per solved state.
+
+        Newton's last factorisation may be a load step older than the state
+        it converged to; a preview from it is then off by about 1 % of the
+        parts' move (first order), against 0.3 % from this one. A solve
+        again does not need it (Newton corrects), so it is made only when a
+        preview asks, and kept with ``warm``.
+        """
+        if "state" not in warm.tangent:
+            cphys = self.physics(physics, warm.lam, warm.anchor, self.obstacles_for(warm.travels))
+            fresh = copy.copy(solver)
+            fresh.physics = cphys
+            warm.tangent["state"] = replace(state, tangent=fresh.tangent(cphys.fields(state.z, state.lz)))
+        return warm.tangent["state"]
+
     def preview(self, physics, solver, state, z: np.ndarray, warm: ContactState, travels) -> np.ndarray:
         """``z`` (a preview from ``state``) with the linear response to the parts moved from ``warm``'s travels to ``travels``.
 
-        One back-substitution with the factorisation ``state`` carries (its
+        A back-substitution with the factorisation ``state`` carries (its
         contact stiffness included), for the first-order change of the
         contact forces as the parts' ends move
-        (:meth:`~sectiondeform.fem.contact.ContactPhysics.residual_rate`): the
-        contact set is ``state``'s, so a point the parts reach only now
-        does not push back yet (the full solve on release does).
+        (:meth:`~sectiondeform.fem.contact.ContactPhysics.residual_rate`),
+        then :data:`PREVIEW_UPDATES` linear augmented-Lagrangian updates, one
+        back-substitution each: the penalty alone lets the parts sink into
+        the bodies by its compliance (2 % of a move of the bumper's plate;
+        each update takes that about fiftyfold down). The contact set is
+        ``state``'s, so a node the parts reach only now does not push back
+        yet (the full solve on release does).
         """
         shifts = self.end_shifts(warm, travels)
         if not shifts.any():
             return z
         n = physics.n_nodes
         x = state.z[: 2 * n].reshape(n, 2)
-        change = np.zeros(len(z))
-        old = self.obstacles_for(warm.travels)
-        change[: 2 * n] = self.physics(physics, warm.lam, warm.anchor, old).residual_rate(x, shifts)
+        cphys = self.physics(physics, warm.lam, warm.anchor, self.obstacles_for(warm.travels))
+        contact = cphys.evaluate(x)
         free = solver.pattern.free
+        change = np.zeros(len(z))
+        move = np.zeros(len(z))
+        for k in range(PREVIEW_UPDATES + 1):
+            dx = None if k == 0 else move[: 2 * n].reshape(n, 2)
+            change[: 2 * n] = cphys.residual_rate(x, shifts, dx, contact)
+            move[free] -= state.tangent.solve(change[free])
         out = z.copy()
-        out[free] -= state.tangent.solve(change[free])
+        out[free] += move[free]
         return out
 
     @staticmethod
@@ -347,28 +378,31 @@ class Contact:
             state = run(1.0, state)
         for done in range(MAX_UPDATES + 1):
             x = cphys.positions(state.z)
-            left = cphys.penetration(x)
+            touching = cphys.evaluate(x)  # the multipliers' update below is this evaluation too
+            left = cphys.penetration(x, touching)
             if left <= PENETRATION_FRACTION or done == MAX_UPDATES:
                 break
+            kept = (cphys.lam, cphys.anchor)
             cphys.commit(x)
-            cphys.update(x)
-            state = run(1.0, state)
+            cphys.update(x, touching)
+            try:
+                state = run(1.0, state)
+            except ConvergenceError:  # the loading's answer stands, with the penetration it has (warned if too much)
+                cphys.lam, cphys.anchor = kept
+                break
         parts, support = self._forces(cphys, solver, state)
         history.append(self._step(1.0, [p.force for p in parts], support))
         warnings = []
         if left > PENETRATION_WARNING:
-            warnings.append(f"contact: a penetration of {left:.3g} element sizes is left after {MAX_UPDATES} "
+            warnings.append(f"contact: a penetration of {left:.3g} element sizes is left after {done} "
                             "augmented-Lagrangian updates; the forces are less accurate there")
         for label, part in zip(self.labels, parts):
             if part.length == 0.0:
                 warnings.append(f"{label}: touches no body from start to end; check its contour and travel")
         cphys.commit(x)
-        cphys.update(x)  # the multipliers and anchors of this state, for the next warm start
-        # The tangent a preview and the next solve start from: at this state and these multipliers (Newton's last
-        # one may be a step older, and a preview's error is then first order in the parts' move).
-        tangent = solver.tangent(cphys.fields(state.z, state.lz))
+        cphys.update(x, touching)  # the multipliers and anchors of this state, for the next warm start
         given.assemblies, given.factorisations = solver.assemblies, solver.factorisations  # the work counted as without contact
-        out = type(state)(state.z, state.lz, tangent, tuple(totals), None)
+        out = type(state)(state.z, state.lz, state.tangent, tuple(totals), None)
         return out, ContactState(cphys.lam, tuple(parts), support, tuple(history), tuple(warnings), cphys.anchor,
                                  self.travels_of(obstacles))
 
