@@ -256,7 +256,8 @@ def test_a_dragged_part_is_previewed_to_first_order(bumper_deformer, bumper):
     """The preview moves the parts in the linear step (and its augmented-Lagrangian updates): within the start's
     contact set (the first node not pressed is 0.037 from the plate) its error is second order, falling about
     threefold as the move halves (measured: 0.5 % of the move at 0.02, 0.18 % at 0.005), where the start is the
-    whole move away."""
+    whole move away.
+    """
     start = bumper[1]
     same = bumper_deformer.preview(travel=[(0.0, -1.2)], start=start)
     np.testing.assert_allclose(same.bodies[0].upper, start.bodies[0].upper, atol=1e-12)
