@@ -551,7 +551,8 @@ def rigid_report(row: dict, command: str) -> str:
         "",
         "The public bumper under its plate, hyperelastic model: the plate's handle dragged 40 px down and back up in "
         f"{row['moves']} pointer moves, each waiting for its answer. While it moves each answer is a preview (the contact "
-        "linearised about the last full solve: one back-substitution with its factorisation); the release solves in "
+        "linearised about the last full solve: three back-substitutions with the tangent factorised there once, the "
+        "last two linear augmented-Lagrangian updates); the release solves in "
         "full (the parts loaded again from where they start, on the prepared problem). Pointer event to redrawn page:",
         "",
         "| answers | median ms | p95 ms (target 16) | server compute median / p95 ms | release to full answer ms | load average |",
