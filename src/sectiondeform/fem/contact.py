@@ -131,10 +131,10 @@ _N = np.stack(((1 - _S) * (1 - 2 * _S), _S * (2 * _S - 1), 4 * _S * (1 - _S)), a
 _DN = np.stack((4 * _S - 3, 4 * _S - 1, 4 - 8 * _S), axis=1)
 _PSI = np.column_stack((np.maximum(1.0 - 2.0 * _S, 0.0), np.maximum(2.0 * _S - 1.0, 0.0), 1.0 - np.abs(2.0 * _S - 1.0)))
 """(g, 3): the pressure's hat functions at the Gauss points, linear on each half of an edge (corner a, corner b, mid)."""
-_EDGES = np.array([[0, 1, 3], [1, 2, 4], [2, 0, 5]])
+_EDGES = np.array([[0, 1, 3], [1, 2, 4], [2, 0, 5]])  # a cell's edges: corner, corner, mid (counter-clockwise)
 _FINE_S = np.linspace(0.0, 1.0, 129)
 _FINE = np.stack([np.interp(_FINE_S, _S, np.eye(GAUSS)[i]) for i in range(GAUSS)], axis=1)
-"""(129, g): a quantity at the Gauss points, linear between them (constant beyond), at 129 places along an edge."""  # a cell's edges: corner, corner, mid (counter-clockwise)
+"""(129, g): a quantity at the Gauss points, linear between them (constant beyond), at 129 places along an edge."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -498,10 +498,10 @@ class ContactPhysics:
     def evaluate(self, x: np.ndarray) -> list[Touch]:
         """Per part, where it presses on the bodies at node positions ``x`` ``(N, 2)``: a :class:`Touch`.
 
-        A vertex's pressure (per reference length) is ``ramp(λ_v + ε_v ĝ_v)``
+        A node's pressure (per reference length) is ``ramp(λ_v + ε_v ĝ_v)``
         with ``ĝ_v = Σ w ψ_v g / D_v`` the penetration ``g`` of its edges'
-        Gauss points averaged with its linear weight ``ψ_v``; a point's is the
-        linear interpolation of its edge's two corners'.
+        Gauss points averaged with its hat ``ψ_v``; a point's is the linear
+        interpolation of the two nodes of its half edge.
         """
         b = self.boundary
         xq = np.einsum("pa,pai->pi", b.shape, x[b.nodes])

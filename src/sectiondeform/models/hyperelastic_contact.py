@@ -2,8 +2,9 @@
 
 :class:`Contact` is built once per prepared problem
 (:class:`~sectiondeform.models.hyperelastic.HyperelasticPrepared`) when the
-problem has rigid parts: the free boundary's Gauss points and each part's
-outline (:mod:`~sectiondeform.fem.contact`). :meth:`Contact.solve` replaces
+problem has rigid parts: the free boundary (made with the prepared problem,
+whose sparse pattern its nodes' pressures shape: :func:`contact_boundary`)
+and each part's outline (:mod:`~sectiondeform.fem.contact`). :meth:`Contact.solve` replaces
 the plain Newton solve of a placement:
 
 * **from the undeformed bodies** (no warm start): the support (from the
@@ -14,10 +15,11 @@ the plain Newton solve of a placement:
   naming the step and the part that penetrates most;
 * **from an earlier result** (a warm start): the parts are at their end,
   the multipliers are the result's, one solve;
-* then the augmented-Lagrangian updates, until the largest penetration is at
-  most :data:`~sectiondeform.fem.contact.PENETRATION_FRACTION` of the
-  element size (a warning when :data:`MAX_UPDATES` updates do not get it
-  below :data:`PENETRATION_WARNING` of it).
+* then the augmented-Lagrangian updates, until the largest weighted
+  penetration is at most :data:`~sectiondeform.fem.contact.PENETRATION_FRACTION`
+  of the element size (a warning when the updates leave more than
+  :data:`PENETRATION_WARNING` of it: :data:`MAX_UPDATES` of them, or fewer
+  when an update's solve fails, which keeps the answer before it).
 
 The forces at every step (each part's and the support's) are the history,
 a load–deflection curve.
