@@ -293,7 +293,11 @@ def free_boundary(nodes: np.ndarray, cells: np.ndarray, body: np.ndarray, fixed_
     share = (psi * w[:, None]).ravel()
     vw = np.bincount(vertex.ravel(), weights=share, minlength=len(vnodes))
     per_vertex = np.where(vw > 0, vw, 1.0)
-    vpen = np.bincount(vertex.ravel(), weights=share * np.repeat(penalty, 3), minlength=len(vnodes)) / per_vertex
+    # A node two bodies share takes the softer one's penalty: the stiffer one's would make the soft body's
+    # constraint ill-conditioned (the updates make both exact alike).
+    vpen = np.full(len(vnodes), np.inf)
+    np.minimum.at(vpen, vertex.ravel(), np.where(share > 0, np.repeat(penalty, 3), np.inf))
+    vpen[np.isinf(vpen)] = 0.0
     vsize = np.bincount(vertex.ravel(), weights=share * np.repeat(size[b], 3), minlength=len(vnodes)) / per_vertex
     pairs = _pairs(edge_vertex[:, :2])
     edofs = (2 * en[:, :, None] + np.arange(2)).reshape(-1, 6)
