@@ -301,7 +301,8 @@ def _o_ring_at(through: int):
 def test_the_worked_o_ring_at_a_coarser_mesh_has_the_finer_meshs_forces():
     """At 8 elements through (an augmented-Lagrangian update's solve fails there: the loading's answer stands, with
     its penetration) the plates' forces are within 1 % and 8 % of the same O-ring at 16 (measured 0.5 % and 7.4 %:
-    the bottom contact, rolling onto the plate at the bonded chord, is the slowest figure to converge)."""
+    the bottom contact, rolling onto the plate at the bonded chord, is the slowest figure to converge).
+    """
     coarse, fine = _o_ring_at(8), _o_ring_at(16)
     for a, b, tolerance in zip(coarse.rigid, fine.rigid, (0.01, 0.08)):
         assert a.name == b.name
