@@ -94,8 +94,8 @@ PENETRATION_FRACTION = 1e-3
 MAX_UPDATES = 8
 """At most this many augmented-Lagrangian updates per solve."""
 SMOOTHING = 1e-2
-"""The ramp ``max(0, u)`` is rounded over ``|u| < SMOOTHING μ`` (a quadratic there: a band of ±1e-5 h in the
-weighted penetration at ``PENALTY`` 1000), so Newton does not cycle on a node at the contact's edge: 177
+"""The ramp ``max(0, u)`` is rounded over ``|u| < SMOOTHING μ`` (a quadratic there: a band of
+±``SMOOTHING / PENALTY`` h, 3e-5 h, in the weighted penetration), so Newton does not cycle on a node at the contact's edge: 177
 factorisations on the problems of ``PENALTY`` at 1e-2, 178 at 1e-3, 186 at 1e-1 (and a refusal)."""
 TANGENT_PENALTY = 1.0
 """The tangential (stick) penalty in units of the normal penalty ε."""
@@ -172,8 +172,10 @@ class Boundary:
         Their hats at the point (two of them nonzero).
     vertex_weight : (V,) float64 ndarray
         ``D_v = Σ w ψ_v`` over the vertex's edges' points, units (units² per radian).
-    vertex_penalty, vertex_size : (V,) float64 ndarray
-        ε and h at the vertex (its edges' values weighted by ``w ψ_v``).
+    vertex_penalty : (V,) float64 ndarray
+        ε at the vertex: the smallest of its edges' (the softer body's where two bodies meet).
+    vertex_size : (V,) float64 ndarray
+        h at the vertex: its edges' weighted by ``w ψ_v``, units.
     vertex_node : (V,) int64 ndarray
         The mesh node of each vertex.
     pairs : (Q, 4) int64 ndarray
@@ -459,8 +461,9 @@ class ContactPhysics:
                            else np.array(anchor, dtype=np.float64))
         object.__setattr__(self, "_cache", [])
         object.__setattr__(self, "_memo", [])
+        object.__setattr__(self, "_vectors", [])
 
-    _own = ("_inner", "boundary", "obstacles", "t", "lam", "anchor", "_cache", "_memo")
+    _own = ("_inner", "boundary", "obstacles", "t", "lam", "anchor", "_cache", "_memo", "_vectors")
 
     def __getattr__(self, name):
         return getattr(self._inner, name)
@@ -530,17 +533,15 @@ class ContactPhysics:
             pts = (edges[:, None] * GAUSS + np.arange(GAUSS)).ravel()
             at = np.searchsorted(seen, pts)  # seen is sorted and holds pts
             g, n, s = g_all[at], n_all[at], s_all[at]
-            share = b.psi[pts] * (b.weight[pts] * g)[:, None]
-            gap = np.bincount(b.vertex[pts].ravel(), weights=share.ravel(), minlength=len(candidates))[vidx]
-            gap /= b.vertex_weight[vidx]
+            gap = _vertex_mean(b, pts, g, vidx)
             eps = b.vertex_penalty[vidx]
             u = self.lam[k, vidx] + eps * gap
             vp, vslope = ramp(u, SMOOTHING / PENALTY * eps * b.vertex_size[vidx])
-            full = np.zeros((len(candidates), 2))
-            full[vidx, 0], full[vidx, 1] = vp, vslope
-            p, slope = np.einsum("pj,pjc->cp", b.psi[pts], full[b.vertex[pts]])
-            on = np.repeat((full[corner[edges], 0] > 0).any(axis=1), GAUSS)  # whole edges: those with a pressed node
-            out.append(Touch(pts[on], p[on], n[on], g[on], s[on], slope[on], vidx, vp, gap, vslope, u))
+            full = np.zeros(len(candidates))
+            full[vidx] = vp
+            p = np.einsum("pj,pj->p", b.psi[pts], full[b.vertex[pts]])
+            on = np.repeat((full[corner[edges]] > 0).any(axis=1), GAUSS)  # whole edges: those with a pressed node
+            out.append(Touch(pts[on], p[on], n[on], g[on], s[on], vidx, vp, gap, vslope))
         return out
 
     def friction(self, k: int, idx: np.ndarray, p: np.ndarray, s: np.ndarray):
@@ -699,7 +700,18 @@ class ContactPhysics:
     def _edge_vectors(self, k: int, touch: Touch):
         """Part ``k``'s pressed edges and their shares of each node's ``a_v`` and ``r_v`` ``(e, 3, 3, 2)``;
         ``ε_v ramp′_v / D_v`` ``(V,)``; friction's pointwise slip stiffness ``(m, 2, 2)`` (None without friction).
+
+        Kept for the last touches it was made for: a tangent's element and coupling matrices share them.
         """
+        for done, vectors in self._vectors:
+            if done is touch:
+                return vectors
+        vectors = self._make_edge_vectors(k, touch)
+        object.__setattr__(self, "_vectors", [*self._vectors[-3:], (touch, vectors)])
+        return vectors
+
+    def _make_edge_vectors(self, k: int, touch: Touch):
+        """:meth:`_edge_vectors`, computed."""
         b = self.boundary
         idx = touch.idx  # whole edges
         edges = idx[::GAUSS] // GAUSS
@@ -775,13 +787,11 @@ class Touch(NamedTuple):
         Each point's penetration, units.
     s : (m,) float64 ndarray
         Each point's closest place along the part's outline, units.
-    slope : (m,) float64 ndarray
-        The pressure ramp's slope interpolated at each point (friction's tangent).
     vidx : (a,) int64 ndarray
         The vertices looked at (those with a point near the part).
-    vp, vgap, vslope, vu : (a,) float64 ndarray
+    vp, vgap, vslope : (a,) float64 ndarray
         Their pressure per reference length (0 when not pressed), weighted
-        penetration (units), ramp slope, and the ramp's argument ``λ + ε ĝ``.
+        penetration (units) and ramp slope.
     """
 
     idx: np.ndarray
@@ -789,17 +799,15 @@ class Touch(NamedTuple):
     n: np.ndarray
     g: np.ndarray
     s: np.ndarray
-    slope: np.ndarray
     vidx: np.ndarray
     vp: np.ndarray
     vgap: np.ndarray
     vslope: np.ndarray
-    vu: np.ndarray
 
 
 _EMPTY = np.zeros(0)
-_NO_TOUCH = Touch(np.zeros(0, np.int64), _EMPTY, np.zeros((0, 2)), _EMPTY, _EMPTY, _EMPTY, np.zeros(0, np.int64),
-                  _EMPTY, _EMPTY, _EMPTY, _EMPTY)
+_NO_TOUCH = Touch(np.zeros(0, np.int64), _EMPTY, np.zeros((0, 2)), _EMPTY, _EMPTY, np.zeros(0, np.int64), _EMPTY,
+                  _EMPTY, _EMPTY)
 
 
 def _outside_box(y: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
