@@ -155,7 +155,7 @@ class AxisymmetricNeoHooke:
         xd = (2 * cells[:, :, None] + np.arange(2)).reshape(e, 12)
         self.edofs = np.concatenate((xd, 2 * self.n_nodes + pc), axis=1)
         self.values = p2_values(QUAD_POINTS)  # (q, 6)
-        self.radius = self._distance(np.einsum("qa,eai->eqi", self.values, nodes[cells]))
+        self.radius = self.distance(np.einsum("qa,eai->eqi", self.values, nodes[cells]))
         if not self.radius.min() > 0:
             raise ValueError("AxisymmetricNeoHooke: a quadrature point lies on the axis or beyond it")
         self.wr = geom.weight * self.radius  # (E, q), units³ per radian
@@ -180,7 +180,8 @@ class AxisymmetricNeoHooke:
         self.Mp = sp.csr_matrix((np.broadcast_to(M[None], (e, q, 3)).ravel(), (prow, pcol)), shape=(e * q, self.n_pressures))
         self.Mpt = self.Mp.T.tocsr()
 
-    def _distance(self, points: np.ndarray) -> np.ndarray:
+    def distance(self, points: np.ndarray) -> np.ndarray:
+        """Distance of points ``(..., 2)`` from the axis (positive on the bodies' side), units, ``(...)``."""
         return (points[..., 0] - self.origin[0]) * self.normal[0] + (points[..., 1] - self.origin[1]) * self.normal[1]
 
     def fields(self, z: np.ndarray, lz: float) -> AxisymmetricFields | None:

@@ -126,11 +126,8 @@ class ContactState:
 
 
 def _radius(prepared):
-    """The distance from the axis of points ``(..., 2)`` for a body of revolution; None for a plane section."""
-    if prepared.plane:
-        return None
-    physics = prepared.physics
-    return lambda p: (p[..., 0] - physics.origin[0]) * physics.normal[0] + (p[..., 1] - physics.origin[1]) * physics.normal[1]
+    """The distance from the axis of points ``(..., 2)`` for a body of revolution (its physics'); None for a plane section."""
+    return None if prepared.plane else prepared.physics.distance
 
 
 def contact_boundary(prepared) -> Boundary:
