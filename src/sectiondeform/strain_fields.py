@@ -236,14 +236,18 @@ def node_gradients(initial: MeshData, final: MeshData) -> np.ndarray:
 
 
 def _node_mean(cells: np.ndarray, values: np.ndarray, weights: np.ndarray, n: int) -> np.ndarray:
-    """The weighted mean over the elements sharing each node of per-element-node ``values`` ``(M, k, ...)``."""
+    """The weighted mean over the elements sharing each node of per-element-node ``values`` ``(M, k, ...)``.
+
+    ``weights`` is one per element ``(M,)`` or per element node ``(M, k)``; a node whose weights are all zero gets NaN.
+    """
     flat = cells.ravel()
-    w = np.broadcast_to(weights[:, None], cells.shape).ravel()
+    w = np.broadcast_to(weights[:, None] if np.ndim(weights) == 1 else weights, cells.shape).ravel()
     rows = values.reshape(len(flat), -1)
     total = np.zeros((n, rows.shape[1]))
     np.add.at(total, flat, rows * w[:, None])
     count = np.bincount(flat, weights=w, minlength=n)
-    return (total / count[:, None]).reshape((n,) + values.shape[2:])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return (total / count[:, None]).reshape((n,) + values.shape[2:])
 
 
 def nodal_stresses(initial: MeshData, final: MeshData, material, corner_mean_stress=None, out_of_plane: float = 1.0,
@@ -286,7 +290,10 @@ def nodal_stresses(initial: MeshData, final: MeshData, material, corner_mean_str
     -------
     dict of str to (N,) float64 ndarray
         One value per node of ``initial.points``; empty unless both meshes
-        are the same ``triangle6`` mesh.
+        are the same ``triangle6`` mesh. An element turned over at one of
+        its nodes (a quadratic element can be, at a pressed singular corner,
+        while valid at its quadrature points) is left out of that node's
+        von Mises mean; a node left with no element has NaN.
 
     Examples
     --------
@@ -313,13 +320,17 @@ def nodal_stresses(initial: MeshData, final: MeshData, material, corner_mean_str
     else:
         stretch_z = float(out_of_plane)
     F = gradient_3d(F2, stretch_z)
+    # A quadratic element valid at its quadrature points may still turn over at a node (a singular corner
+    # pressed hard): that element's value is left out of the node's mean (NaN if no element is left).
+    valid = np.linalg.det(F) > 0.0
+    F = np.where(valid[..., None, None], F, np.eye(3))
     elastic = F if growth == 1.0 else F * float(growth) ** (-1.0 / 3.0)
     sigma = material.cauchy(elastic)
     deviator = sigma - np.trace(sigma, axis1=-2, axis2=-1)[..., None, None] / 3.0 * np.eye(3)
     X = initial.points[cells[:, :3]]
     area = 0.5 * np.abs((X[:, 1, 0] - X[:, 0, 0]) * (X[:, 2, 1] - X[:, 0, 1])
                         - (X[:, 2, 0] - X[:, 0, 0]) * (X[:, 1, 1] - X[:, 0, 1]))
-    s = _node_mean(cells, deviator, area, n)
+    s = _node_mean(cells, deviator, area[:, None] * valid, n)
     out = {"von_mises_stress": np.sqrt(1.5 * np.einsum("nij,nij->n", s, s))}
     if corner_mean_stress is not None:
         corner = np.asarray(corner_mean_stress, dtype=np.float64)

@@ -67,6 +67,8 @@ DEFAULT_MESH_SIZE = 0.1
 DEFAULT_BULK_TO_SHEAR = 1000.0
 #: Smallest κ / μ accepted: the reference is a nearly incompressible model.
 MIN_BULK_TO_SHEAR = 100.0
+#: Largest load step with rigid parts: the history (load–deflection curve) has at least 1 / this steps.
+HISTORY_STEP = 0.125
 
 
 def _positive(value, name: str) -> float:
@@ -253,15 +255,48 @@ def solve_reference(
     if len(growing):  # λz then the growth; a growing body starts at a free body's axial stretch v^(1/3)
         load = np.stack((np.where(growths != 1.0, np.cbrt(growths), load), growths))
     scale = min(s.mesh_scale for s in sections)
+    history: list = []
+    on_step = None
+    if problem.rigid:
+        from .contact import ReferenceContact
+
+        mixed.contact = ReferenceContact(mixed, problem.rigid, tol=1e-6 * problem.size)
+
+        def on_step(x, t, lz):
+            history.append(_history_step(mixed, x, t, lz))
+
     t2 = time.perf_counter()
     x, report = solve_mixed(mixed, support, load, length_scale=scale, tol=tol, initial_step=initial_step,
-                            progress=progress)
+                            max_step=HISTORY_STEP if problem.rigid else 1.0, progress=progress, on_step=on_step)
     if len(growing):
         x, load, report = _free_extrusion(problem, mixed, sections, x, load, growing, report, scale, tol, progress)
         ratios = np.where(growths != 1.0, growths / load[0], ratios)  # the volume grown over the axial stretch
+        if history:
+            history[-1] = _history_step(mixed, x, 1.0, load)
     t3 = time.perf_counter()
-    return solution(problem, mixed, mesh, sections, x, report, ratios, load,
-                    {"mesh_s": t1 - t0, "setup_s": t2 - t1, "solve_s": t3 - t2}, t3 - t0)
+    ref = solution(problem, mixed, mesh, sections, x, report, ratios, load,
+                   {"mesh_s": t1 - t0, "setup_s": t2 - t1, "solve_s": t3 - t2}, t3 - t0)
+    if mixed.contact is None:
+        return ref
+    last = history[-1]
+    return dataclasses.replace(ref, rigid=mixed.contact.figures(x, _ring(mixed)), support_force=last.forces["support"],
+                               history=tuple(history))
+
+
+def _ring(mixed) -> float:
+    """From per-radian integrals to the whole ring's (2π, a body of revolution), or 1 (plane)."""
+    return 2.0 * math.pi if mixed.revolution else 1.0
+
+
+def _history_step(mixed, x, t: float, load):
+    """The forces on each rigid part and on the support at the solved state ``x`` of load fraction ``t``."""
+    from ..models.hyperelastic_contact import HistoryStep
+
+    ring = _ring(mixed)
+    r = mixed.residual(x, load)[mixed.dirichlet_nodes]  # (2, d/2): what the support does to the bodies
+    forces = dict(zip(mixed.contact.names, mixed.contact.forces(x, ring)))
+    forces["support"] = (-ring * float(r[0].sum()), -ring * float(r[1].sum()))
+    return HistoryStep(float(t), forces)
 
 
 def _free_extrusion(problem, mixed, sections, x, load, growing, report, scale, tol, progress):

@@ -159,6 +159,12 @@ class Reference:
     seconds : float
     timings : dict
         ``mesh_s``, ``setup_s``, ``solve_s``.
+    rigid : tuple of PartContact
+        Each rigid part's force and contact figures (:mod:`sectiondeform.reference.contact`); empty without parts.
+    support_force : (float, float) or None
+        The force the bodies exert on the support (per unit depth, or the whole ring's), with rigid parts.
+    history : tuple of HistoryStep
+        The forces at each accepted load step, with rigid parts.
     """
 
     bodies: tuple
@@ -179,6 +185,9 @@ class Reference:
     seconds: float
     timings: dict = field(default_factory=dict)
     corner_pressure: np.ndarray | None = None
+    rigid: tuple = ()
+    support_force: tuple | None = None
+    history: tuple = ()
 
     @property
     def revolution(self) -> bool:
@@ -199,6 +208,10 @@ class Reference:
             normal = self.axis.normal
             out["revolution"] = {"axis": [self.axis.point.tolist(), (self.axis.point + [-normal[1], normal[0]]).tolist()]}
         out["timings"] = dict(self.timings)
+        if self.rigid:
+            out["rigid"] = [part.to_json() for part in self.rigid]
+            out["support"] = {"force": [float(v) for v in self.support_force]}
+            out["history"] = [step.to_json() for step in self.history]
         return out
 
 

@@ -295,6 +295,7 @@ class MixedProblem:
         s_v = mesh.lower_fractions
         s_f = 0.5 * (s_v[f0[lower_facets]] + s_v[f1[lower_facets]])
         nodes = np.concatenate((ub.nodal_dofs[:, mesh.lower_nodes], ub.facet_dofs[:, lower_facets]), axis=1)
+        self.lower_facets = lower_facets  # the support's facets (of ``skmesh``)
         self.dirichlet_nodes = nodes  # (2, d/2): x dof, y dof
         self.dirichlet = nodes.T.ravel()
         self.dirichlet_fractions = np.concatenate((s_v, s_f))
@@ -314,6 +315,8 @@ class MixedProblem:
         self._indptr = np.concatenate(([0], np.cumsum(np.bincount(r, minlength=n)))).astype(np.int32)
         self._nb = nb
         self._dofs = dofs
+        #: The rigid parts' contact terms (:class:`~sectiondeform.reference.contact.ReferenceContact`), or None.
+        self.contact = None
 
     @property
     def revolution(self) -> bool:
@@ -457,10 +460,15 @@ class MixedProblem:
         r_u = np.einsum("aeqm,eqm->ae", self.B, mat["P5"] * self.wdx[..., None])
         r_p = np.einsum("ceq,eq->ce", self.Nq, mat["constraint"] * self.wdx)
         out = np.bincount(self.udofs.ravel(), r_u.ravel(), minlength=self.n_u)
+        if self.contact is not None:
+            out += self.contact.residual(x)
         return np.concatenate((out, np.bincount(self.pdofs.ravel(), r_p.ravel(), minlength=self.n_p)))
 
-    def tangent(self, mat: dict):
-        """Tangent matrix of the residual, CSR ``(n_u + n_p, n_u + n_p)``, symmetric indefinite."""
+    def tangent(self, mat: dict, x: np.ndarray | None = None):
+        """Tangent matrix of the residual at ``x``, CSR ``(n_u + n_p, n_u + n_p)``, symmetric indefinite.
+
+        ``mat`` is :meth:`material` at ``x``; ``x`` is needed only with contact (:attr:`contact`).
+        """
         from scipy import sparse
 
         B, Nq, wdx = self.B, self.Nq, self.wdx
@@ -474,6 +482,8 @@ class MixedProblem:
         blocks[:nu, nu:] = k_up
         blocks[nu:, :nu] = np.swapaxes(k_up, 0, 1)
         blocks[nu:, nu:] = k_pp
+        if self.contact is not None:  # a contact point's terms are its own triangle's: the same pattern
+            np.add.at(blocks, (slice(0, nu), slice(0, nu), self.contact.cell), self.contact.blocks(x))
         n = self.n_u + self.n_p
         data = np.bincount(self._slot, blocks.ravel(), minlength=len(self._indices))
         return sparse.csr_matrix((data, self._indices, self._indptr), shape=(n, n))
@@ -501,7 +511,9 @@ def solve_mixed(
     max_iterations: int = 25,
     initial_step: float = 0.5,
     min_step: float = 1.0 / 1024.0,
+    max_step: float = 1.0,
     progress=None,
+    on_step=None,
 ) -> tuple[np.ndarray, NewtonReport]:
     """Solve the mixed problem with the support moved to ``support`` and the load parameter at ``load``.
 
@@ -527,8 +539,12 @@ def solve_mixed(
         First load increment, fraction of the full load.
     min_step : float
         Smallest load increment before giving up.
+    max_step : float
+        Largest load increment (the steps grow after quick convergence up to it).
     progress : callable, optional
         Called with one line of text per accepted load step.
+    on_step : callable, optional
+        Called as ``on_step(x, t, load)`` after each accepted load step (t the fraction done, 0 first).
 
     Returns
     -------
@@ -540,6 +556,10 @@ def solve_mixed(
     ------
     ConvergenceError
         If the load cannot be applied with increments of ``min_step`` or more.
+
+    With rigid parts (``problem.contact``), the parts stand at the load
+    fraction of each step, and once the load is applied the contact's
+    multipliers are updated (augmented Lagrangian, :func:`_augment`).
     """
     pr = problem
     n_u = pr.n_u
@@ -568,15 +588,22 @@ def solve_mixed(
         return (X_d - c0) @ _rotation(t * angle).T + centre(t) + t * rest
 
     x = np.zeros(n_u + pr.n_p)
-    t, dt = 0.0, min(1.0, initial_step)
+    t, dt = 0.0, min(1.0, initial_step, max_step)
     iterations = steps = cuts = 0
     residual = 0.0
     free = pr.free
     t_start = time.perf_counter()
+    last = None  # the state and load fraction before the last accepted step
+    if on_step is not None:
+        on_step(x, 0.0, lam(0.0))
     while t < 1.0:
         t_new = min(1.0, t + dt)
         lz = lam(t_new)
-        trial = rigid_increment(x, t, t_new)
+        if pr.contact is not None:
+            pr.contact.t = t_new
+        trial = _predict(pr, x, t, t_new, lz, last) if pr.contact is not None else None
+        if trial is None:
+            trial = rigid_increment(x, t, t_new)
         want = support_at(t_new)
         lift = np.zeros_like(x)
         lift[node_x] = want[:, 0] - (X_d[:, 0] + trial[node_x])
@@ -584,6 +611,7 @@ def solve_mixed(
         ok, its, residual, trial = _newton(pr, trial, lz, lift, free, length_scale, tol, max_iterations)
         iterations += its
         if ok:
+            last = (x, t)
             x, t = trial, t_new
             steps += 1
             if progress is not None:
@@ -591,8 +619,10 @@ def solve_mixed(
                     f"reference: load {t:6.1%} (step {dt:.3g}) converged in {its} Newton iterations, "
                     f"{time.perf_counter() - t_start:.1f} s"
                 )
+            if on_step is not None and t < 1.0:
+                on_step(x, t, lz)
             if its <= 5:
-                dt = min(1.0, 1.5 * dt)
+                dt = min(1.0, max_step, 1.5 * dt)
         else:
             cuts += 1
             dt *= 0.5
@@ -604,7 +634,62 @@ def solve_mixed(
                     f"out-of-plane stretch even with load steps of {min_step:.3g} (elements invert or the "
                     f"residual stalls); the target or the law is too severe for this section, or refine the mesh"
                 )
+    if pr.contact is not None:
+        x, its = _augment(pr, x, lam(1.0), length_scale, tol, max_iterations, progress)
+        iterations += its
+    if on_step is not None:
+        on_step(x, 1.0, lam(1.0))
     return x, NewtonReport(iterations=iterations, steps=steps, cuts=cuts, residual=residual)
+
+
+def _predict(pr: MixedProblem, x, t: float, t_new: float, load, last):
+    """The state at ``t_new`` extrapolated linearly from the last two accepted ones, or None (no valid extrapolation).
+
+    With contact, the rigid-increment predictor leaves the bodies where
+    they were while the parts move into them: Newton's first iteration
+    then presses far too many points and sheds them one layer per
+    iteration. The secant through the last two states starts it with the
+    contact nearly where it ends.
+    """
+    if last is None or last[1] >= t:
+        return None
+    x0, t0 = last
+    trial = x + (t_new - t) / (t - t0) * (x - x0)
+    return trial if pr.material(trial, load, tangent=False, extras=False)["valid"] else None
+
+
+#: The penetration the contact's multiplier updates aim at, as a fraction of the smallest element size.
+PENETRATION = 1e-4
+#: Multiplier updates at most.
+AUGMENTATIONS = 8
+
+
+def _augment(pr: MixedProblem, x, load, length_scale, tol, max_iterations, progress):
+    """Update the contact's multipliers and solve again until the penetration is below :data:`PENETRATION` h.
+
+    Returns the state and the Newton iterations spent. An update whose
+    solve fails is undone: the state before it stands (its penetration, a
+    penalty's, is then in the contact figures).
+    """
+    contact = pr.contact
+    goal = PENETRATION * float(pr.section_mesh.sizes.min())
+    iterations = 0
+    for k in range(AUGMENTATIONS):
+        pen = contact.penetration(x)
+        if pen <= goal:
+            break
+        before = contact.lam
+        contact.update(x)
+        ok, its, _, trial = _newton(pr, x, load, np.zeros_like(x), pr.free, length_scale, tol, max_iterations)
+        iterations += its
+        if not ok:
+            contact.lam = before
+            break
+        x = trial
+        if progress is not None:
+            progress(f"reference: contact update {k + 1}: penetration {pen:.3g} -> {contact.penetration(x):.3g}, "
+                     f"{its} Newton iterations")
+    return x, iterations
 
 
 def continue_mixed(problem: MixedProblem, x: np.ndarray, load, *, length_scale: float, tol: float = 1e-8,
@@ -650,7 +735,7 @@ def _newton(pr: MixedProblem, x, load, lift, free, length_scale, tol, max_iterat
     norm = float(np.linalg.norm(r[free]))
     first = bool(lift.any())
     for it in range(1, max_iterations + 1):
-        K = pr.tangent(mat)
+        K = pr.tangent(mat, x)
         dx = np.zeros_like(x)
         if first:
             dx += lift

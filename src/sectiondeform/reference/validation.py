@@ -38,6 +38,7 @@ from ..errors import CaseError, require
 from ..problem import V1
 from ..section import polygon_area
 from . import DEFAULT_MESH_SIZE, Reference, check_parameters, solve_reference
+from .contact import check_parts
 
 __all__ = ["BodyValidation", "ReferenceRun", "StressDistance", "Validation", "fem_run", "validate", "draw_validation",
            "save_validation_figure", "VALIDATION_FORMAT"]
@@ -239,8 +240,9 @@ def _stress_distance(problem, fast, reference: Reference, b: int) -> StressDista
         corners = np.array([p.initial for p in points])
         return np.hypot(*(X[:, None, :] - corners[None]).transpose(2, 0, 1)).min(axis=1) >= radius
 
-    keep_f, keep_r = away(body.initial_mesh.points), away(initial.points)
     vf, pf = mechanics.nodal["von_mises_stress"], mechanics.nodal["pressure"]
+    keep_f = away(body.initial_mesh.points) & np.isfinite(vf)
+    keep_r = away(initial.points) & np.isfinite(ref["von_mises_stress"])
     vr, pr = ref["von_mises_stress"][keep_r], ref["pressure"][keep_r]
     element, local = _locate(body.initial_mesh, initial.points[keep_r])
     found = element >= 0
@@ -537,10 +539,8 @@ def validate(
     MissingExtraError
         Without the extra ``[fem]``.
     """
-    if reference is None and problem.rigid:
-        raise CaseError("rigid", "the project's finite-element reference has no contact with rigid parts yet; "
-                        "validate against CalculiX (--reference calculix)")
     if reference is None:
+        check_parts(problem.rigid)
         require("skfem", "fem", "the finite-element reference")
         require("triangle", "fem", "the finite-element reference")
         check_parameters(mesh_size, problem.options.for_model("hyperelastic").bulk_to_shear

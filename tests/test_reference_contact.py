@@ -1,0 +1,125 @@
+"""The project's finite-element reference with rigid parts (frictionless penalty at the boundary's Gauss points)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import sectiondeform as sd
+from sectiondeform.cli import main
+from sectiondeform.errors import CaseError
+
+from conftest import CASES_DIR
+
+pytest.importorskip("skfem")
+pytest.importorskip("triangle")
+
+from sectiondeform.reference import solve_reference  # noqa: E402
+from sectiondeform.reference.contact import ReferenceContact  # noqa: E402
+from sectiondeform.reference.solver import PENETRATION, MixedProblem  # noqa: E402
+from sectiondeform.reference.validation import validate  # noqa: E402
+
+BUMPER = CASES_DIR / "v2" / "bumper-under-plate.json"
+SLEEVE = CASES_DIR / "v2" / "sleeve-on-shaft.json"
+
+
+@pytest.fixture(scope="module")
+def bumper():
+    """The bumper validated against the reference at a coarse reference mesh (0.3 of the mesh scale)."""
+    return validate(sd.load_case(BUMPER), mesh_size=0.3, fast_runs=1)
+
+
+@pytest.fixture(scope="module")
+def sleeve():
+    """The sleeve of revolution validated against the reference at 0.2 of the mesh scale."""
+    return validate(sd.load_case(SLEEVE), mesh_size=0.2, fast_runs=1)
+
+
+def _work(ref, part: str, travel) -> float:
+    """The work the part does on the bodies over the loading, ∫ −F · d(travel), by the trapezoid rule on the history."""
+    t = np.array([s.travel for s in ref.history])
+    f = np.array([s.forces[part] for s in ref.history])  # the force on the part; the part pushes with −f
+    along = -(f @ np.asarray(travel, dtype=np.float64))
+    return float(np.sum(0.5 * (along[1:] + along[:-1]) * np.diff(t)))
+
+
+def test_the_reference_tangent_with_contact_is_the_derivative_of_its_residual():
+    problem = sd.load_case(BUMPER)
+    ref = solve_reference(problem.replace(rigid=()), mesh_size=0.6)  # a mesh to hang the check on
+    mixed = MixedProblem(ref.mesh_data, ref.materials)
+    mixed.contact = ReferenceContact(mixed, problem.rigid, tol=1e-6 * problem.size)
+    mixed.contact.t = 0.5  # the plate 0.6 mm into the undeformed bumper: many points pressed
+    rng = np.random.default_rng(3)
+    x = np.zeros(mixed.n_u + mixed.n_p)
+    x[: mixed.n_u] = 1e-3 * rng.standard_normal(mixed.n_u)
+    mixed.contact.lam[:] = 0.05 * rng.random(mixed.contact.lam.shape)  # multipliers too
+    assert np.count_nonzero(mixed.contact.touch(x)[0][0] > 0) > 20
+    v = np.zeros_like(x)
+    v[mixed.free] = rng.standard_normal(len(mixed.free))
+    h = 1e-7
+    fd = (mixed.residual(x + h * v, 1.0) - mixed.residual(x - h * v, 1.0)) / (2 * h)
+    K = mixed.tangent(mixed.material(x, 1.0), x)
+    np.testing.assert_allclose(K @ v, fd, atol=1e-5 * np.abs(fd).max())
+
+
+def test_the_plate_and_the_support_carry_opposite_forces(bumper):
+    ref = bumper.reference.solution
+    (plate,) = ref.rigid
+    # Plane, frictionless, one part: the plate is pushed straight up and the support down by as much.
+    assert plate.force[1] > 0 and abs(plate.force[0]) < 1e-9 * plate.force[1]
+    np.testing.assert_allclose(np.add(plate.force, ref.support_force), 0.0, atol=1e-7 * plate.force[1])
+    for step in ref.history:
+        np.testing.assert_allclose(np.add(step.forces["plate"], step.forces["support"]), 0.0,
+                                   atol=1e-6 * plate.force[1])
+
+
+def test_the_plate_does_the_work_the_bumper_stores(bumper):
+    """Frictionless, the support still: the plate's work over its travel is the strain energy (trapezoid over 8 steps)."""
+    ref = bumper.reference.solution
+    travel = sd.load_case(BUMPER).rigid[0].travel
+    work = _work(ref, "plate", travel)
+    assert len(ref.history) >= 9 and ref.history[0].travel == 0.0 and ref.history[-1].travel == 1.0
+    assert work == pytest.approx(ref.strain_energy, rel=0.01)
+
+
+def test_the_penetration_left_is_below_its_bound(bumper, sleeve):
+    for v in (bumper, sleeve):
+        ref = v.reference.solution
+        h = min(b.mesh_size for b in ref.bodies)
+        assert all(0 < p.length and p.penetration_max <= PENETRATION * h for p in ref.rigid)
+
+
+def test_the_hyperelastic_model_is_within_the_issue_bounds_of_the_reference_on_the_bumper(bumper):
+    (c,) = bumper.contacts
+    assert abs(c["force_error"]) < 0.03 and abs(c["length_error"]) < 0.05
+    assert bumper.bodies[0].shape.max_pointwise / bumper.height < 0.01
+    report = bumper.to_json()
+    assert report["rigid"][0]["name"] == "plate" and report["reference"]["solver"]["rigid"][0]["name"] == "plate"
+
+
+def test_the_sleeve_ring_force_against_the_reference(sleeve):
+    ref = sleeve.reference.solution
+    (shaft,) = ref.rigid
+    # The axis is x: the shaft is squeezed radially (−y on the sleeve's side), no axial force without friction.
+    assert shaft.force[1] < 0 and abs(shaft.force[0]) < 1e-6 * abs(shaft.force[1])
+    assert abs(ref.support_force[0]) < 1e-6 * abs(shaft.force[1])
+    (c,) = sleeve.contacts
+    assert abs(c["force_error"]) < 0.03 and abs(c["length_error"]) < 0.05
+    # The ring's work: 2π ∫ p r over the travel, as the whole ring's strain energy.
+    assert _work(ref, "shaft", sd.load_case(SLEEVE).rigid[0].travel) == pytest.approx(ref.strain_energy, rel=0.01)
+
+
+def test_friction_is_refused_by_the_reference_in_one_line(tmp_path, capsys):
+    case = json.loads(BUMPER.read_text())
+    case["rigid"][0]["friction"] = 0.3
+    path = tmp_path / "rough.json"
+    path.write_text(json.dumps(case))
+    out = tmp_path / "report.json"
+    assert main(["validate", str(path), "-q", "--output", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "rigid[0].friction" in err[0] and "--reference calculix" in err[0]
+    assert not out.exists()
+    with pytest.raises(CaseError, match=r"rigid\[0\]\.friction"):
+        solve_reference(sd.load_case(path), mesh_size=0.6)
