@@ -131,6 +131,7 @@ _N = np.stack(((1 - _S) * (1 - 2 * _S), _S * (2 * _S - 1), 4 * _S * (1 - _S)), a
 _DN = np.stack((4 * _S - 3, 4 * _S - 1, 4 - 8 * _S), axis=1)
 _PSI = np.column_stack((np.maximum(1.0 - 2.0 * _S, 0.0), np.maximum(2.0 * _S - 1.0, 0.0), 1.0 - np.abs(2.0 * _S - 1.0)))
 """(g, 3): the pressure's hat functions at the Gauss points, linear on each half of an edge (corner a, corner b, mid)."""
+_GAUSS_RANGE = np.arange(GAUSS)
 _EDGES = np.array([[0, 1, 3], [1, 2, 4], [2, 0, 5]])  # a cell's edges: corner, corner, mid (counter-clockwise)
 _FINE_S = np.linspace(0.0, 1.0, 129)
 _FINE = np.stack([np.interp(_FINE_S, _S, np.eye(GAUSS)[i]) for i in range(GAUSS)], axis=1)
@@ -344,6 +345,9 @@ class Obstacle:
         self.smooth = turn < SMOOTH_DEG  # per vertex
         self.vnormal = mean / np.maximum(np.hypot(mean[:, 0], mean[:, 1]), 1e-300)[:, None]
         self.lo, self.hi = ring.min(axis=0), ring.max(axis=0)
+        self._out_prev, self._out_next = prev, np.roll(self.out, -1, axis=0)
+        self._any_smooth = bool(self.smooth.any())
+        self._length = length
 
     def moved(self, shift, travel) -> Obstacle:
         """The same part with its end ``shift`` ((2,), units) further, arriving by ``travel`` ((2,), units).
@@ -387,42 +391,45 @@ class Obstacle:
             Arc length of the closest point along the outline, units.
         """
         y = x - shift
-        lo, hi = self.lo - margin, self.hi + margin
-        idx = np.flatnonzero((y[:, 0] >= lo[0]) & (y[:, 0] <= hi[0]) & (y[:, 1] >= lo[1]) & (y[:, 1] <= hi[1]))
+        box = (y >= self.lo - margin) & (y <= self.hi + margin)
+        idx = np.flatnonzero(box[:, 0] & box[:, 1])
         m, k = len(idx), len(self.a)
         g = np.empty(m)
         n = np.empty((m, 2))
         s = np.empty(m)
-        ax, ay, dx, dy = self.a[:, 0], self.a[:, 1], self.d[:, 0], self.d[:, 1]
         chunk = max(1, 2_000_000 // k)
         for c0 in range(0, m, chunk):
             yy = y[idx[c0:c0 + chunk]]
-            wx, wy = yy[:, 0:1] - ax, yy[:, 1:2] - ay  # (m, k): from each segment's start
-            t = np.clip((wx * dx + wy * dy) / self.len2, 0.0, 1.0)
-            wx -= t * dx  # now from each segment's closest point
-            wy -= t * dy
-            d2 = wx * wx + wy * wy
+            w = yy[:, None, :] - self.a  # (m, k, 2): from each segment's start
+            t = np.clip((w * self.d).sum(axis=2) / self.len2, 0.0, 1.0)
+            w -= t[:, :, None] * self.d  # now from each segment's closest point
+            d2 = (w * w).sum(axis=2)
             j = np.argmin(d2, axis=1)
             r = np.arange(len(yy))
-            dist, tj, wx, wy = np.sqrt(d2[r, j]), t[r, j], wx[r, j], wy[r, j]
-            j1 = (j + 1) % k
+            tj, wj = t[r, j], w[r, j]
+            dist = np.sqrt(d2[r, j])
             at0, at1 = tj <= 0.0, tj >= 1.0
             # Inside by the closest feature's pseudo-normal (Baerentzen & Aanaes 2005): the segment's
             # outward normal, or at a vertex the sum of its two segments' (the same as an even-odd count).
-            pseudo = self.out[j] + np.where(at0[:, None], self.out[j - 1], 0.0) + np.where(at1[:, None], self.out[j1], 0.0)
-            inside = wx * pseudo[:, 0] + wy * pseudo[:, 1] < 0.0
-            n0 = np.where(self.smooth[j, None], self.vnormal[j], self.out[j])
-            n1 = np.where(self.smooth[j1, None], self.vnormal[j1], self.out[j])
-            normal = (1.0 - tj)[:, None] * n0 + tj[:, None] * n1
-            normal /= np.hypot(normal[:, 0], normal[:, 1])[:, None]
-            sharp = np.where(at0, ~self.smooth[j], ~self.smooth[j1])
+            pseudo = self.out[j] + at0[:, None] * self._out_prev[j] + at1[:, None] * self._out_next[j]
+            inside = (wj * pseudo).sum(axis=1) < 0.0
+            if self._any_smooth:
+                j1 = (j + 1) % k
+                n0 = np.where(self.smooth[j, None], self.vnormal[j], self.out[j])
+                n1 = np.where(self.smooth[j1, None], self.vnormal[j1], self.out[j])
+                normal = (1.0 - tj)[:, None] * n0 + tj[:, None] * n1
+                normal /= np.hypot(normal[:, 0], normal[:, 1])[:, None]
+                sharp = np.where(at0, ~self.smooth[j], ~self.smooth[j1])
+            else:
+                normal = self.out[j]
+                sharp = True
             corner = (at0 | at1) & sharp & (dist > 1e-12 * (1.0 + np.abs(yy).max(initial=0.0)))
             if corner.any():
-                v = np.column_stack((wx[corner], wy[corner])) / dist[corner, None]  # from the closest vertex to the point
+                v = wj[corner] / dist[corner, None]  # from the closest vertex to the point
                 normal[corner] = np.where(inside[corner, None], -v, v)
             g[c0:c0 + chunk] = np.where(inside, dist, -dist)
             n[c0:c0 + chunk] = normal
-            s[c0:c0 + chunk] = self.s0[j] + tj * np.sqrt(self.len2[j])
+            s[c0:c0 + chunk] = self.s0[j] + tj * self._length[j]
         return idx, g, n, s
 
 
@@ -462,8 +469,13 @@ class ContactPhysics:
         object.__setattr__(self, "_cache", [])
         object.__setattr__(self, "_memo", [])
         object.__setattr__(self, "_vectors", [])
+        # What every evaluation reads of the boundary: each edge's vertices and nodes, the smallest penalty,
+        # the largest element size, the vertices that carry a pressure.
+        object.__setattr__(self, "_fixed", (boundary.vertex[::GAUSS], boundary.nodes[::GAUSS],
+                                            float(boundary.penalty.min(initial=np.inf)),
+                                            float(boundary.size.max(initial=0.0)), boundary.vertex_weight > 0))
 
-    _own = ("_inner", "boundary", "obstacles", "t", "lam", "anchor", "_cache", "_memo", "_vectors")
+    _own = ("_inner", "boundary", "obstacles", "t", "lam", "anchor", "_cache", "_memo", "_vectors", "_fixed")
 
     def __getattr__(self, name):
         return getattr(self._inner, name)
@@ -495,6 +507,10 @@ class ContactPhysics:
             object.__setattr__(self, "_cache", [*self._cache[-3:], (f, self.positions(z).copy())])
         return f
 
+    def computed(self, f) -> bool:
+        """Whether the fields ``f`` are among the last states computed here (their positions known)."""
+        return f is not None and any(g is f for g, _ in self._cache)
+
     def _x(self, f) -> np.ndarray:
         """The positions the fields ``f`` were computed at (one of the last four states)."""
         for g, x in reversed(self._cache):
@@ -510,36 +526,35 @@ class ContactPhysics:
         Gauss points averaged with its hat ``ψ_v``; a point's is the linear
         interpolation of the two nodes of its half edge.
         """
-        b = self.boundary
-        xq = np.einsum("pa,pai->pi", b.shape, x[b.nodes])
-        margin = float((self.lam.max(initial=0.0) / b.penalty.min()) + SMOOTHING / PENALTY * b.size.max()) + 1e-9 * (1.0 + float(np.abs(xq).max()))
-        corner = b.vertex[::GAUSS]  # (edges, 3)
-        xe = x[b.nodes[::GAUSS]]
-        longest = float((np.hypot(*(xe[:, 2] - xe[:, 0]).T) + np.hypot(*(xe[:, 1] - xe[:, 2]).T)).max(initial=0.0))
-        reach = margin + 2.0 * longest
+        b, (corner, edge_nodes, pen_min, size_max, carries) = self.boundary, self._fixed
+        xq = (b.shape[:, :, None] * x[b.nodes]).sum(axis=1)
+        margin = float(self.lam.max(initial=0.0) / pen_min + SMOOTHING / PENALTY * size_max) + 1e-9 * (1.0 + float(np.abs(xq).max()))
+        xe = x[edge_nodes]  # (edges, 3, 2)
+        halves = xe[:, 2:] - xe[:, :2]  # from each corner to the mid-node
+        reach = margin + 2.0 * float(np.sqrt((halves * halves).sum(axis=2)).sum(axis=1).max(initial=0.0))
         out = []
         for k, obs in enumerate(self.obstacles):
             # Every point of an edge at a vertex that has a point within ``margin`` is within ``reach``.
-            seen, g_all, n_all, s_all = obs.query(xq, obs.at(self.t), reach)
-            near = seen[_outside_box(xq[seen] - obs.at(self.t), obs.lo, obs.hi) <= margin]
+            shift = obs.at(self.t)
+            seen, g_all, n_all, s_all = obs.query(xq, shift, reach)
+            near = seen[_outside_box(xq[seen] - shift, obs.lo, obs.hi) <= margin]
             if not len(near):
                 out.append(_NO_TOUCH)
                 continue
-            candidates = np.zeros(len(b.vertex_weight), bool)
-            candidates[b.vertex[near].ravel()] = True
-            candidates &= b.vertex_weight > 0  # a node bonded to the support carries no pressure
+            candidates = np.zeros(len(carries), bool)
+            candidates[b.vertex[near]] = True
+            candidates &= carries  # a node bonded to the support carries no pressure
             vidx = np.flatnonzero(candidates)
             edges = np.flatnonzero(candidates[corner].any(axis=1))  # every edge of a candidate vertex: its whole hat
-            pts = (edges[:, None] * GAUSS + np.arange(GAUSS)).ravel()
+            pts = (edges[:, None] * GAUSS + _GAUSS_RANGE).ravel()
             at = np.searchsorted(seen, pts)  # seen is sorted and holds pts
             g, n, s = g_all[at], n_all[at], s_all[at]
             gap = _vertex_mean(b, pts, g, vidx)
             eps = b.vertex_penalty[vidx]
-            u = self.lam[k, vidx] + eps * gap
-            vp, vslope = ramp(u, SMOOTHING / PENALTY * eps * b.vertex_size[vidx])
+            vp, vslope = ramp(self.lam[k, vidx] + eps * gap, SMOOTHING / PENALTY * eps * b.vertex_size[vidx])
             full = np.zeros(len(candidates))
             full[vidx] = vp
-            p = np.einsum("pj,pj->p", b.psi[pts], full[b.vertex[pts]])
+            p = (b.psi[pts] * full[b.vertex[pts]]).sum(axis=1)
             on = np.repeat((full[corner[edges]] > 0).any(axis=1), GAUSS)  # whole edges: those with a pressed node
             out.append(Touch(pts[on], p[on], n[on], g[on], s[on], vidx, vp, gap, vslope))
         return out

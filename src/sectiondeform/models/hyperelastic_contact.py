@@ -36,7 +36,9 @@ import numpy as np
 from ..errors import ConvergenceError
 from ..fem.contact import (
     MAX_UPDATES,
+    PENALTY,
     PENETRATION_FRACTION,
+    SMOOTHING,
     Boundary,
     ContactPhysics,
     Obstacle,
@@ -179,10 +181,31 @@ class Contact:
         now = self.travels_of(self.obstacles) if travels is None else travels
         return np.asarray(now, dtype=np.float64) - np.asarray(warm.travels, dtype=np.float64)
 
-    def steps(self, obstacles) -> int:
-        """Load steps moving each of ``obstacles`` by at most :data:`STEP_FRACTION` of the smallest element size."""
-        travel = max(float(np.hypot(*obs.travel)) for obs in obstacles)
+    def steps(self, obstacles, share: float = 1.0) -> int:
+        """Load steps moving each of ``obstacles`` by at most :data:`STEP_FRACTION` of the smallest element size
+        over ``share`` of their travel.
+        """
+        travel = share * max(float(np.hypot(*obs.travel)) for obs in obstacles)
         return int(np.clip(math.ceil(travel / (STEP_FRACTION * self.size)), MIN_STEPS, MAX_STEPS))
+
+    def untouched(self, cphys: ContactPhysics, x: np.ndarray) -> float:
+        """How much of the loading the parts travel before any of them presses on the bodies held at ``x``, 0 to 1.
+
+        A point's penetration grows by at most the part's move, so no point
+        is pressed (beyond the ramp's rounding) before the part has moved by
+        its smallest gap: the bodies, held by a support that does not move,
+        are then exactly as drawn.
+        """
+        b = self.boundary
+        xq = np.einsum("pa,pai->pi", b.shape, x[b.nodes])
+        band = SMOOTHING / PENALTY * float(b.size.max(initial=0.0))
+        free = 1.0
+        for obs in cphys.obstacles:
+            move = float(np.hypot(*obs.travel))
+            _, g, _, _ = obs.query(xq, obs.at(0.0), np.inf)
+            if move > 0:  # a part that stays does not come closer while nothing else moves
+                free = min(free, max(0.0, (-float(g.max(initial=-np.inf)) - 2.0 * band) / move))
+        return free
 
     def physics(self, physics, lam=None, anchor=None, obstacles=None) -> ContactPhysics:
         """``physics`` with the contact terms, multipliers ``lam`` (zeros by default) and friction anchors, the parts
@@ -258,7 +281,7 @@ class Contact:
 
     def _forces(self, cphys: ContactPhysics, solver, state, figures: bool = True) -> tuple[list, tuple]:
         """Each part's contact (its force alone unless ``figures``) and the support's force at ``state``."""
-        f = cphys.fields(state.z, state.lz)
+        f = state.fields if cphys.computed(state.fields) else cphys.fields(state.z, state.lz)
         if f is None:  # a state with an element turned over has no forces (the start, never a solved state)
             raise ConvergenceError("contact: an element is turned over in the state the loading starts from; "
                                    "the target moves the bodies too far from where they are drawn")
@@ -353,8 +376,15 @@ class Contact:
             cphys.t = 0.0
             cphys.commit(cphys.positions(state.z))
             history.append(self._step(0.0, *self._forces(cphys, solver, state, figures=False)))
-            t, dt0 = 0.0, 1.0 / self.steps(obstacles)
-            dt = dt0
+            # With the support still, the first step ends where a part first touches, and the steps of
+            # STEP_FRACTION h share the travel left; the contact then starts at a step's start, not inside it.
+            t, first = 0.0, 0.0
+            if np.array_equal(xd, xd0):
+                first = min(self.untouched(cphys, cphys.positions(state.z)), 1.0 - 1.0 / MAX_STEPS)
+                if first < 0.5 / self.steps(obstacles):  # touching nearly from the start: steps as usual
+                    first = 0.0
+            dt0 = (1.0 - first) / self.steps(obstacles, 1.0 - first)
+            dt = first if first > 0.0 else dt0
             while t < 1.0:
                 t1 = min(1.0, t + dt)
                 cphys.t = t1
@@ -372,6 +402,10 @@ class Contact:
                     history.append(self._step(t, *self._forces(cphys, solver, state, figures=False)))
                 cphys.commit(cphys.positions(state.z))
                 dt = min(dt0, 2.0 * dt)
+            if state.iterations[0] == 0 and state.fields is not None:
+                # The last step reused an older step's factorisation: one at the end, for the updates below and
+                # for the solves again that start from this state.
+                state = replace(state, tangent=solver.tangent(state.fields))
         else:
             cphys.t = 1.0
             state = run(1.0, state)
