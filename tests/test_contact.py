@@ -153,6 +153,20 @@ def test_a_part_that_touches_nothing_is_a_warning():
     assert any("rigid[0] 'plate': touches no body" in w for w in r.warnings)
 
 
+def test_contacts_the_mesh_cannot_resolve_are_flagged():
+    """A plate barely pressed into the bumper (R 8, elements of 1.57): no force, or a contact under an element long."""
+    deformer = sd.Deformer(sd.load_case(BUMPER))
+    grazing = deformer.deform(travel=[(0.0, -0.005)])  # its top enters the plate by 3 µm: under the hats' resolution
+    assert grazing.rigid[0].force == (0.0, 0.0)
+    assert any("'plate': enters the bodies by 0.00" in w and "no force" in w for w in grazing.warnings)
+    short = deformer.deform(travel=[(0.0, -0.02)])
+    part = short.rigid[0]
+    assert 0.0 < part.length < 1.57 and part.pressure_max >= part.pressure_mean > 0.0
+    assert any("'plate': its contact is" in w and "shorter than an element" in w for w in short.warnings)
+    full = deformer.deform()
+    assert not full.warnings and full.rigid[0].pressure_max > full.rigid[0].pressure_mean
+
+
 def test_obstacle_distance_and_normal_of_a_square():
     square = np.array([[0.0, 0.0], [2, 0], [2, 2], [0, 2], [0, 0]])
     obs = Obstacle(square[::-1], (0.0, 0.0))  # either orientation

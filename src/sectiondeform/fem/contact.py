@@ -941,10 +941,13 @@ def contact_figures(physics: ContactPhysics, x: np.ndarray, names, ring: float =
         order = np.argsort(obs.query(at, obs.at(physics.t), np.inf)[3], kind="stable")
         length = _contact_length(b, touch, dl)
         area = float((touch.p * b.weight[idx] * dl / np.where(cur > 0, cur, np.inf)).sum())  # ∫ p dl, current
+        mean = area / length if length > 0 else 0.0
         out.append(PartContact(
             name=name, force=force, length=length,
-            pressure_max=float(true.max(initial=0.0)),
-            pressure_mean=area / length if length > 0 else 0.0,
+            # a contact narrower than the corners' hats has its projection spread over them: the peak is then
+            # at least the mean over the contact's own length
+            pressure_max=max(float(true.max(initial=0.0)), mean),
+            pressure_mean=mean,
             penetration_max=float(np.maximum(touch.g, 0.0).max(initial=0.0)),
             pressure=np.column_stack((at, true))[order],
             outline=obs.ring + obs.at(physics.t),

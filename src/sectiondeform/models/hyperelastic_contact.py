@@ -196,16 +196,21 @@ class Contact:
         its smallest gap: the bodies, held by a support that does not move,
         are then exactly as drawn.
         """
+        band = SMOOTHING / PENALTY * float(self.boundary.size.max(initial=0.0))
+        free = 1.0
+        for obs, deepest in zip(cphys.obstacles, self.deepest(cphys.obstacles, x, 0.0)):
+            move = float(np.hypot(*obs.travel))
+            if move > 0:  # a part that stays does not come closer while nothing else moves
+                free = min(free, max(0.0, (-deepest - 2.0 * band) / move))
+        return free
+
+    def deepest(self, obstacles, x: np.ndarray, t: float) -> list[float]:
+        """Each part's largest penetration into the bodies at node positions ``x`` and load fraction ``t``, units
+        (negative: its smallest gap), over the boundary's points.
+        """
         b = self.boundary
         xq = np.einsum("pa,pai->pi", b.shape, x[b.nodes])
-        band = SMOOTHING / PENALTY * float(b.size.max(initial=0.0))
-        free = 1.0
-        for obs in cphys.obstacles:
-            move = float(np.hypot(*obs.travel))
-            _, g, _, _ = obs.query(xq, obs.at(0.0), np.inf)
-            if move > 0:  # a part that stays does not come closer while nothing else moves
-                free = min(free, max(0.0, (-float(g.max(initial=-np.inf)) - 2.0 * band) / move))
-        return free
+        return [float(obs.query(xq, obs.at(t), np.inf)[1].max(initial=-np.inf)) for obs in obstacles]
 
     def physics(self, physics, lam=None, anchor=None, obstacles=None) -> ContactPhysics:
         """``physics`` with the contact terms, multipliers ``lam`` (zeros by default) and friction anchors, the parts
@@ -378,13 +383,13 @@ class Contact:
             history.append(self._step(0.0, *self._forces(cphys, solver, state, figures=False)))
             # With the support still, the first step ends where a part first touches, and the steps of
             # STEP_FRACTION h share the travel left; the contact then starts at a step's start, not inside it.
-            t, first = 0.0, 0.0
+            t, free = 0.0, 0.0
             if np.array_equal(xd, xd0):
-                first = min(self.untouched(cphys, cphys.positions(state.z)), 1.0 - 1.0 / MAX_STEPS)
-                if first < 0.5 / self.steps(obstacles):  # touching nearly from the start: steps as usual
-                    first = 0.0
-            dt0 = (1.0 - first) / self.steps(obstacles, 1.0 - first)
-            dt = first if first > 0.0 else dt0
+                free = min(self.untouched(cphys, cphys.positions(state.z)), 1.0 - 1.0 / MAX_STEPS)
+                if free < 0.5 / self.steps(obstacles):  # touching nearly from the start: steps as usual
+                    free = 0.0
+            dt0 = (1.0 - free) / self.steps(obstacles, 1.0 - free)
+            dt = free if free > 0.0 else dt0
             while t < 1.0:
                 t1 = min(1.0, t + dt)
                 cphys.t = t1
@@ -429,9 +434,18 @@ class Contact:
         if left > PENETRATION_WARNING:
             warnings.append(f"contact: a penetration of {left:.3g} element sizes is left after {done} "
                             "augmented-Lagrangian updates; the forces are less accurate there")
-        for label, part in zip(self.labels, parts):
-            if part.length == 0.0:
+        depths = self.deepest(cphys.obstacles, x, 1.0)
+        for label, part, depth in zip(self.labels, parts, depths):
+            if part.length == 0.0 and depth > 0.0:
+                warnings.append(f"{label}: enters the bodies by {depth:.3g} at most, too little for the contact on "
+                                f"this mesh (elements of {self.size:.3g}) to press: no force; refine the mesh under it "
+                                "(options.elements_through_thickness)")
+            elif part.length == 0.0:
                 warnings.append(f"{label}: touches no body from start to end; check its contour and travel")
+            elif part.length < self.size:
+                warnings.append(f"{label}: its contact is {part.length:.3g} long, shorter than an element "
+                                f"({self.size:.3g}): its pressure is not resolved (the peak reported is its mean at "
+                                "least); refine the mesh under it (options.elements_through_thickness)")
         cphys.commit(x)
         cphys.update(x, touching)  # the multipliers and anchors of this state, for the next warm start
         given.assemblies, given.factorisations = solver.assemblies, solver.factorisations  # the work counted as without contact
@@ -441,14 +455,7 @@ class Contact:
 
     def _refusal(self, cphys, state, t, t1, step, exc) -> ConvergenceError:
         """The loading cannot go on: name the step and the part that would penetrate most."""
-        x = cphys.positions(state.z)
-        b = self.boundary
-        xq = np.einsum("pa,pai->pi", b.shape, x[b.nodes])
-        depth = []
-        for obs in self.obstacles:
-            _, g, _, _ = obs.query(xq, obs.at(t1), 0.0)
-            depth.append(float(g.max(initial=-np.inf)))
-        k = int(np.argmax(depth))
+        k = int(np.argmax(self.deepest(self.obstacles, cphys.positions(state.z), t1)))
         # A solve stopped by its work bound names the coarser mesh itself: refining it would be the wrong way.
         stopped, advice = getattr(exc, "stopped", str(exc)), getattr(exc, "advice", "")
         advice = f"{advice} or shorten the travel" if "stopped at its bound" in stopped else \
