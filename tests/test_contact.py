@@ -323,3 +323,24 @@ def test_the_worked_o_ring_at_a_coarser_mesh_has_the_finer_meshs_forces():
         assert a.force[1] == pytest.approx(b.force[1], rel=tolerance)
     h = 4.0 / 8
     assert max(p.penetration_max for p in coarse.rigid) < 0.05 * h
+
+
+#: The project's finite-element reference of the worked O-ring (``sectiondeform validate
+#: tests/data/cases/v2/o-ring-squeeze-20.json``: P2/P1 at 0.1 of the mesh scale, its own pointwise contact;
+#: docs/validation.md, "Contact against the project's reference"): force (N/mm) and contact length (mm) per plate.
+O_RING_REFERENCE = {"top": (2.0648, 2.2308), "bottom": (-0.96094, 1.1603)}
+
+
+def test_the_worked_o_ring_meets_the_reference_within_the_issue_bounds_from_16_elements_through():
+    """Forces within 3 % and contact lengths within 5 % of an independent solver's. The bottom contact runs 0.58 mm
+    each side of the bonded chord: at the case's 12 elements through it spans under two elements (its length
+    10.6 % short, its force 3.2 %; docs/validation.md), so the case's top plate is checked there, both from 16.
+    """
+    for through, plates in ((12, ("top",)), (16, ("top", "bottom"))):
+        result = _o_ring_at(through)
+        for part in result.rigid:
+            if part.name not in plates:
+                continue
+            force, length = O_RING_REFERENCE[part.name]
+            assert part.force[1] == pytest.approx(force, rel=0.03), (through, part.name)
+            assert part.length == pytest.approx(length, rel=0.05), (through, part.name)
