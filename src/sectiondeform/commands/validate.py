@@ -17,8 +17,7 @@ per body its Hausdorff distance over its mean thickness and over the
 case's height, and its law's relative error (area, or volume for a body of
 revolution), fast and reference, and each hole's distance over the
 height. With rigid parts, each part's force, contact length and peak
-pressure against the reference's (frictionless: a part with friction is
-refused in one line). --reference calculix solves the same
+pressure against the reference's. --reference calculix solves the same
 problem with CalculiX instead (needs ccx). A model that refuses the case
 exits 2 with one line.
 

@@ -24,9 +24,20 @@ entry to the elastic sparsity pattern.
 It is the classical pointwise penalty, written independently of the fast
 model's node-wise (mortar) contact (:mod:`sectiondeform.fem.contact`):
 only the outline's geometry (distance, normal, arc length) is shared.
-Frictionless: Coulomb friction is refused in one line.
 
-The figures (:func:`part_figures`): the force the bodies exert on each part
+Coulomb friction (a part's ``friction`` μ_f > 0) is a tangential penalty
+with the classical return mapping, no rounding: each point has an anchor
+s_a along the part's outline; with d = s − s_a (s the point's closest
+place) the tangential force per reference length along τ = (−n_y, n_x)
+is q = −ε_t d while |ε_t d| ≤ μ_f p, else −μ_f p sign(d) (slip);
+ε_t = :data:`TANGENT_PENALTY` ε. The tangent gains ε_t (τ · φ_a)(τ · φ_b)
+where a point sticks and −μ_f sign(d) ε (τ · φ_a)(n · φ_b) where it slips
+(not symmetric). The anchors are history, moved after each accepted load
+step (:meth:`ReferenceContact.commit`): a sticking point keeps its anchor,
+a slipping one is anchored μ_f p / ε_t behind where it is, a point not
+pressed where it is.
+
+The figures (:meth:`ReferenceContact.figures`): the force the bodies exert on each part
 (per unit depth, or the whole ring's for a body of revolution, 2π × the
 per-radian integral), the contact length (where the trial pressure
 λ + ε g is positive, its ends interpolated linearly between the points),
@@ -38,23 +49,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import CaseError, require
+from ..errors import require
 from ..fem.contact import Obstacle, PartContact
 
-__all__ = ["PENALTY", "ReferenceContact", "check_parts"]
+__all__ = ["PENALTY", "TANGENT_PENALTY", "ReferenceContact"]
 
 #: Penalty as a multiple of μ / h (the facet's body's initial shear modulus over its element size).
 PENALTY = 1000.0
+#: The tangential (stick) penalty of friction, as a multiple of the normal one.
+TANGENT_PENALTY = 1.0
 #: Gauss points per facet: scikit-fem's ``intorder`` (5: three points, exact for degree 5).
 INTORDER = 5
-
-
-def check_parts(parts) -> None:
-    """Refuse, in one line naming the field, a rigid part the reference cannot take (one with friction)."""
-    for i, part in enumerate(parts):
-        if part.friction > 0:
-            raise CaseError(f"rigid[{i}].friction", f"is {part.friction:g}: the project's reference has frictionless "
-                            "contact only; validate a case with friction against CalculiX (--reference calculix)")
 
 
 class ReferenceContact:
@@ -79,7 +84,6 @@ class ReferenceContact:
 
     def __init__(self, mixed, parts, *, tol: float):
         skfem = require("skfem", "fem", "the finite-element reference")
-        check_parts(parts)
         m = mixed.skmesh
         facets = np.setdiff1d(m.boundary_facets(), mixed.lower_facets)
         fb = skfem.FacetBasis(m, skfem.ElementVector(skfem.ElementTriP2()), facets=facets, intorder=INTORDER)
@@ -107,6 +111,8 @@ class ReferenceContact:
         self.n_u = mixed.n_u
         self.t = 0.0
         self.lam = np.zeros((len(parts),) + self.ds0.shape)
+        self.friction = np.array([part.friction for part in parts], dtype=np.float64)
+        self.anchor = np.full(self.lam.shape, np.nan)  # friction: where along each part each point sticks
 
     # --- kinematics -------------------------------------------------------------
 
@@ -133,27 +139,76 @@ class ReferenceContact:
 
     # --- residual and tangent ---------------------------------------------------
 
+    def tangential(self, k: int, trial: np.ndarray, s: np.ndarray):
+        """Part ``k``'s friction at every point: ``(q, slip, sign)``, each ``(nf, nq)``.
+
+        ``q`` is the tangential force per reference length along the
+        outline's direction τ = (−n_y, n_x), on the body: −ε_t d while it
+        sticks (d = s − s_a, the slip from the anchor, the shorter way round
+        the outline), −μ_f p sign(d) once |ε_t d| exceeds μ_f p (Coulomb's
+        return mapping, no rounding); zero where the part does not press.
+        """
+        p = np.maximum(trial, 0.0)
+        d = np.nan_to_num(s - self.anchor[k])
+        per = self.obstacles[k].perimeter
+        d = d - per * np.round(d / per)
+        stick = -TANGENT_PENALTY * self.eps * d
+        limit = self.friction[k] * p
+        slip = np.abs(stick) > limit
+        sign = np.sign(d)
+        return np.where(p > 0, np.where(slip, -limit * sign, stick), 0.0), slip, sign
+
     def residual(self, x: np.ndarray) -> np.ndarray:
-        """The contact's part of the residual, ``(n_u,)``: −∫ p n · φ_a w ds₀."""
+        """The contact's part of the residual, ``(n_u,)``: −∫ (p n + q τ) · φ_a w ds₀."""
         r = np.zeros(self.n_u)
-        for trial, n, _ in self.touch(x):
+        for k, (trial, n, s) in enumerate(self.touch(x)):
             p = np.maximum(trial, 0.0)
             if not p.any():
                 continue
-            nphi = np.einsum("aifq,fqi->afq", self.phi, n)
-            np.add.at(r, self.dofs, -np.einsum("afq,fq->af", nphi, p * self.weight))
+            traction = p[..., None] * n
+            if self.friction[k] > 0:
+                q = self.tangential(k, trial, s)[0]
+                traction = traction + q[..., None] * np.stack((-n[..., 1], n[..., 0]), axis=-1)
+            np.add.at(r, self.dofs, -np.einsum("aifq,fqi,fq->af", self.phi, traction, self.weight))
         return r
 
     def blocks(self, x: np.ndarray) -> np.ndarray:
-        """The contact's tangent per facet, ``(12, 12, nf)``: ε (n · φ_a)(n · φ_b) w ds₀ where the point is pressed."""
+        """The contact's tangent per facet, ``(12, 12, nf)``, where the point is pressed.
+
+        ε (n · φ_a)(n · φ_b) w ds₀; with friction, sticking ε_t (τ · φ_a)(τ · φ_b) w ds₀ and slipping
+        −μ_f sign(d) ε (τ · φ_a)(n · φ_b) w ds₀ (not symmetric), the outline's curvature left out.
+        """
         out = np.zeros((self.dofs.shape[0],) * 2 + (self.dofs.shape[1],))
-        for trial, n, _ in self.touch(x):
+        for k, (trial, n, s) in enumerate(self.touch(x)):
             on = trial > 0
             if not on.any():
                 continue
             nphi = np.einsum("aifq,fqi->afq", self.phi, n)
-            out += np.einsum("afq,bfq,fq->abf", nphi, nphi, np.where(on, self.eps * self.weight, 0.0))
+            w = np.where(on, self.eps * self.weight, 0.0)
+            out += np.einsum("afq,bfq,fq->abf", nphi, nphi, w)
+            if self.friction[k] > 0:
+                _, slip, sign = self.tangential(k, trial, s)
+                tphi = np.einsum("aifq,fqi->afq", self.phi, np.stack((-n[..., 1], n[..., 0]), axis=-1))
+                out += np.einsum("afq,bfq,fq->abf", tphi, tphi, np.where(slip, 0.0, TANGENT_PENALTY * w))
+                out -= np.einsum("afq,bfq,fq->abf", tphi, nphi, np.where(slip, self.friction[k] * sign * w, 0.0))
         return out
+
+    def commit(self, x: np.ndarray) -> None:
+        """Move the friction anchors to the solved state ``x``: a sticking point keeps its anchor, a slipping one
+        is anchored μ_f p / ε_t behind where it is, a point not pressed where it is (the return mapping's history).
+        """
+        if not self.friction.any():
+            return
+        anchor = self.anchor.copy()
+        xq = self.positions(x).reshape(-1, 2)
+        for k, (trial, _, s) in enumerate(self.touch(x)):
+            if self.friction[k] <= 0:
+                continue
+            obs = self.obstacles[k]
+            q = self.tangential(k, trial, s)[0]
+            everywhere = obs.query(xq, obs.at(self.t), np.inf)[3].reshape(s.shape)  # every point's place
+            anchor[k] = np.where(trial > 0, s + q / (TANGENT_PENALTY * self.eps), everywhere)
+        self.anchor = anchor
 
     # --- augmented Lagrangian ---------------------------------------------------
 
@@ -179,10 +234,13 @@ class ReferenceContact:
         return np.hypot(tangent[..., 0], tangent[..., 1])
 
     def forces(self, x: np.ndarray, ring: float) -> list[tuple[float, float]]:
-        """Each part's force ``(fx, fy)``: −ring ∫ p n w ds₀ (``ring`` 1, or 2π for a body of revolution)."""
+        """Each part's force ``(fx, fy)``: −ring ∫ (p n + q τ) w ds₀ (``ring`` 1, or 2π for a body of revolution)."""
         out = []
-        for trial, n, _ in self.touch(x):
-            f = -ring * np.einsum("fq,fqi->i", np.maximum(trial, 0.0) * self.weight, n)
+        for k, (trial, n, s) in enumerate(self.touch(x)):
+            traction = np.maximum(trial, 0.0)[..., None] * n
+            if self.friction[k] > 0:
+                traction = traction + self.tangential(k, trial, s)[0][..., None] * np.stack((-n[..., 1], n[..., 0]), axis=-1)
+            f = -ring * np.einsum("fq,fqi->i", self.weight, traction)
             out.append((float(f[0]), float(f[1])))
         return out
 

@@ -594,6 +594,9 @@ def solve_mixed(
     free = pr.free
     t_start = time.perf_counter()
     last = None  # the state and load fraction before the last accepted step
+    if pr.contact is not None:  # friction's anchors where the bodies are drawn
+        pr.contact.t = 0.0
+        pr.contact.commit(x)
     if on_step is not None:
         on_step(x, 0.0, lam(0.0))
     while t < 1.0:
@@ -614,6 +617,8 @@ def solve_mixed(
             last = (x, t)
             x, t = trial, t_new
             steps += 1
+            if pr.contact is not None:
+                pr.contact.commit(x)
             if progress is not None:
                 progress(
                     f"reference: load {t:6.1%} (step {dt:.3g}) converged in {its} Newton iterations, "

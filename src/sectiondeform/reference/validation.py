@@ -38,7 +38,6 @@ from ..errors import CaseError, require
 from ..problem import V1
 from ..section import polygon_area
 from . import DEFAULT_MESH_SIZE, Reference, check_parameters, solve_reference
-from .contact import check_parts
 
 __all__ = ["BodyValidation", "ReferenceRun", "StressDistance", "Validation", "fem_run", "validate", "draw_validation",
            "save_validation_figure", "VALIDATION_FORMAT"]
@@ -540,7 +539,6 @@ def validate(
         Without the extra ``[fem]``.
     """
     if reference is None:
-        check_parts(problem.rigid)
         require("skfem", "fem", "the finite-element reference")
         require("triangle", "fem", "the finite-element reference")
         check_parameters(mesh_size, problem.options.for_model("hyperelastic").bulk_to_shear
