@@ -1,11 +1,12 @@
-"""Check the fast method against a finite-element reference on a case (needs [fem]).
+"""Check the fast method against a finite-element reference on a case (needs [fem]; --reference calculix needs ccx).
 
 Runs the fast model (the case's, or --model) and a finite-element solution
-of the same physics on CASE: a nearly incompressible neo-Hookean section in
-generalised plane strain (out-of-plane stretch 1/r; a body grown by
-volume_ratio r grows by r^(1/3) in every direction, its extrusion free),
-bonded to the target, solved on fine P2/P1 triangles; a body's holes are
-free boundaries of the mesh. Prints both areas, the Hausdorff distance
+of the same physics on CASE: each body's nearly incompressible rubber
+(neo-Hookean unless its material says otherwise) in generalised plane
+strain (out-of-plane stretch 1/r; a body grown by volume_ratio r grows by
+r^(1/3) in every direction, its extrusion free) or of revolution, bonded to
+the target, pressed by the rigid parts, solved on fine P2/P1 triangles; a
+body's holes are free boundaries of the mesh. Prints both areas, the Hausdorff distance
 between the two deformed upper curves (absolute and over the mean thickness
 T), the largest gap between corresponding upper points, both times and
 their ratio. Progress of the reference goes to stderr.

@@ -295,7 +295,7 @@ def _history_step(mixed, x, t: float, load):
     ring = _ring(mixed)
     r = mixed.residual(x, load)[mixed.dirichlet_nodes]  # (2, d/2): what the support does to the bodies
     forces = dict(zip(mixed.contact.names, mixed.contact.forces(x, ring)))
-    forces["support"] = (-ring * float(r[0].sum()), -ring * float(r[1].sum()))
+    forces["support"] = (-ring * float(r[0].sum()) + 0.0, -ring * float(r[1].sum()) + 0.0)  # no negative zero
     return HistoryStep(float(t), forces)
 
 

@@ -241,7 +241,7 @@ class ReferenceContact:
             if self.friction[k] > 0:
                 traction = traction + self.tangential(k, trial, s)[0][..., None] * np.stack((-n[..., 1], n[..., 0]), axis=-1)
             f = -ring * np.einsum("fq,fqi->i", self.weight, traction)
-            out.append((float(f[0]), float(f[1])))
+            out.append((float(f[0]) + 0.0, float(f[1]) + 0.0))  # no negative zero
         return out
 
     def figures(self, x: np.ndarray, ring: float) -> tuple:
