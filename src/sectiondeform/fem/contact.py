@@ -208,6 +208,10 @@ class Boundary:
         """The number of free edges."""
         return len(self.weight) // GAUSS
 
+    def points(self, x: np.ndarray) -> np.ndarray:
+        """The Gauss points' positions ``(P, 2)`` for node positions ``x`` ``(N, 2)``, units."""
+        return (self.shape[:, :, None] * x[self.nodes]).sum(axis=1)
+
 
 def _pairs(corner_vertex: np.ndarray) -> np.ndarray:
     """``[e, j, e', j']`` for every two edges meeting at a vertex (``corner_vertex``: (k, 2) vertex of each edge's corners), ``(Q, 4)``."""
@@ -527,7 +531,7 @@ class ContactPhysics:
         interpolation of the two nodes of its half edge.
         """
         b, (corner, edge_nodes, pen_min, size_max, carries) = self.boundary, self._fixed
-        xq = (b.shape[:, :, None] * x[b.nodes]).sum(axis=1)
+        xq = b.points(x)
         margin = float(self.lam.max(initial=0.0) / pen_min + SMOOTHING / PENALTY * size_max) + 1e-9 * (1.0 + float(np.abs(xq).max()))
         xe = x[edge_nodes]  # (edges, 3, 2)
         halves = xe[:, 2:] - xe[:, :2]  # from each corner to the mid-node
@@ -754,7 +758,7 @@ class ContactPhysics:
         b = self.boundary
         if not any(obs.friction > 0 for obs in self.obstacles):
             return
-        xq = np.einsum("pa,pai->pi", b.shape, x[b.nodes])
+        xq = b.points(x)
         anchor = np.full_like(self.anchor, np.nan)
         contact = self.evaluate(x)
         for k, obs in enumerate(self.obstacles):

@@ -208,8 +208,7 @@ class Contact:
         """Each part's largest penetration into the bodies at node positions ``x`` and load fraction ``t``, units
         (negative: its smallest gap), over the boundary's points.
         """
-        b = self.boundary
-        xq = np.einsum("pa,pai->pi", b.shape, x[b.nodes])
+        xq = self.boundary.points(x)
         return [float(obs.query(xq, obs.at(t), np.inf)[1].max(initial=-np.inf)) for obs in obstacles]
 
     def physics(self, physics, lam=None, anchor=None, obstacles=None) -> ContactPhysics:

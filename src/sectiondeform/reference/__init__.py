@@ -47,6 +47,7 @@ import time
 import numpy as np
 
 from ..errors import CaseError
+from ..fem.contact import ring_factor
 from ..laws import RATIO_RANGE, Law
 from ..section import build_section
 from .solution import BodyReference, Reference, solution
@@ -279,20 +280,15 @@ def solve_reference(
     if mixed.contact is None:
         return ref
     last = history[-1]
-    return dataclasses.replace(ref, rigid=mixed.contact.figures(x, _ring(mixed)), support_force=last.forces["support"],
+    return dataclasses.replace(ref, rigid=mixed.contact.figures(x, ring_factor(not mixed.revolution)), support_force=last.forces["support"],
                                history=tuple(history))
-
-
-def _ring(mixed) -> float:
-    """From per-radian integrals to the whole ring's (2π, a body of revolution), or 1 (plane)."""
-    return 2.0 * math.pi if mixed.revolution else 1.0
 
 
 def _history_step(mixed, x, t: float, load):
     """The forces on each rigid part and on the support at the solved state ``x`` of load fraction ``t``."""
     from ..models.hyperelastic_contact import HistoryStep
 
-    ring = _ring(mixed)
+    ring = ring_factor(not mixed.revolution)
     r = mixed.residual(x, load)[mixed.dirichlet_nodes]  # (2, d/2): what the support does to the bodies
     forces = dict(zip(mixed.contact.names, mixed.contact.forces(x, ring)))
     forces["support"] = (-ring * float(r[0].sum()) + 0.0, -ring * float(r[1].sum()) + 0.0)  # no negative zero

@@ -79,7 +79,8 @@ class ReferenceContact:
     t : float
         The load fraction the parts stand at (0 drawn, 1 at their end).
     lam : (K, nf, nq) float64 ndarray
-        Each part's multiplier at each point (pressure units, per initial length).
+        Each part's multiplier at each point (pressure units, per initial length); replaced by an update, never
+        changed in place (:meth:`touch` keeps its last answer for the same multipliers).
     """
 
     def __init__(self, mixed, parts, *, tol: float):
@@ -113,6 +114,7 @@ class ReferenceContact:
         self.lam = np.zeros((len(parts),) + self.ds0.shape)
         self.friction = np.array([part.friction for part in parts], dtype=np.float64)
         self.anchor = np.full(self.lam.shape, np.nan)  # friction: where along each part each point sticks
+        self._touched = None  # (displacements, t, lam, answer) of the last :meth:`touch`
 
     # --- kinematics -------------------------------------------------------------
 
@@ -123,8 +125,14 @@ class ReferenceContact:
     def touch(self, x: np.ndarray):
         """Per part, ``(trial, n, s)`` at every point, ``(nf, nq)``, ``(nf, nq, 2)``, ``(nf, nq)``.
 
-        ``trial`` is the trial pressure λ + ε g (−inf where the part is out of reach).
+        ``trial`` is the trial pressure λ + ε g (−inf where the part is out of reach). The last
+        answer is kept: a Newton iteration's residual and tangent, and the figures, ask at the same state.
         """
+        u = x[: self.n_u]
+        key = (self.t, self.lam)
+        if self._touched is not None and self._touched[1] == key[0] and self._touched[2] is key[1] \
+                and np.array_equal(self._touched[0], u):
+            return self._touched[3]
         xq = self.positions(x).reshape(-1, 2)
         out = []
         for k, obs in enumerate(self.obstacles):
@@ -135,6 +143,7 @@ class ReferenceContact:
             trial[idx] = self.lam[k].ravel()[idx] + self.eps.ravel()[idx] * g
             n[idx], s[idx] = nk, sk
             out.append((trial.reshape(self.ds0.shape), n.reshape(self.X.shape), s.reshape(self.ds0.shape)))
+        self._touched = (u.copy(), key[0], key[1], out)
         return out
 
     # --- residual and tangent ---------------------------------------------------
