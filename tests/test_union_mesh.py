@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -147,3 +148,41 @@ def test_the_conforming_loop_checks_the_vertex_bound_before_each_delaunay(monkey
                                         r"the bound 3000"):
         module.union_mesh([low, top], [np.array([0, 1]), np.array([0, 2])], 0.1, 1e-9)
     assert sizes and max(sizes) <= MAX_FE_VERTICES
+
+
+@settings(max_examples=15, deadline=None)
+@given(
+    width=st.floats(4.0, 30.0),
+    height=st.floats(1.0, 6.0),
+    start=st.floats(0.0, 0.8),
+    ratio=st.sampled_from([2, 4]),
+    through=st.floats(2.0, 6.0),
+)
+def test_a_fine_zone_halves_the_size_near_it_and_leaves_the_rest(width, height, start, ratio, through):
+    """A box refined along a piece of its top: its edges there are the body's size over ``ratio``, far away the body's."""
+    box = _box(0.0, 0.0, width, height, 1)
+    h = height / through
+    zone = shapely.LineString([(start * width, height), ((start + 0.2) * width, height)])
+    plain = union_mesh([box], [np.array([0, 1])], h, 1e-9 * width)
+    mesh = union_mesh([box], [np.array([0, 1])], h, 1e-9 * width, fine=[zone], fine_ratio=ratio)
+    g = geometry(mesh.nodes, mesh.cells)
+    assert g.detj_ratio.min() > 0.5 and g.weight.sum() == pytest.approx(width * height, rel=1e-9)
+    assert np.abs(mesh.vertex_weights @ mesh.nodes - mesh.points).max() <= 1e-9 * width
+    corner = mesh.cells[:, :3]
+    edges = np.unique(np.sort(np.concatenate((corner[:, [0, 1]], corner[:, [1, 2]], corner[:, [2, 0]])), axis=1), axis=0)
+    length = np.hypot(*(mesh.nodes[edges[:, 1]] - mesh.nodes[edges[:, 0]]).T)
+    mid = shapely.points(0.5 * (mesh.nodes[edges[:, 0]] + mesh.nodes[edges[:, 1]]))
+    d = shapely.distance(zone, mid)
+    on_top = np.abs(mesh.nodes[edges, 1] - height).max(axis=1) <= 1e-9 * width
+    # Along the zone the top's edges are the fine size (within the arc-length rounding of a chain's steps).
+    assert length[on_top & (d <= 1e-9 * width)].max() <= 1.3 * h / ratio
+    # The cells: the fine size on the zone, the body's from a size off it on (the grading's last halving).
+    far = d > h * (2.0 - 2.0 / ratio) / 0.5 + 2.0 * h
+    assert np.all(mesh.cell_size <= h) and mesh.cell_size.min() == pytest.approx(h / ratio)
+    if far.any():
+        assert length[far].max() <= 1.7 * h and np.median(length[far]) >= 0.7 * h
+    assert len(mesh.nodes) > len(plain.nodes)
+    # No zone, or a ratio of one, is the plain mesh to the bit.
+    for same in (union_mesh([box], [np.array([0, 1])], h, 1e-9 * width, fine=[None]),
+                 union_mesh([box], [np.array([0, 1])], h, 1e-9 * width, fine=[zone], fine_ratio=1)):
+        assert np.array_equal(same.nodes, plain.nodes) and np.array_equal(same.cells, plain.cells)

@@ -242,8 +242,10 @@ def free_boundary(nodes: np.ndarray, cells: np.ndarray, body: np.ndarray, fixed_
         The body of each cell.
     fixed_nodes : (d,) int64 ndarray
         Nodes bonded to the support; an edge whose three nodes all are is not free.
-    mu, size : (B,) float64 ndarray
-        Each body's shear modulus and element size.
+    mu : (B,) float64 ndarray
+        Each body's shear modulus.
+    size : (E,) float64 ndarray
+        Each cell's element size, units (a graded mesh's local one).
     radius : callable, optional
         Distance from the axis of points ``(..., 2)`` for a body of revolution.
 
@@ -287,7 +289,8 @@ def free_boundary(nodes: np.ndarray, cells: np.ndarray, body: np.ndarray, fixed_
         local = np.repeat(_EDGES[k % 3], GAUSS, axis=0)
     w = w.ravel()
     b = body[cell]
-    penalty = PENALTY * mu[b] / size[b]
+    h = size[cell]
+    penalty = PENALTY * mu[b] / h
     vnodes, vinv = np.unique(en, return_inverse=True)
     edge_vertex = vinv.reshape(-1, 3)
     vertex = np.repeat(edge_vertex, GAUSS, axis=0)
@@ -305,12 +308,12 @@ def free_boundary(nodes: np.ndarray, cells: np.ndarray, body: np.ndarray, fixed_
     vpen = np.full(len(vnodes), np.inf)
     np.minimum.at(vpen, vertex.ravel(), np.where(share > 0, np.repeat(penalty, 3), np.inf))
     vpen[np.isinf(vpen)] = 0.0
-    vsize = np.bincount(vertex.ravel(), weights=share * np.repeat(size[b], 3), minlength=len(vnodes)) / per_vertex
+    vsize = np.bincount(vertex.ravel(), weights=share * np.repeat(h, 3), minlength=len(vnodes)) / per_vertex
     pairs = _pairs(edge_vertex[:, :2])
     edofs = (2 * en[:, :, None] + np.arange(2)).reshape(-1, 6)
     pair_dofs = np.concatenate((edofs[pairs[:, 0]], edofs[pairs[:, 2]]), axis=1) if len(pairs) else np.zeros((0, 12), np.int64)
     return Boundary(np.repeat(en, GAUSS, axis=0), np.tile(_N, (len(k), 1)), np.tile(_DN, (len(k), 1)), w,
-                    cell, local, penalty, size[b], vertex, psi, vw, vpen, vsize, vnodes, pairs, pair_dofs)
+                    cell, local, penalty, h, vertex, psi, vw, vpen, vsize, vnodes, pairs, pair_dofs)
 
 
 class Obstacle:

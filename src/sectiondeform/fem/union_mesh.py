@@ -106,7 +106,10 @@ class UnionMesh:
     vertex_weights : (V, N) scipy.sparse.csr_matrix
         Image of every vertex from the node positions.
     size : float
-        Target edge length h, units (the smallest body's).
+        Target edge length h, units (the smallest anywhere).
+    cell_size : (E,) float64 ndarray
+        Each cell's target edge length, units: its body's size, or the
+        fine size near the body's fine zone (:class:`SizeField`).
     pressure_cells : (E, 3) int64 ndarray
         The pressure unknown at each cell's corners: one per body at each
         corner node (:func:`body_pressure_cells`).
@@ -127,6 +130,7 @@ class UnionMesh:
     edge_chain: dict
     vertex_weights: sp.csr_matrix
     size: float
+    cell_size: np.ndarray
     pressure_cells: np.ndarray
     n_pressures: int
     holes: tuple = ()
@@ -205,7 +209,7 @@ def _steps(pts: np.ndarray, h: float) -> int:
     if len(seg) > 1:
         theta = float(np.abs(np.arctan2(seg[:-1, 0] * seg[1:, 1] - seg[:-1, 1] * seg[1:, 0],
                                         np.einsum("ij,ij->i", seg[:-1], seg[1:]))).sum())
-    return max(1, int(round(length / h)), math.ceil(theta / math.radians(PIECE_TURN_DEG) - 1e-9))
+    return max(1, int(round(length / h)), math.ceil(theta / math.radians(PIECE_TURN_DEG) - 1e-9))  # h = inf: the turns' count
 
 
 def _at(pts: np.ndarray, s: np.ndarray, at: np.ndarray) -> np.ndarray:
@@ -231,6 +235,105 @@ def _blocked_message(bpts: np.ndarray, missing: np.ndarray, h: float) -> str:
     return (f"mesh: the mesh (h = {h:.4g}) cannot be made to follow {len(missing)} contour segment(s), the first "
             f"({a[0, 0]:.6g}, {a[0, 1]:.6g})-({b[0, 0]:.6g}, {b[0, 1]:.6g}), however they are split; "
             "check that the bodies' contours do not cross or touch without sharing their points")
+
+
+GRADING = 0.5
+"""How fast the target size grows away from a fine zone: this much per unit of distance (:class:`SizeField`)."""
+
+
+class SizeField:
+    """The mesh's target edge length at points: each body's size, finer near its fine zone.
+
+    At a distance ``d`` from body ``b``'s zone the size is
+    ``h_b / 2**k``, the power of two just under ``min(h_b, h_b / ratio +
+    GRADING * d)``: ``h_b / ratio`` on the zone, coarser by halvings away
+    from it, ``h_b`` from about ``h_b / GRADING`` on.
+
+    Parameters
+    ----------
+    sizes : (B,) float64 ndarray
+        Each body's element size h_b, units.
+    fine : sequence of (shapely geometry or None), or None
+        Per body, where it is meshed finer.
+    ratio : int
+        The size on a zone is the body's over this: 1, 2, 4 or 8.
+    origin : (2,) float64 ndarray
+        Subtracted from the geometries' coordinates (the mesh's own origin).
+    """
+
+    def __init__(self, sizes: np.ndarray, fine, ratio: int, origin: np.ndarray):
+        self.sizes = np.asarray(sizes, dtype=np.float64)
+        if ratio not in (1, 2, 4, 8):
+            raise ValueError(f"fine_ratio: {ratio!r} is not 1, 2, 4 or 8")
+        self.levels = int(ratio).bit_length() - 1
+        zones = [None] * len(self.sizes) if fine is None or ratio == 1 else list(fine)
+        if len(zones) != len(self.sizes):
+            raise ValueError(f"fine: {len(zones)} zones for {len(self.sizes)} bodies")
+        self.zones = [None if z is None or shapely.is_empty(z) else shapely.transform(z, lambda c: c - origin) for z in zones]
+        for z in self.zones:
+            if z is not None:
+                shapely.prepare(z)
+        self.smallest = float(min(h / 2 ** (self.levels if z is not None else 0) for h, z in zip(self.sizes, self.zones)))
+
+    def graded(self, bodies) -> bool:
+        """Whether any of ``bodies`` has a fine zone."""
+        return any(self.zones[b] is not None for b in bodies)
+
+    def level(self, b: int, q: np.ndarray) -> np.ndarray:
+        """Halvings of body ``b``'s size at points ``q`` ``(n, 2)``, ``(n,)`` int64 (0 far from its zone)."""
+        if self.zones[b] is None:
+            return np.zeros(len(q), np.int64)
+        h = self.sizes[b]
+        want = np.minimum(h, h / 2 ** self.levels + GRADING * shapely.distance(self.zones[b], shapely.points(q)))
+        return np.clip(np.ceil(np.log2(h / want) - 1e-9), 0, self.levels).astype(np.int64)
+
+    def at(self, q: np.ndarray, bodies) -> np.ndarray:
+        """The smallest target size of ``bodies`` at points ``q`` ``(n, 2)``, ``(n,)`` float64, units."""
+        out = np.full(len(q), np.inf)
+        for b in bodies:
+            out = np.minimum(out, self.sizes[b] / 2.0 ** self.level(b, q))
+        return out
+
+
+def _node_s(p: np.ndarray, s: np.ndarray, h: float, size_at=None) -> np.ndarray:
+    """Arc lengths of a chain's mesh nodes ``(n + 1,)``, from 0 to ``s[-1]``: steps of about ``h``, or of ``size_at``.
+
+    ``size_at`` maps points ``(m, 2)`` to target sizes ``(m,)``; the steps
+    then follow it (equal steps of its inverse integrated along the chain).
+    Either way a step turns by at most :data:`PIECE_TURN_DEG`.
+    """
+    length = float(s[-1])
+    if size_at is None:
+        n = _steps(p, h)
+        ns = length * np.arange(n + 1) / n
+    else:
+        t = np.linspace(0.0, length, max(2, math.ceil(4.0 * length / h) + 1))
+        density = 1.0 / size_at(_at(p, s, t))
+        count = np.concatenate(([0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(t))))
+        n = max(_steps(p, math.inf), int(round(float(count[-1]))))
+        ns = np.interp(np.arange(n + 1) * (count[-1] / n), count, t)
+    ns[0], ns[-1] = 0.0, length  # exactly the chain's ends (a ring's outline picks its nodes by arc length)
+    return ns
+
+
+def _graded_lattice(poly, field: SizeField, b: int) -> np.ndarray:
+    """Body ``b``'s interior points: lattices of halved sizes where its :class:`SizeField` asks for them.
+
+    Each level's lattice is kept where the field's level is its own; a
+    coarser point crowding a finer level's points (nearer than half its
+    step) is dropped.
+    """
+    h = float(field.sizes[b])
+    if field.zones[b] is None:
+        return _lattice(poly, h)
+    kept = np.zeros((0, 2))
+    for k in range(field.levels, -1, -1):  # finest first
+        pts = _lattice(poly, h / 2**k)
+        pts = pts[field.level(b, pts) == k]
+        if len(kept) and len(pts):
+            pts = pts[cKDTree(kept).query(pts)[0] >= 0.5 * h / 2**k]
+        kept = np.concatenate((kept, pts))
+    return kept
 
 
 def _lattice(poly, h: float) -> np.ndarray:
@@ -270,7 +373,7 @@ def _smooth(pts: np.ndarray, tri: np.ndarray, n_fixed: int, iterations: int) -> 
     return pts
 
 
-def union_mesh(rings, fixed, h, tol: float, holes=None) -> UnionMesh:
+def union_mesh(rings, fixed, h, tol: float, holes=None, fine=None, fine_ratio: int = 2) -> UnionMesh:
     """Mesh several bodies, given by their contours, with P2 triangles of size about ``h`` (per body).
 
     Parameters
@@ -290,6 +393,13 @@ def union_mesh(rings, fixed, h, tol: float, holes=None) -> UnionMesh:
         Per body, the closed rings of its holes (inside its contour, apart
         from it and from each other): their boundaries are chains like the
         contours', no triangle lies inside them.
+    fine : sequence of (shapely geometry or None), optional
+        Per body, where it is meshed finer (for instance the pieces of its
+        contour a rigid part will press): the contour and the lattice take
+        the body's size over ``fine_ratio`` there, coarser by halvings away
+        from it (:class:`SizeField`).
+    fine_ratio : int
+        1, 2, 4 or 8.
 
     Returns
     -------
@@ -318,7 +428,8 @@ def union_mesh(rings, fixed, h, tol: float, holes=None) -> UnionMesh:
     sizes = np.broadcast_to(np.asarray(h, dtype=np.float64), (len(rings),))
     if not (np.all(sizes > 0) and np.all(np.isfinite(sizes))):
         raise MeshError(f"mesh: the element sizes {sizes.tolist()!r} are not positive finite lengths; check the bodies' scale")
-    h = float(sizes.min())
+    field = SizeField(sizes, fine, fine_ratio, origin)
+    h = field.smallest
     polys = [shapely.Polygon(r, hb) for r, hb in zip(rings, holes)]
     with np.errstate(all="ignore"):
         estimate = sum(float(p.length) / hb + abs(float(p.area)) / (hb * hb * math.sqrt(3.0) / 2.0) for p, hb in zip(polys, sizes))
@@ -337,20 +448,19 @@ def union_mesh(rings, fixed, h, tol: float, holes=None) -> UnionMesh:
     all_ids = list(ids) + hole_ids
     fixed_v = np.concatenate([ids[b][np.asarray(f, dtype=np.int64)] for b, f in enumerate(fixed)])
     paths, corners = _chains(points, all_ids, fixed_v)
-    edge_size = {}  # graph edge -> the smallest size of the bodies it bounds
+    edge_bodies = {}  # graph edge -> the bodies it bounds
     for b, ring in [*enumerate(ids), *zip(hole_owner, hole_ids)]:
         for u, w in zip(ring, np.roll(ring, -1)):
-            key = (min(int(u), int(w)), max(int(u), int(w)))
-            edge_size[key] = min(edge_size.get(key, math.inf), float(sizes[b]))
+            edge_bodies.setdefault((min(int(u), int(w)), max(int(u), int(w))), set()).add(b)
     geo = []
     for path in paths:
         p = points[path]
         s = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(p, axis=0).T))))
-        n = _steps(p, min(edge_size[(min(u, w), max(u, w))] for u, w in zip(path[:-1], path[1:])))
-        ns = s[-1] * np.arange(n + 1) / n
-        ns[-1] = s[-1]  # exactly the chain's end (a ring's outline picks its nodes by arc length)
+        bodies = sorted(set().union(*(edge_bodies[(min(u, w), max(u, w))] for u, w in zip(path[:-1], path[1:]))))
+        h_chain = float(field.sizes[bodies].min())
+        ns = _node_s(p, s, h_chain, (lambda q, bodies=bodies: field.at(q, bodies)) if field.graded(bodies) else None)
         geo.append((np.asarray(path), s, ns))
-    interior = np.concatenate([_lattice(p, float(hb)) for p, hb in zip(polys, sizes)] + [np.zeros((0, 2))])
+    interior = np.concatenate([_graded_lattice(p, field, b) for b, p in enumerate(polys)] + [np.zeros((0, 2))])
     corner_index = {v: k for k, v in enumerate(corners)}
     best, stalled = math.inf, 0
     for _ in range(CONFORM_ITERATIONS):
@@ -438,9 +548,14 @@ def union_mesh(rings, fixed, h, tol: float, holes=None) -> UnionMesh:
     body = body.astype(np.int64)
     pressure_cells, n_pressures = body_pressure_cells(cells, body, nv)
     per_body = tuple(tuple(r for r, o in zip(hole_ids, hole_owner) if o == b) for b in range(len(rings)))
+    centroid = nodes[cells[:, :3]].mean(axis=1)
+    cell_size = np.empty(len(cells))
+    for b in range(len(rings)):
+        on = body == b
+        cell_size[on] = field.at(centroid[on], [b])
     nodes += origin
     points = points + origin
-    return UnionMesh(nodes, cells, body, nv, points, tuple(ids), tuple(chains), edge_chain, weights, float(h),
+    return UnionMesh(nodes, cells, body, nv, points, tuple(ids), tuple(chains), edge_chain, weights, float(h), cell_size,
                      pressure_cells, n_pressures, per_body)
 
 
