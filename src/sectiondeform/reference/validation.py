@@ -36,6 +36,7 @@ import numpy as np
 from ..compare import CurveComparison, compare_curves, point_to_curve_distance, section_height
 from ..errors import CaseError, require
 from ..problem import V1
+from ..result import contact_units
 from ..section import polygon_area
 from . import DEFAULT_MESH_SIZE, Reference, check_parameters, solve_reference
 
@@ -441,15 +442,16 @@ class Validation:
                     f"    at {sd.samples} common nodes: von Mises L2 {sd.von_mises_l2:.1%}, max "
                     f"{sd.von_mises_max:.1%}; pressure L2 {sd.pressure_l2:.1%}, max {sd.pressure_max:.1%}",
                 ]
-        per = "ring" if self.revolution else f"per {u}"
+        units = contact_units(u, self.revolution)
+        force = f"{units['force']}, the whole ring" if self.revolution else units["force"]
         for c in self.contacts:
             out += [
                 f"  rigid {c['name']!r}: force [{c['force_fast'][0]:.5g}, {c['force_fast'][1]:.5g}] fast, "
-                f"[{c['force_reference'][0]:.5g}, {c['force_reference'][1]:.5g}] reference ({per}), "
+                f"[{c['force_reference'][0]:.5g}, {c['force_reference'][1]:.5g}] reference ({force}), "
                 f"{c['force_error']:.2%} apart",
                 f"    contact length {c['length_fast']:.4g} fast, {c['length_reference']:.4g} reference {u} "
                 f"({c['length_error']:+.1%}); peak pressure {c['pressure_max_fast']:.4g} fast, "
-                f"{c['pressure_max_reference']:.4g} reference",
+                f"{c['pressure_max_reference']:.4g} reference {units['pressure']}",
             ]
         return out + [
             f"  time fast        {1e3 * self.fast_seconds:12.2f} ms",
