@@ -256,9 +256,14 @@ def draw_load_deflection(result, fig=None):
         fig = new_figure(figsize=(6, 4), layout="constrained")
     ax = fig.subplots()
     travel = np.array([s.travel for s in result.history])
-    for name in [part.name for part in result.rigid] + ["support"]:
-        f = np.array([s.forces[name] for s in result.history])
-        ax.plot(travel, np.hypot(f[:, 0], f[:, 1]), "o-", ms=3, label=name)
+    sizes = {name: np.hypot(*np.array([s.forces[name] for s in result.history]).T)
+             for name in [part.name for part in result.rigid] + ["support"]}
+    for name, size in sizes.items():  # the support dashed over open marks: a part alone on it hides it otherwise
+        others = [o for o in sizes if o != name and o != "support"]
+        same = name == "support" and any(np.allclose(size, sizes[o], rtol=1e-4, atol=1e-9 * float(size.max(initial=0.0))) for o in others)
+        ax.plot(travel, size, "o--" if name == "support" else "o-", ms=6 if name == "support" else 3,
+                mfc="none" if name == "support" else None, zorder=3 if name == "support" else 2,
+                label=f"{name} (the same size as the part's)" if same else name)
     from .result import contact_units
 
     force = contact_units(result.units, result.axis is not None)["force"]
