@@ -149,6 +149,25 @@ def test_the_mesh_is_halved_where_a_part_starts_and_nowhere_else():
     assert len(refined.nodes) > len(without.nodes)
 
 
+def test_by_default_only_frictionless_parts_on_small_meshes_halve_it():
+    """``contact_refinement`` unset: the bumper (73 vertices estimated) is halved, not with friction, nor at 16 elements
+    through (over 400); 2 halves either.
+    """
+    def cells(change=None, **options):
+        d = _bumper_dict()
+        if change:
+            change(d)
+        d["options"].update(options)
+        return len(sd.Deformer(case_from_dict(d)).prepared.mesh.cells)
+
+    plain, halved = cells(contact_refinement=1), cells()
+    assert halved > plain
+    rough = lambda d: d["rigid"][0].update(friction=0.3)  # noqa: E731
+    assert cells(rough) == plain and cells(rough, contact_refinement=2) == halved
+    assert cells(elements_through_thickness=16) == cells(elements_through_thickness=16, contact_refinement=1)
+    assert cells(elements_through_thickness=16, contact_refinement=2) > cells(elements_through_thickness=16)
+
+
 def test_a_part_starting_inside_a_body_is_refused_with_the_overlap():
     d = _bumper_dict()
     d["rigid"][0]["travel"] = [0.0, -0.4]  # starts 0.8 into the bumper

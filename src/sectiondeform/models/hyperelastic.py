@@ -84,7 +84,6 @@ __all__ = [
 DEFAULT_THROUGH_THICKNESS = 4.0
 DEFAULT_BULK_TO_SHEAR = 1000.0
 DEFAULT_TOLERANCE = 1e-7
-DEFAULT_CONTACT_REFINEMENT = 2.0
 CONTACT_REFINEMENTS = (1, 2)
 CORRECTION_WARNING = 0.02
 
@@ -103,21 +102,22 @@ class HyperelasticOptions(ModelOptions):
         Bulk over shear modulus, > 0 and at most 1e9.
     newton_tolerance : float
         Newton tolerance on the position increment, relative to T, in (0, 0.1].
-    contact_refinement : float
+    contact_refinement : float or None
         With rigid parts, the element size is divided by this where they
         will press (:func:`~sectiondeform.models.hyperelastic_contact.contact_zones`):
-        1 (the same mesh everywhere) or 2.
+        1 (the same mesh everywhere) or 2; None (the default) chooses
+        (:func:`~sectiondeform.models.hyperelastic_contact.auto_refinement`).
     """
 
     elements_through_thickness: float = DEFAULT_THROUGH_THICKNESS
     bulk_to_shear: float = DEFAULT_BULK_TO_SHEAR
     newton_tolerance: float = DEFAULT_TOLERANCE
-    contact_refinement: float = DEFAULT_CONTACT_REFINEMENT
+    contact_refinement: float | None = None
 
     def __post_init__(self):
         for key, high in (("elements_through_thickness", 64.0), ("bulk_to_shear", 1e9), ("newton_tolerance", 0.1)):
             object.__setattr__(self, key, positive(getattr(self, key), f"options.{key}", high=high))
-        if self.contact_refinement not in CONTACT_REFINEMENTS:
+        if self.contact_refinement is not None and self.contact_refinement not in CONTACT_REFINEMENTS:
             raise CaseError("options.contact_refinement", f"{self.contact_refinement!r} is not 1 or 2 (the element size is "
                             "halved where rigid parts press with 2, not with 1)")
 
@@ -321,13 +321,14 @@ class HyperelasticPrepared(Prepared):
         self.sizes = np.array([s.mesh_scale for s in self.sections]) / options.elements_through_thickness
         rings = [s.contour for s in self.sections]
         fixed = [np.array([0, len(s.lower) - 1]) for s in self.sections]
-        fine = None
+        fine, ratio = None, 1
         if a.rigid:  # finer where the parts will press (hyperelastic_contact.py)
-            from .hyperelastic_contact import contact_zones
+            from .hyperelastic_contact import auto_refinement, contact_zones
 
+            ratio = options.contact_refinement or auto_refinement(rings, self.sizes, a.rigid)
             fine = contact_zones(rings, self.sizes, a.rigid, 1e-6 * a.size)
         mesh = union_mesh(rings, fixed, self.sizes, self.layout.tolerance, [s.holes for s in self.sections], fine,
-                          int(options.contact_refinement))
+                          int(ratio))
         self.mesh = mesh
         n_low = [len(s.lower) for s in self.sections]
         self.lower_ids = [r[:n] for r, n in zip(mesh.rings, n_low)]

@@ -51,7 +51,7 @@ from ..fem.contact import (
 )
 from ..limits import MAX_SOLVE_WORK, work_budget
 
-__all__ = ["contact_zones", "contact_boundary", "Contact", "ContactState", "HistoryStep", "PENETRATION_WARNING", "MAX_HALVINGS"]
+__all__ = ["auto_refinement", "contact_zones", "contact_boundary", "Contact", "ContactState", "HistoryStep", "PENETRATION_WARNING", "MAX_HALVINGS"]
 
 ZONE_REACH = 2.0
 """A body's contour within this many of its element sizes of a part's start is meshed finer (:func:`contact_zones`)."""
@@ -136,6 +136,43 @@ class ContactState:
     anchor: np.ndarray = None
     travels: tuple = ()
     tangent: dict = field(default_factory=dict, repr=False, compare=False)
+
+
+AUTO_REFINE_VERTICES = 400
+"""The mesh is halved where parts press by default only while the uniform one has at most about this many vertices."""
+
+
+def auto_refinement(contours, sizes, parts) -> int:
+    """The default ``contact_refinement``: 2 (halved where the parts press) for frictionless parts on a small mesh, else 1.
+
+    Measured on 147 generated contact cases (docs/reliability.md): halved,
+    meshes of 670 to 1,200 vertices ran into the loading's work bound or past
+    20 s, and bodies of revolution under a plate with friction 0.3 were
+    refused at their first load steps with no physical reason named, where
+    the uniform mesh answered or named one. The public and worked cases
+    (55 to 190 vertices, frictionless) are halved. ``contact_refinement`` 2
+    halves any case.
+
+    Parameters
+    ----------
+    contours : sequence of (k_b, 2) float64 ndarray
+        Each body's closed contour, units.
+    sizes : (B,) float64 ndarray
+        Each body's element size, units.
+    parts : sequence of RigidPart
+
+    Returns
+    -------
+    int
+        1 or 2.
+    """
+    if any(part.friction > 0.0 for part in parts):
+        return 1
+    vertices = 0.0
+    for ring, h in zip(contours, sizes):
+        polygon = shapely.Polygon(ring)
+        vertices += float(polygon.length) / h + abs(float(polygon.area)) / (h * h * math.sqrt(3.0) / 2.0)
+    return 2 if vertices <= AUTO_REFINE_VERTICES else 1
 
 
 def contact_zones(contours, sizes, parts, tol: float) -> list:
