@@ -226,7 +226,9 @@ def draw_result(result, fig=None):
     axes[1].set_title(f"2  initial mesh{_mesh_shape(result)}")
     axes[2].set_title(f"3  final mesh on the deformed BC ({result.model} model)")
     axes[3].set_title("4  deformed section over the initial one")
-    axes[3].legend(loc="best", fontsize=8, title=_target_title(result), title_fontsize=8)
+    # Below the panel: over it, the legend covered the bodies (the fills leave it no empty corner).
+    axes[3].legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), fontsize=8, title=_target_title(result),
+                   title_fontsize=8)
     for ax in axes:
         ax.set_aspect("equal")
         ax.autoscale_view()
