@@ -44,7 +44,7 @@ from ..limits import MAX_FE_VERTICES, bounded
 from .elements import geometry
 from .mapping import edge_weights
 
-__all__ = ["UnionMesh", "Chain", "union_mesh", "body_pressure_cells"]
+__all__ = ["UnionMesh", "Chain", "union_mesh", "body_pressure_cells", "vertex_estimate", "SizeField"]
 
 
 CORNER_DEG = 15.0
@@ -196,6 +196,15 @@ def _chains(points, rings, fixed):
                 path.append(step)
             chains.append(path)
     return chains, sorted(corner)
+
+
+def vertex_estimate(polygons, sizes) -> float:
+    """About how many vertices :func:`union_mesh` gives ``polygons`` (shapely) at element ``sizes`` ``(B,)``, units.
+
+    A contour step per size along each outline, a hexagonal lattice point per
+    ``h² √3 / 2`` of area.
+    """
+    return sum(float(p.length) / h + abs(float(p.area)) / (h * h * math.sqrt(3.0) / 2.0) for p, h in zip(polygons, sizes))
 
 
 def _edge_keys(pairs: np.ndarray, n: int) -> np.ndarray:
@@ -432,7 +441,7 @@ def union_mesh(rings, fixed, h, tol: float, holes=None, fine=None, fine_ratio: i
     h = field.smallest
     polys = [shapely.Polygon(r, hb) for r, hb in zip(rings, holes)]
     with np.errstate(all="ignore"):
-        estimate = sum(float(p.length) / hb + abs(float(p.area)) / (hb * hb * math.sqrt(3.0) / 2.0) for p, hb in zip(polys, sizes))
+        estimate = vertex_estimate(polys, sizes)
     bounded(estimate, MAX_FE_VERTICES, "mesh vertices",
             "lower options.elements_through_thickness, or simplify the bodies' small features", MeshError)
     hole_owner = [b for b, hb in enumerate(holes) for _ in hb]

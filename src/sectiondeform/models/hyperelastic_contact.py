@@ -49,6 +49,7 @@ from ..fem.contact import (
     part_forces,
     ring_factor,
 )
+from ..fem.union_mesh import vertex_estimate
 from ..limits import MAX_SOLVE_WORK, work_budget
 
 __all__ = ["auto_refinement", "contact_zones", "contact_boundary", "Contact", "ContactState", "HistoryStep", "PENETRATION_WARNING", "MAX_HALVINGS"]
@@ -153,25 +154,13 @@ def auto_refinement(contours, sizes, parts) -> int:
     (55 to 190 vertices, frictionless) are halved. ``contact_refinement`` 2
     halves any case.
 
-    Parameters
-    ----------
-    contours : sequence of (k_b, 2) float64 ndarray
-        Each body's closed contour, units.
-    sizes : (B,) float64 ndarray
-        Each body's element size, units.
-    parts : sequence of RigidPart
-
-    Returns
-    -------
-    int
-        1 or 2.
+    ``contours``, ``sizes`` and ``parts`` are :func:`contact_zones`'s; the
+    vertices are :func:`~sectiondeform.fem.union_mesh.vertex_estimate`'s.
+    Returns 1 or 2.
     """
     if any(part.friction > 0.0 for part in parts):
         return 1
-    vertices = 0.0
-    for ring, h in zip(contours, sizes):
-        polygon = shapely.Polygon(ring)
-        vertices += float(polygon.length) / h + abs(float(polygon.area)) / (h * h * math.sqrt(3.0) / 2.0)
+    vertices = vertex_estimate([shapely.Polygon(ring) for ring in contours], sizes)
     return 2 if vertices <= AUTO_REFINE_VERTICES else 1
 
 
