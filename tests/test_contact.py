@@ -168,6 +168,17 @@ def test_by_default_only_frictionless_parts_on_small_meshes_halve_it():
     assert cells(elements_through_thickness=16, contact_refinement=2) > cells(elements_through_thickness=16)
 
 
+def test_a_part_whose_outline_crosses_itself_is_refused_where(tmp_path, capsys):
+    """A bow tie for a plate: before, the loading was refused at its first step with advice about the mesh."""
+    d = _bumper_dict()
+    d["rigid"][0]["contour"]["polyline"] = [[-12, 6.8], [12, 10], [12, 6.8], [-12, 10], [-12, 6.8]]
+    case, out = tmp_path / "c.json", tmp_path / "r.json"
+    case.write_text(json.dumps(d))
+    assert main(["deform", str(case), "-o", str(out)]) == 2 and not out.exists()
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "rigid[0] 'plate': its contour crosses itself near [0.0, 8.4]" in err
+
+
 def test_a_part_starting_inside_a_body_is_refused_with_the_overlap():
     d = _bumper_dict()
     d["rigid"][0]["travel"] = [0.0, -0.4]  # starts 0.8 into the bumper

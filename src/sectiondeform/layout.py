@@ -33,6 +33,7 @@ import shapely
 from .curves import Curve
 from .errors import GeometryError
 from .pappus import signed_distance
+from .section import ring_crossing
 
 __all__ = ["Layout", "layout", "check_axis", "check_holes", "problem_size", "CONTACT_FRACTION", "SAMPLES"]
 
@@ -226,6 +227,10 @@ def _check_rigid_start(problem, polygons, tol: float) -> None:
     target = shapely.LineString(_fine(problem.target, 0.25 * tol)) if parts else None
     for k, part in enumerate(parts):
         end = _fine(part.contour, 0.25 * tol)
+        crossing = ring_crossing(end[:-1] if np.array_equal(end[0], end[-1]) else end)
+        if crossing is not None:
+            raise GeometryError(f"rigid[{k}] {part.name!r}: its contour crosses itself near {_where(crossing[2])}; a "
+                                "part's outline is a simple closed curve")
         poly = shapely.Polygon(end)
         if not poly.is_valid:
             poly = shapely.make_valid(poly)

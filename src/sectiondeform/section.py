@@ -480,24 +480,36 @@ def densified(section: Section, shared: np.ndarray | None = None) -> Section:
     return dataclasses.replace(section, upper=upper, characteristic=characteristic)
 
 
-def _check_simple(ring: np.ndarray, n_lower: int) -> None:
-    """Raise :class:`GeometryError` if the closed ring crosses itself, naming where."""
-    if not np.isfinite(ring).all():
-        raise GeometryError("section: the discretised contour has non-finite points; check the coordinates")
-    line = shapely.LinearRing(ring)
-    if line.is_simple:
-        return
-    # Find a crossing to report: the first pair of non-adjacent edges that meet.
+def ring_crossing(ring: np.ndarray):
+    """Where a closed ring ``(n, 2)`` (closing edge implied) crosses itself: ``(i, j, point)``, or None if it is simple.
+
+    ``i`` and ``j`` are the first pair of non-adjacent edges that meet
+    (edge ``k`` runs from point ``k`` to ``k + 1``), ``point`` ``(2,)`` where.
+    """
+    if shapely.LinearRing(ring).is_simple:
+        return None
     edges = shapely.linestrings(np.stack((ring, np.roll(ring, -1, axis=0)), axis=1))
     tree = shapely.STRtree(edges)
     left, right = tree.query(edges, predicate="intersects")
     n = len(ring)
     far = (np.abs(left - right) > 1) & (np.abs(left - right) != n - 1)
+    if not far.any():  # a repeated point or an edge doubling back on the next: no crossing to name
+        return 0, 0, np.asarray(ring[0], dtype=np.float64)
+    i, j = int(left[far][0]), int(right[far][0])
+    pt = shapely.get_coordinates(shapely.intersection(edges[i], edges[j]))
+    return i, j, (pt[0] if len(pt) else np.asarray(ring[i], dtype=np.float64))
+
+
+def _check_simple(ring: np.ndarray, n_lower: int) -> None:
+    """Raise :class:`GeometryError` if the closed ring crosses itself, naming where."""
+    if not np.isfinite(ring).all():
+        raise GeometryError("section: the discretised contour has non-finite points; check the coordinates")
+    crossing = ring_crossing(ring)
+    if crossing is None:
+        return
+    i, j, pt = crossing
     where = ""
-    if far.any():
-        i, j = int(left[far][0]), int(right[far][0])
-        pt = shapely.get_coordinates(shapely.intersection(edges[i], edges[j]))
-        pt = pt[0] if len(pt) else ring[i]
+    if i != j:
         name = lambda k: f"lower edge {k}" if k < n_lower - 1 else f"upper edge {k - n_lower + 1}"  # noqa: E731
         where = f" ({name(i)} meets {name(j)} near {np.round(pt, 6).tolist()})"
     raise GeometryError(f"section: the contour lower + upper crosses itself{where}; the section must be a simple polygon")
