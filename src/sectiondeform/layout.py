@@ -33,7 +33,6 @@ import shapely
 from .curves import Curve
 from .errors import GeometryError
 from .pappus import signed_distance
-from .section import ring_crossing
 
 __all__ = ["Layout", "layout", "check_axis", "check_holes", "problem_size", "CONTACT_FRACTION", "SAMPLES"]
 
@@ -224,7 +223,11 @@ def _check_rigid_start(problem, polygons, tol: float) -> None:
     end inside the part, an equilibrium no loading reaches.
     """
     parts = getattr(problem, "rigid", ())
-    target = shapely.LineString(_fine(problem.target, 0.25 * tol)) if parts else None
+    if not parts:
+        return
+    from .section import ring_crossing  # here: the section's module is heavy for a command line building its parser
+
+    target = shapely.LineString(_fine(problem.target, 0.25 * tol))
     for k, part in enumerate(parts):
         end = _fine(part.contour, 0.25 * tol)
         crossing = ring_crossing(end[:-1] if np.array_equal(end[0], end[-1]) else end)

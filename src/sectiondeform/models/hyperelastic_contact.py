@@ -49,7 +49,6 @@ from ..fem.contact import (
     part_forces,
     ring_factor,
 )
-from ..fem.union_mesh import vertex_estimate
 from ..limits import MAX_SOLVE_WORK, work_budget
 
 __all__ = ["auto_refinement", "contact_zones", "contact_boundary", "Contact", "ContactState", "HistoryStep", "PENETRATION_WARNING", "MAX_HALVINGS"]
@@ -160,6 +159,8 @@ def auto_refinement(contours, sizes, parts) -> int:
     """
     if any(part.friction > 0.0 for part in parts):
         return 1
+    from ..fem.union_mesh import vertex_estimate  # here: deform.py imports this module, the mesher's scipy is heavy
+
     vertices = vertex_estimate([shapely.Polygon(ring) for ring in contours], sizes)
     return 2 if vertices <= AUTO_REFINE_VERTICES else 1
 
