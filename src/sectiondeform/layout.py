@@ -213,8 +213,8 @@ def layout(problem) -> Layout:
 
 
 def _check_rigid_start(problem, polygons, tol: float) -> None:
-    """Refuse a rigid part whose start position (contour less travel) overlaps a body's interior, or whose end
-    position lies across the target.
+    """Refuse a rigid part whose outline crosses itself, whose start position (contour less travel) overlaps a
+    body's interior, or whose end position lies across the target.
 
     Touching is allowed: an overlap of area up to the contact tolerance
     times the shorter perimeter is taken as touching, as between bodies;

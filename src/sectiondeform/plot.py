@@ -260,12 +260,14 @@ def draw_load_deflection(result, fig=None):
     travel = np.array([s.travel for s in result.history])
     sizes = {name: np.hypot(*np.array([s.forces[name] for s in result.history]).T)
              for name in [part.name for part in result.rigid] + ["support"]}
-    for name, size in sizes.items():  # the support dashed over open marks: a part alone on it hides it otherwise
-        others = [o for o in sizes if o != name and o != "support"]
-        same = name == "support" and any(np.allclose(size, sizes[o], rtol=1e-4, atol=1e-9 * float(size.max(initial=0.0))) for o in others)
-        ax.plot(travel, size, "o--" if name == "support" else "o-", ms=6 if name == "support" else 3,
-                mfc="none" if name == "support" else None, zorder=3 if name == "support" else 2,
-                label=f"{name} (the same size as the part's)" if same else name)
+    support = sizes.pop("support")
+    for name, size in sizes.items():
+        ax.plot(travel, size, "o-", ms=3, zorder=2, label=name)
+    # The support dashed over open marks: a part alone carries the same force, and its curve would hide the part's.
+    atol = 1e-9 * float(support.max(initial=0.0))
+    same = any(np.allclose(support, size, rtol=1e-4, atol=atol) for size in sizes.values())
+    ax.plot(travel, support, "o--", ms=6, mfc="none", zorder=3,
+            label="support (the same size as the part's)" if same else "support")
     from .result import contact_units
 
     force = contact_units(result.units, result.axis is not None)["force"]

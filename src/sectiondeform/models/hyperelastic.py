@@ -326,7 +326,8 @@ class HyperelasticPrepared(Prepared):
             from .hyperelastic_contact import auto_refinement, contact_zones
 
             ratio = options.contact_refinement or auto_refinement(rings, self.sizes, a.rigid)
-            fine = contact_zones(rings, self.sizes, a.rigid, 1e-6 * a.size)
+            if ratio > 1:
+                fine = contact_zones(rings, self.sizes, a.rigid, 1e-6 * a.size)
         mesh = union_mesh(rings, fixed, self.sizes, self.layout.tolerance, [s.holes for s in self.sections], fine,
                           int(ratio))
         self.mesh = mesh
