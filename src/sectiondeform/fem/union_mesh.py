@@ -336,8 +336,12 @@ def _graded_lattice(poly, field: SizeField, b: int) -> np.ndarray:
     if field.zones[b] is None:
         return _lattice(poly, h)
     kept = np.zeros((0, 2))
+    zx0, zy0, zx1, zy1 = field.zones[b].bounds
     for k in range(field.levels, -1, -1):  # finest first
-        pts = _lattice(poly, h / 2**k)
+        # Level k (> 0) lies nearer the zone than GRADING * d = h / 2**(k - 1) - h / 2**levels: its lattice is
+        # made over the zone's box grown by that alone (the same points as over the whole body, a fraction of them).
+        reach = (h / 2 ** (k - 1) - h / 2**field.levels) / GRADING if k else math.inf
+        pts = _lattice(poly, h / 2**k, (zx0 - reach, zy0 - reach, zx1 + reach, zy1 + reach))
         pts = pts[field.level(b, pts) == k]
         if len(kept) and len(pts):
             pts = pts[cKDTree(kept).query(pts)[0] >= 0.5 * h / 2**k]
@@ -345,14 +349,22 @@ def _graded_lattice(poly, field: SizeField, b: int) -> np.ndarray:
     return kept
 
 
-def _lattice(poly, h: float) -> np.ndarray:
-    """Hexagonal lattice points of spacing ``h`` inside ``poly`` (holes allowed), half a step off its boundary."""
+def _lattice(poly, h: float, window=None) -> np.ndarray:
+    """Hexagonal lattice points of spacing ``h`` inside ``poly`` (holes allowed), half a step off its boundary.
+
+    ``window`` ``(x0, y0, x1, y1)``, units: only the points within it (the
+    same points as without it, the lattice anchored at ``poly``'s bounds).
+    """
     x0, y0, x1, y1 = poly.bounds
     dy = h * math.sqrt(3.0) / 2.0
     ys = np.arange(y0 + 0.5 * dy, y1, dy)
     xs = np.arange(x0 + 0.25 * h, x1 + h, h)
-    gx, gy = np.meshgrid(xs, ys)
-    gx = gx + 0.5 * h * (np.arange(len(ys))[:, None] % 2)
+    rows = np.arange(len(ys))
+    if window is not None:
+        rows = rows[(ys >= window[1]) & (ys <= window[3])]
+        xs = xs[(xs >= window[0] - h) & (xs <= window[2])]
+    gx, gy = np.meshgrid(xs, ys[rows])
+    gx = gx + 0.5 * h * (rows[:, None] % 2)
     pts = np.column_stack((gx.ravel(), gy.ravel()))
     inside = shapely.contains_xy(poly, pts[:, 0], pts[:, 1])
     pts = pts[inside]
