@@ -490,7 +490,8 @@ class Contact:
             state = run(1.0, state)
         for done in range(MAX_UPDATES + 1):
             x = cphys.positions(state.z)
-            touching = cphys.evaluate(x)  # the multipliers' update below is this evaluation too
+            # The multipliers' update below is this evaluation too: the solve's last residual's, when it has it.
+            touching = cphys._contact_of(state.fields) if cphys.computed(state.fields) else cphys.evaluate(x)
             left = cphys.penetration(x, touching)
             if left <= PENETRATION_FRACTION or done == MAX_UPDATES:
                 break
@@ -508,7 +509,8 @@ class Contact:
         if left > PENETRATION_WARNING:
             warnings.append(f"contact: a penetration of {left:.3g} element sizes is left after {done} "
                             "augmented-Lagrangian updates; the forces are less accurate there")
-        depths = self.deepest(cphys.obstacles, x, 1.0)
+        untouched = any(part.length == 0.0 for part in parts)
+        depths = self.deepest(cphys.obstacles, x, 1.0) if untouched else [0.0] * len(parts)
         for label, part, depth in zip(self.labels, parts, depths):
             if part.length == 0.0 and depth > 0.0:
                 warnings.append(f"{label}: enters the bodies by {depth:.3g} at most, too little for the contact on "
