@@ -1,5 +1,7 @@
 """One mesh of several bodies: shared nodes on shared pieces, each body covered exactly, per-body sizes."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 import shapely
@@ -186,3 +188,53 @@ def test_a_fine_zone_halves_the_size_near_it_and_leaves_the_rest(width, height, 
     for same in (union_mesh([box], [np.array([0, 1])], h, 1e-9 * width, fine=[None]),
                  union_mesh([box], [np.array([0, 1])], h, 1e-9 * width, fine=[zone], fine_ratio=1)):
         assert np.array_equal(same.nodes, plain.nodes) and np.array_equal(same.cells, plain.cells)
+
+
+def _sliver_points(eps):
+    """A straight contour piece A-M-W (M off the line AW by ``eps``) over an interior point Q."""
+    return np.array([[0.0, 0.0], [1.0, eps], [2.0, 0.0], [1.0, -1.0]])  # A, M, W, Q
+
+
+@pytest.mark.parametrize("eps", [1e-13, -1e-13, 0.0])
+def test_a_sliver_outside_the_body_along_its_contour_is_dropped(eps):
+    from sectiondeform.fem.union_mesh import _edge_keys, _mend_slivers, _signed_areas
+
+    pts = _sliver_points(eps)
+    tri = np.array([[0, 1, 3], [1, 2, 3], [0, 2, 1]])  # the last: A, W, M, no height, its long edge AW shared with none
+    seg = set(_edge_keys(np.array([[0, 1], [1, 2]]), 4).tolist())
+    out, body = _mend_slivers(pts, tri.copy(), np.zeros(3, np.int64), seg)
+    assert sorted(map(sorted, out.tolist())) == [[0, 1, 3], [1, 2, 3]] and len(body) == 2
+    assert abs(_signed_areas(pts, out)).sum() == pytest.approx(1.0 + eps, abs=1e-15)
+
+
+@pytest.mark.parametrize("eps", [1e-13, -1e-13, 0.0])
+def test_a_sliver_sharing_its_long_edge_with_its_body_is_flipped_into_two_proper_triangles(eps):
+    from sectiondeform.fem.union_mesh import SLIVER, _edge_keys, _mend_slivers, _signed_areas
+
+    pts = _sliver_points(eps)
+    tri = np.array([[0, 3, 2], [0, 2, 1]])  # A Q W below the line, and the sliver A W M on it
+    seg = set(_edge_keys(np.array([[0, 1], [1, 2]]), 4).tolist())
+    out, _ = _mend_slivers(pts, tri.copy(), np.zeros(2, np.int64), seg)
+    assert sorted(map(sorted, out.tolist())) == [[0, 1, 3], [1, 2, 3]]
+    areas = _signed_areas(pts, out)
+    assert (areas > SLIVER).all() and areas.sum() == pytest.approx(1.0 + eps, abs=1e-15)
+
+
+def test_a_thin_section_far_from_the_origin_meshes_without_slivers():
+    """The fuzzing's thin section (0.3 mm by 17 mm, 3.8e6 mm from the origin): Delaunay's slivers along its straight
+    top, on the points' hull, once left a triangle of no height (a divide-by-zero, then a refusal of a valid mesh)."""
+    import sectiondeform as sd
+    from sectiondeform.deform import Deformer
+    from sectiondeform.fem.union_mesh import SLIVER
+
+    path = Path(__file__).parent / "data" / "fuzz-found" / "warning-fem-elements-sliver-on-the-hull-1380.json"
+    with pytest.raises(sd.SectionDeformError) as info:  # its solve is past the work bound; the mesh is what is checked
+        Deformer(sd.load_case(path), "hyperelastic").deform()
+    assert "Newton stopped at its bound" in str(info.value)
+    mesh = Deformer(sd.load_case(path), "hyperelastic").prepared.mesh
+    corners = mesh.nodes[mesh.cells[:, :3]] - mesh.nodes[0]
+    edges = corners[:, [1, 2, 0]] - corners
+    longest2 = (edges * edges).sum(axis=2).max(axis=1)
+    a, b = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
+    area = 0.5 * (a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0])
+    assert (area > 0.5 * SLIVER * longest2).all()

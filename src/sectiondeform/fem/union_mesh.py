@@ -55,6 +55,8 @@ CONFORM_ITERATIONS = 40
 """Passes of the conforming loop (split the segments Delaunay missed, triangulate again) at most."""
 SMOOTH_ITERATIONS = 4
 """Laplace smoothing passes of the interior nodes (each kept only while no triangle turns over)."""
+SLIVER = 1e-7
+"""A triangle whose height is under this fraction of its longest edge is a sliver (:func:`_flip_slivers`)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -372,6 +374,62 @@ def _lattice(poly, h: float, window=None) -> np.ndarray:
     return pts[d >= 0.5 * h]
 
 
+def _mend_slivers(pts: np.ndarray, tri: np.ndarray, body: np.ndarray, seg_keys: set) -> tuple[np.ndarray, np.ndarray]:
+    """``(tri, body)`` without slivers: ``tri`` ``(T, 3)`` counter-clockwise and each triangle's body ``(T,)``.
+
+    Delaunay joins chain nodes on a straight piece of contour into
+    triangles of no height where that piece lies on the points' hull (a fan
+    from one node along the piece). Their area is rounding, of either sign,
+    their shape functions undefined, and their centroids fall on the
+    contour, inside a body or not. A sliver whose longest edge no other
+    triangle shares lies outside the body, along its contour: it is dropped
+    (and the next of its fan with it, pass after pass). One sharing its
+    longest edge ``(u, w)`` with a triangle ``(w, u, q)`` of its body is
+    flipped with it into ``(u, m, q)`` and ``(m, w, q)`` (the same area,
+    both proper), unless that edge is a contour segment (``seg_keys``:
+    :func:`_edge_keys` of the contour's segments). At most ten passes.
+    """
+    n = len(pts)
+    for _ in range(10):
+        p = pts[tri]
+        edges = p[:, [1, 2, 0]] - p  # edge k runs from corner k to corner k + 1
+        length2 = (edges * edges).sum(axis=2)
+        longest = length2.argmax(axis=1)
+        slivers = np.flatnonzero(np.abs(_signed_areas(pts, tri)) <= 0.5 * SLIVER * length2.max(axis=1))
+        if not len(slivers):
+            break
+        keys = _edge_keys(np.concatenate((tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]])), n)
+        owner = {}
+        for i, key in enumerate(keys.tolist()):
+            owner.setdefault(key, []).append(i % len(tri))
+        done, drop = set(), []
+        for s in slivers.tolist():
+            k = int(longest[s])
+            u, w, m = int(tri[s, k]), int(tri[s, (k + 1) % 3]), int(tri[s, (k + 2) % 3])
+            key = min(u, w) * n + max(u, w)
+            others = [t for t in owner.get(key, []) if t != s]
+            if not others and key not in seg_keys:
+                drop.append(s)
+                continue
+            if s in done or len(others) != 1 or others[0] in done or key in seg_keys or body[others[0]] != body[s]:
+                continue
+            t = others[0]
+            q = int(next(v for v in tri[t] if v not in (u, w)))
+            new = np.array([[u, m, q], [m, w, q]])
+            a = _signed_areas(pts, new)
+            new[a < 0] = new[a < 0][:, [0, 2, 1]]
+            if np.abs(a).min() <= 0.5 * SLIVER * length2[t].max():
+                continue
+            tri[s], tri[t] = new
+            done.update((s, t))
+        if not drop and not done:
+            break
+        keep = np.ones(len(tri), bool)
+        keep[drop] = False
+        tri, body = tri[keep], body[keep]
+    return tri, body
+
+
 def _signed_areas(pts: np.ndarray, tri: np.ndarray) -> np.ndarray:
     p0, p1, p2 = pts[tri[:, 0]], pts[tri[:, 1]], pts[tri[:, 2]]
     return 0.5 * ((p1[:, 0] - p0[:, 0]) * (p2[:, 1] - p0[:, 1]) - (p2[:, 0] - p0[:, 0]) * (p1[:, 1] - p0[:, 1]))
@@ -533,6 +591,12 @@ def union_mesh(rings, fixed, h, tol: float, holes=None, fine=None, fine_ratio: i
     tri, body = tri[keep], body[keep]
     areas = _signed_areas(pts, tri)
     tri[areas < 0] = tri[areas < 0][:, [0, 2, 1]]
+    seg_keys = _edge_keys(seg, len(pts))
+    tri, body = _mend_slivers(pts, tri, body, set(seg_keys.tolist()))
+    if not np.isin(seg_keys, _edge_keys(np.concatenate((tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]])), len(pts))).all():
+        raise MeshError(f"mesh: the mesh (h = {h:.4g}) leaves a contour segment without an element (a sliver along a "
+                        "straight piece of contour); try another options.elements_through_thickness")
+    areas = _signed_areas(pts, tri)
     for b, ring in enumerate(ids):
         want = abs(float(shapely.area(shapely.Polygon(bpts[_ring_nodes(ring, geo, chain_nodes)])))) - sum(
             abs(float(shapely.area(shapely.Polygon(bpts[_ring_nodes(r, geo, chain_nodes)]))))
