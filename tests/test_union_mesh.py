@@ -222,7 +222,8 @@ def test_a_sliver_sharing_its_long_edge_with_its_body_is_flipped_into_two_proper
 
 def test_a_thin_section_far_from_the_origin_meshes_without_slivers():
     """The fuzzing's thin section (0.3 mm by 17 mm, 3.8e6 mm from the origin): Delaunay's slivers along its straight
-    top, on the points' hull, once left a triangle of no height (a divide-by-zero, then a refusal of a valid mesh)."""
+    top, on the points' hull, once left a triangle of no height (a divide-by-zero, then a refusal of a valid mesh).
+    """
     import sectiondeform as sd
     from sectiondeform.deform import Deformer
     from sectiondeform.fem.union_mesh import SLIVER

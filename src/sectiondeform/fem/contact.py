@@ -661,7 +661,8 @@ class ContactPhysics:
 
     def residual(self, f) -> np.ndarray:
         """The bodies' residual with the contact's, ``(2 N + n_pressures,)``; the last one kept (its reactions are
-        read again once a solve ends on it)."""
+        read again once a solve ends on it).
+        """
         key = (f, self.t, self.lam, self.anchor)
         last = self._residual
         if last is not None and all(a is b for a, b in zip(last[0][:1] + last[0][2:], key[:1] + key[2:])) \
