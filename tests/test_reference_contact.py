@@ -139,3 +139,36 @@ def test_a_plate_dragged_with_friction_pulls_mu_times_its_normal_force(tmp_path,
     # The model at its default mesh (4 elements through a 4 mm block) against it: the pressed corners converge
     # slowly (docs/validation.md); both forces within 6 %.
     assert plate["force_error"] < 0.06
+
+
+def test_the_reference_mesh_is_finer_along_a_frictionless_parts_path_and_covers_the_bodies_exactly():
+    """The lip seal's contour within the shaft's path (start to end, grown by two element sizes) is split
+    ``CONTACT_REFINEMENT`` times finer; elsewhere at the body's size; the triangles still cover the section exactly.
+    """
+    import shapely
+
+    from sectiondeform.reference import CONTACT_REFINEMENT, _contact_zone
+    from sectiondeform.reference.mesh import triangulate
+    from sectiondeform.section import build_section
+
+    problem = sd.load_case(CASES_DIR / "v2" / "lip-seal-on-shaft.json")
+    sections = [build_section(problem.body_case(0))]
+    zone, ratio = _contact_zone(problem, sections, 0.3, CONTACT_REFINEMENT)
+    assert ratio == CONTACT_REFINEMENT > 1
+    plain, fine = triangulate(problem, 0.3, sections), triangulate(problem, 0.3, sections, fine=(zone, ratio))
+    h = plain.sizes[0]
+    for mesh in (plain, fine):
+        assert mesh.body_area(0) == pytest.approx(sections[0].area, rel=1e-9)
+    edges = np.sort(np.concatenate([fine.triangles[:, [0, 1]], fine.triangles[:, [1, 2]], fine.triangles[:, [2, 0]]]), axis=1)
+    unique, count = np.unique(edges, axis=0, return_counts=True)
+    boundary = unique[count == 1]  # the edges of one triangle: the section's outline
+    a, b = fine.points[boundary[:, 0]], fine.points[boundary[:, 1]]
+    length = np.hypot(*(b - a).T)
+    near = shapely.intersects(zone, shapely.points(0.5 * (a + b)))
+    assert near.any() and (~near).any()
+    assert length[near].max() <= h / ratio * (1 + 1e-9)
+    assert length[~near].max() > h / 2  # the rest keeps the body's size
+    assert len(fine.triangles) > 1.2 * len(plain.triangles)
+    # A part with friction keeps the uniform mesh.
+    rough = dataclasses.replace(problem, rigid=tuple(dataclasses.replace(p, friction=0.3) for p in problem.rigid))
+    assert _contact_zone(rough, sections, 0.3, CONTACT_REFINEMENT) is None

@@ -78,6 +78,15 @@ def _positive(value, name: str) -> float:
     return float(value)
 
 
+CONTACT_REFINEMENT = 8
+"""With frictionless rigid parts, the bodies' contour along the parts' paths (start to end, grown by two element
+sizes) is split this many times finer, Triangle grading the elements inward: a contact spans few elements of the uniform mesh. The
+lip seal's 0.30 mm contact (`tests/data/cases/v2/lip-seal-on-shaft.json`) was 1.5 of them at the default size, and
+its length came out 0.287 mm, 0.2615 and 0.2634 at 1, 1/2 and 1/4 of it, as if converged; refined 4, 8 and 16 times
+along the shaft's path, 0.2869, 0.2967 and 0.3011 mm, its force within 0.1 % throughout. The public cases' figures
+move by at most 0.07 % (the O-ring's bottom force), their reference time by at most 2.3× (the sleeve's 3.5 → 7.9 s)."""
+
+
 def check_parameters(mesh_size: float, bulk_to_shear: float | None) -> tuple[float, float]:
     """Check the reference's mesh size (fraction of T) and κ / μ; returns them as floats.
 
@@ -175,6 +184,7 @@ def solve_reference(
     material=None,
     tol: float = 1e-8,
     initial_step: float = 1.0,
+    contact_refinement: int = CONTACT_REFINEMENT,
     progress=None,
 ) -> Reference:
     """Solve a problem by finite elements: the reference for the fast models.
@@ -205,6 +215,10 @@ def solve_reference(
     initial_step : float
         First load increment (fraction of the full support motion and
         loads); steps grow after quick convergence and are halved after a failure.
+    contact_refinement : int
+        With frictionless rigid parts, the bodies' contour along the parts'
+        paths is meshed this many times finer (:data:`CONTACT_REFINEMENT`;
+        1: uniform).
     progress : callable, optional
         Called with one line of text at each stage and load step.
 
@@ -242,15 +256,18 @@ def solve_reference(
                        for b, (body, sec) in enumerate(zip(problem.bodies, sections))])
     growths = np.array([body_growth(body.law, revolution=ax is not None) for body in problem.bodies])
     growing = np.flatnonzero(growths != 1.0)
-    mesh = triangulate(problem, mesh_size, sections)
+    fine = _contact_zone(problem, sections, mesh_size, contact_refinement)
+    mesh = triangulate(problem, mesh_size, sections, fine=fine)
     t1 = time.perf_counter()
     mixed = MixedProblem(mesh, rubbers, axis=ax)
     if progress is not None:
         kind = "body of revolution" if ax is not None else "generalised plane strain"
         names = ", ".join(sorted({r.model for r in rubbers}))
+        finer = "" if fine is None else f", {fine[1]} x finer along the parts' paths"
         progress(f"reference: {len(mesh.triangles)} P2/P1 triangles over {len(sections)} "
                  f"bod{'y' if len(sections) == 1 else 'ies'} (h = {', '.join(f'{h:.4g}' for h in mesh.sizes)}, "
-                 f"{mesh_size:g} x mesh scale), {mixed.n_u + mixed.n_p} unknowns, {names} rubber, {kind}")
+                 f"{mesh_size:g} x mesh scale{finer}), "
+                 f"{mixed.n_u + mixed.n_p} unknowns, {names} rubber, {kind}")
     support = np.asarray(target.at_fractions(mixed.dirichlet_fractions), dtype=np.float64)
     load = ratios if ax is not None else 1.0 / ratios
     if len(growing):  # λz then the growth; a growing body starts at a free body's axial stretch v^(1/3)
@@ -282,6 +299,32 @@ def solve_reference(
     last = history[-1]
     return dataclasses.replace(ref, rigid=mixed.contact.figures(x, ring_factor(not mixed.revolution)), support_force=last.forces["support"],
                                history=tuple(history))
+
+
+def _contact_zone(problem, sections, mesh_size: float, ratio: int):
+    """Where the reference's mesh is made finer for rigid parts: ``(zone, ratio)`` for :func:`~.mesh.triangulate`, or None.
+
+    The zone is every frictionless part's path, its outline at the start
+    and at the end, grown by two of the largest body's element sizes: the
+    bodies' contour there is split ``ratio`` times finer, and Triangle's
+    quality bound grades the elements from it inward. A part with friction
+    keeps the uniform mesh: refined along a plate sliding 3 mm with friction
+    0.3 over a block (``tests/test_reference_contact.py``), the block's
+    trailing corner, where the pressure is singular, stopped Newton at 54 %
+    of the drag.
+    """
+    if not problem.rigid or ratio == 1:
+        return None
+    import shapely
+
+    h = max(mesh_size * s.mesh_scale for s in sections)
+    tol = 1e-6 * problem.size
+    paths = []
+    for part in (p for p in problem.rigid if p.friction == 0.0):
+        ring = part.contour.discretise(tol)[0]
+        end, start = shapely.Polygon(ring), shapely.Polygon(ring - np.asarray(part.travel, dtype=np.float64))
+        paths.append(shapely.union(start, end))
+    return (shapely.buffer(shapely.union_all(paths), 2.0 * h), int(ratio)) if paths else None
 
 
 def _history_step(mixed, x, t: float, load):

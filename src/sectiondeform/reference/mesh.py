@@ -218,10 +218,11 @@ def _support_fractions(problem, sections, points, ids, tol):
     return on, frac, line
 
 
-def _graph(problem, points, ids, sizes, on, frac, line, tol, hole_ids=()):
+def _graph(problem, points, ids, sizes, on, frac, line, tol, hole_ids=(), fine=None):
     """The split edges of the planar graph: vertices, segments, markers, support segments and the support's sag.
 
     ``hole_ids`` are each body's hole rings as vertex indices: their edges as they are (nothing lies on them).
+    ``fine``: ``(zone, ratio)``, the contour's edges within the shapely geometry ``zone`` split ``ratio`` times finer.
     """
     import shapely
 
@@ -230,6 +231,13 @@ def _graph(problem, points, ids, sizes, on, frac, line, tol, hole_ids=()):
         for u, w in _node_edges(points, ring, tol):
             key = (min(u, w), max(u, w))
             edge_size[key] = min(edge_size.get(key, math.inf), float(sizes[b]))
+    if fine is not None:
+        zone, ratio = fine
+        keys = list(edge_size)
+        mids = shapely.points(0.5 * (points[[k[0] for k in keys]] + points[[k[1] for k in keys]]))
+        for key, near in zip(keys, shapely.intersects(zone, mids)):
+            if near:
+                edge_size[key] /= ratio
     for b, hb in enumerate(hole_ids):
         for ring in hb:
             for u, w in zip(ring.tolist(), np.roll(ring, -1).tolist()):
@@ -331,7 +339,7 @@ def _lower(pts, n_given, marks, sub_support):
     return lower[order].astype(np.int64), node_frac[lower][order]
 
 
-def triangulate(problem, mesh_size: float, sections=None, thin: bool = False) -> ReferenceMesh:
+def triangulate(problem, mesh_size: float, sections=None, thin: bool = False, fine=None) -> ReferenceMesh:
     """One conforming quality triangulation of all the bodies of a problem.
 
     Parameters
@@ -346,6 +354,10 @@ def triangulate(problem, mesh_size: float, sections=None, thin: bool = False) ->
         Keep only upper points about a third of the element size apart
         (and those other bodies touch): a solver deck maps the rest by its
         shape functions, the reference needs every upper point as a node.
+    fine : (shapely geometry, int), optional
+        A zone and a ratio: the bodies' contour edges within the zone are
+        split that many times finer (Triangle's quality bound grades the
+        elements from them inward).
 
     Returns
     -------
@@ -397,7 +409,7 @@ def triangulate(problem, mesh_size: float, sections=None, thin: bool = False) ->
     points = np.concatenate([points, *(h for hb in holes for h in hb)])
     on = np.concatenate((on, np.zeros(len(points) - len(on), dtype=bool)))
     frac = np.concatenate((frac, np.full(len(points) - len(frac), np.nan)))
-    vertices, segments, marks, sub_support, sag = _graph(problem, points, ids, sizes, on, frac, line, tol, hole_ids)
+    vertices, segments, marks, sub_support, sag = _graph(problem, points, ids, sizes, on, frac, line, tol, hole_ids, fine)
     pts, tri, body, vmarks = _triangle(vertices, segments, marks, sub_support, *_regions(rings, sizes, holes))
     lower_nodes, lower_fractions = _lower(pts, len(vertices), vmarks, sub_support)
     upper_nodes = [np.concatenate(([ring[len(sec.lower) - 1]], ring[len(sec.lower):], [ring[0]])).astype(np.int64)
