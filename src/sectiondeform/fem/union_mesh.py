@@ -163,41 +163,61 @@ def _merge(rings, tol: float):
 
 
 def _chains(points, rings, fixed):
-    """Cut the graph of the rings' edges into chains between corners: lists of vertex indices."""
-    edges = set()
-    for ring in rings:
-        for u, w in zip(ring, np.roll(ring, -1)):
-            if u != w:
-                edges.add((min(int(u), int(w)), max(int(u), int(w))))
-    adj: dict[int, list[int]] = {}
-    for u, w in sorted(edges):
-        adj.setdefault(u, []).append(w)
-        adj.setdefault(w, []).append(u)
-    corner = set(int(v) for v in fixed)
-    for v, nb in adj.items():
-        if len(nb) != 2:
-            corner.add(v)
-            continue
-        a, b = points[v] - points[nb[0]], points[nb[1]] - points[v]
-        if abs(math.atan2(a[0] * b[1] - a[1] * b[0], a @ b)) > math.radians(CORNER_DEG):
-            corner.add(v)
-    seen, chains = set(), []
-    corner &= set(adj)
-    starts = sorted(corner) + sorted(adj)  # a loop without corners starts anywhere
-    for c in starts:
+    """Cut the graph of the rings' edges into chains between corners: lists of vertex indices.
+
+    A corner is a fixed vertex, a vertex with other than two neighbours, or
+    one where the contour turns by more than :data:`CORNER_DEG`. The graph's
+    edges and the corners are found with whole-array operations; the walk
+    along each chain, from the corners in increasing order (then from any
+    vertex of a loop without corners), follows each vertex's neighbours in
+    increasing order.
+    """
+    n = len(points)
+    pairs = [np.column_stack((r, np.roll(r, -1))) for r in rings if len(r)]
+    pairs = np.concatenate(pairs).astype(np.int64) if pairs else np.zeros((0, 2), np.int64)
+    pairs = pairs[pairs[:, 0] != pairs[:, 1]]
+    keys = np.unique(np.minimum(pairs[:, 0], pairs[:, 1]) * n + np.maximum(pairs[:, 0], pairs[:, 1]))
+    lo, hi = keys // n, keys % n
+    # Each vertex's neighbours in the order of the sorted edges (u < w): by (min, max) of the edge.
+    ends = np.concatenate((lo, hi))
+    others = np.concatenate((hi, lo))
+    order = np.lexsort((np.concatenate((keys, keys)), ends))
+    ends, others = ends[order], others[order]
+    present, start, degree = np.unique(ends, return_index=True, return_counts=True)
+    corner = np.zeros(n, bool)
+    corner[np.asarray(fixed, dtype=np.int64)] = True
+    corner[present[degree != 2]] = True
+    two = present[degree == 2]
+    if len(two):
+        first = others[start[degree == 2]]
+        second = others[start[degree == 2] + 1]
+        a, b = points[two] - points[first], points[second] - points[two]
+        turn = np.abs(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.einsum("ij,ij->i", a, b)))
+        corner[two[turn > math.radians(CORNER_DEG)]] = True
+    in_graph = np.zeros(n, bool)
+    in_graph[present] = True
+    corner &= in_graph
+    adj = dict(zip(present.tolist(), np.split(others, start[1:]).__iter__()))
+    adj = {v: nb.tolist() for v, nb in adj.items()}
+    is_corner = corner.tolist()
+    walked = [False] * n  # a vertex inside a chain already walked (each is inside one chain)
+    ends, chains = set(), []  # ends: each walked chain's first and last edges, (min, max)
+    for c in np.flatnonzero(corner).tolist() + present.tolist():  # a loop without corners starts anywhere
         for nxt in adj[c]:
-            if (min(c, nxt), max(c, nxt)) in seen:
+            if (walked[nxt] and not is_corner[nxt]) or (min(c, nxt), max(c, nxt)) in ends:
                 continue
-            corner.add(c)
+            is_corner[c] = True
             path = [c, nxt]
-            seen.add((min(c, nxt), max(c, nxt)))
-            while path[-1] not in corner:
-                v = path[-1]
-                step = adj[v][0] if adj[v][0] != path[-2] else adj[v][1]
-                seen.add((min(v, step), max(v, step)))
-                path.append(step)
+            prev, v = c, nxt
+            while not is_corner[v]:
+                walked[v] = True
+                nb = adj[v]
+                prev, v = v, (nb[0] if nb[0] != prev else nb[1])
+                path.append(v)
+            ends.add((min(c, nxt), max(c, nxt)))
+            ends.add((min(prev, v), max(prev, v)))
             chains.append(path)
-    return chains, sorted(corner)
+    return chains, np.flatnonzero(is_corner).tolist()
 
 
 def vertex_estimate(polygons, sizes) -> float:
@@ -527,15 +547,18 @@ def union_mesh(rings, fixed, h, tol: float, holes=None, fine=None, fine_ratio: i
     all_ids = list(ids) + hole_ids
     fixed_v = np.concatenate([ids[b][np.asarray(f, dtype=np.int64)] for b, f in enumerate(fixed)])
     paths, corners = _chains(points, all_ids, fixed_v)
-    edge_bodies = {}  # graph edge -> the bodies it bounds
-    for b, ring in [*enumerate(ids), *zip(hole_owner, hole_ids)]:
-        for u, w in zip(ring, np.roll(ring, -1)):
-            edge_bodies.setdefault((min(int(u), int(w)), max(int(u), int(w))), set()).add(b)
+    # Each graph edge and a body it bounds, (key, body) pairs once each: a chain bounds its edges' bodies.
+    owned = [*enumerate(ids), *zip(hole_owner, hole_ids)]
+    n_bodies = len(rings)
+    edge_body = np.unique(np.concatenate(
+        [_edge_keys(np.column_stack((r, np.roll(r, -1))), len(points)) * n_bodies + b for b, r in owned]))
+    edge_key, edge_owner = edge_body // n_bodies, edge_body % n_bodies
     geo = []
     for path in paths:
         p = points[path]
         s = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(p, axis=0).T))))
-        bodies = sorted(set().union(*(edge_bodies[(min(u, w), max(u, w))] for u, w in zip(path[:-1], path[1:]))))
+        keys = _edge_keys(np.column_stack((path[:-1], path[1:])), len(points))
+        bodies = np.unique(edge_owner[np.isin(edge_key, keys)]).tolist()
         h_chain = float(field.sizes[bodies].min())
         ns = _node_s(p, s, h_chain, (lambda q, bodies=bodies: field.at(q, bodies)) if field.graded(bodies) else None)
         geo.append((np.asarray(path), s, ns))
