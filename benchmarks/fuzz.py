@@ -77,7 +77,7 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
 
     if args.refusals:
-        return refusals(args.count, args.seed, args.limit)
+        return refusals(args.count, args.seed, args.limit, args.failures)
     counts: collections.Counter[str] = collections.Counter()
     by_model: dict[str, collections.Counter[str]] = collections.defaultdict(collections.Counter)
     newton = collections.Counter()  # hyperelastic assemblies without damage: answered, Newton refusals
@@ -170,10 +170,15 @@ def refusal_class(outcome) -> str:
     return outcome.kind
 
 
-def refusals(count: int, seed_: int, limit: float) -> int:
-    """Issue 25's count: undamaged generated assemblies and bodies of revolution, hyperelastic, by how they end."""
+def refusals(count: int, seed_: int, limit: float, folder: Path | None = None) -> int:
+    """Issue 25's count: undamaged generated assemblies and bodies of revolution, hyperelastic, by how they end.
+
+    Each input refused without a physical reason, and each failure, is saved in ``folder`` (``refusal-<n>.json``,
+    the case and its one line under ``"refusal"``), to be read and replayed.
+    """
     classes: collections.Counter[str] = collections.Counter()
     slowest = [0.0]
+    saved = [0]
 
     @seed(seed_)
     @settings(max_examples=count, database=None, deadline=None, phases=[Phase.generate],
@@ -182,7 +187,13 @@ def refusals(count: int, seed_: int, limit: float) -> int:
     def run(case):
         outcome = outcome_api(case, limit)
         slowest[0] = max(slowest[0], outcome.seconds)
-        classes[refusal_class(outcome)] += 1
+        kind = refusal_class(outcome)
+        classes[kind] += 1
+        if folder is not None and (kind.startswith("convergence refusal") or outcome.failed):
+            folder.mkdir(parents=True, exist_ok=True)
+            saved[0] += 1
+            (folder / f"refusal-{seed_}-{saved[0]}.json").write_text(
+                json.dumps({**case, "refusal": f"{outcome.kind}: {outcome.detail}"}, indent=1))
 
     run()
     total = sum(classes.values())
