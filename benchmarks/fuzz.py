@@ -173,8 +173,8 @@ def refusal_class(outcome) -> str:
 def refusals(count: int, seed_: int, limit: float, folder: Path | None = None) -> int:
     """Issue 25's count: undamaged generated assemblies and bodies of revolution, hyperelastic, by how they end.
 
-    Each input refused without a physical reason, and each failure, is saved in ``folder`` (``refusal-<n>.json``,
-    the case and its one line under ``"refusal"``), to be read and replayed.
+    Each input refused without a physical reason, and each failure, is saved in ``folder``: the case as
+    ``refusal-<seed>-<n>.json`` (replayed with ``sectiondeform deform``), its one line as ``.txt``.
     """
     classes: collections.Counter[str] = collections.Counter()
     slowest = [0.0]
@@ -192,8 +192,9 @@ def refusals(count: int, seed_: int, limit: float, folder: Path | None = None) -
         if folder is not None and (kind.startswith("convergence refusal") or outcome.failed):
             folder.mkdir(parents=True, exist_ok=True)
             saved[0] += 1
-            (folder / f"refusal-{seed_}-{saved[0]}.json").write_text(
-                json.dumps({**case, "refusal": f"{outcome.kind}: {outcome.detail}"}, indent=1))
+            stem = folder / f"refusal-{seed_}-{saved[0]}"
+            stem.with_suffix(".json").write_text(json.dumps(case, indent=1))
+            stem.with_suffix(".txt").write_text(f"{outcome.kind}: {outcome.detail}\n")
 
     run()
     total = sum(classes.values())
