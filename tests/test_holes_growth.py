@@ -242,3 +242,50 @@ def test_a_figure_leaves_a_body_s_holes_unfilled():
         pixels = np.asarray(fig.canvas.buffer_rgba())[::-1, :, 0]  # row 0 at y = 0
         hole_pixel, *material = (pixels[int(y / 4 * 39), int(x / 4 * 39)] for x, y in ((1.5, 1.5), (3.0, 3.0), (0.5, 3.5)))
         assert hole_pixel == 255 and material == [0, 0]
+
+
+def test_the_free_axial_stretch_halves_a_step_whose_solve_fails_and_finds_the_root():
+    """A secant step whose solve fails (here: any change of ln lz over 0.06 at once) is halved from the last solved
+    stretch; the root of a free bar (stiffness 3 μ A, zero force at lz 1.1) is found all the same."""
+    from sectiondeform.errors import ConvergenceError
+    from sectiondeform.extrusion import AXIAL_TOLERANCE, free_axial_stretch
+
+    last = [0.0]
+    attempts = []
+
+    def solve(ln):
+        attempts.append(float(ln[0]))
+        if abs(ln[0] - last[0]) > 0.06:
+            raise ConvergenceError("hyperelastic: Newton did not converge", "the target or the law is too severe")
+        last[0] = float(ln[0])
+        return 3.0 * (ln - np.log(1.1))
+
+    ln = free_axial_stretch(np.zeros(1), 3.0 * (np.zeros(1) - np.log(1.1)), solve, np.array([0]), np.ones(1))
+    assert abs(3.0 * (ln[0] - np.log(1.1))) <= AXIAL_TOLERANCE
+    assert any(abs(a - b) > 0.06 for a, b in zip(attempts[1:], attempts)) or abs(attempts[0]) > 0.06  # one was halved
+
+
+def test_a_growing_body_its_bonded_neighbours_hold_is_refused_naming_them_not_newton():
+    """No root within a factor 2 of the free stretch (the force barely moves): the one line says the bonded bodies
+    hold it, after a few solves, not after the thirty the search allows."""
+    from sectiondeform.errors import ConvergenceError
+    from sectiondeform.extrusion import MAX_DEVIATION, free_axial_stretch
+
+    solves = []
+
+    def solve(ln):
+        solves.append(float(ln[0]))
+        return np.array([1.0 - 0.01 * ln[0]])  # 1 μA, nearly flat: held
+
+    with pytest.raises(ConvergenceError, match="the bodies bonded to it hold it") as info:
+        free_axial_stretch(np.zeros(1), np.ones(1), solve, np.array([0]), np.ones(1), "bodies[0] 'b'")
+    assert str(info.value).startswith("bodies[0] 'b': no axial stretch within a factor 2")
+    assert len(solves) <= 6 and max(abs(s) for s in solves) <= MAX_DEVIATION + 1e-12
+
+
+def test_four_bodies_side_by_side_the_growing_one_a_thousand_times_softer_are_refused_with_that_reason():
+    """The generated case that stopped 'at 0 of the way' with no reason: its soft growing body, squeezed by
+    neighbours 1,000 to 5,000 times stiffer, has no free axial stretch."""
+    path = DATA / "fuzz-found" / "v2" / "api-REFUSED-growing-body-held-by-stiffer-neighbours.json"
+    with pytest.raises(sd.SectionDeformError, match="bodies\\[1\\] 'b1': no axial stretch .* the bodies bonded to it hold it"):
+        sd.deform(sd.load_case(path))
