@@ -246,7 +246,8 @@ def test_a_figure_leaves_a_body_s_holes_unfilled():
 
 def test_the_free_axial_stretch_halves_a_step_whose_solve_fails_and_finds_the_root():
     """A secant step whose solve fails (here: any change of ln lz over 0.06 at once) is halved from the last solved
-    stretch; the root of a free bar (stiffness 3 μ A, zero force at lz 1.1) is found all the same."""
+    stretch; the root of a free bar (stiffness 3 μ A, zero force at lz 1.1) is found all the same.
+    """
     from sectiondeform.errors import ConvergenceError
     from sectiondeform.extrusion import AXIAL_TOLERANCE, free_axial_stretch
 
@@ -267,7 +268,8 @@ def test_the_free_axial_stretch_halves_a_step_whose_solve_fails_and_finds_the_ro
 
 def test_a_growing_body_its_bonded_neighbours_hold_is_refused_naming_them_not_newton():
     """No root within a factor 2 of the free stretch (the force barely moves): the one line says the bonded bodies
-    hold it, after a few solves, not after the thirty the search allows."""
+    hold it, after a few solves, not after the thirty the search allows.
+    """
     from sectiondeform.errors import ConvergenceError
     from sectiondeform.extrusion import MAX_DEVIATION, free_axial_stretch
 
@@ -285,7 +287,8 @@ def test_a_growing_body_its_bonded_neighbours_hold_is_refused_naming_them_not_ne
 
 def test_four_bodies_side_by_side_the_growing_one_a_thousand_times_softer_are_refused_with_that_reason():
     """The generated case that stopped 'at 0 of the way' with no reason: its soft growing body, squeezed by
-    neighbours 1,000 to 5,000 times stiffer, has no free axial stretch."""
+    neighbours 1,000 to 5,000 times stiffer, has no free axial stretch.
+    """
     path = DATA / "fuzz-found" / "v2" / "api-REFUSED-growing-body-held-by-stiffer-neighbours.json"
     with pytest.raises(sd.SectionDeformError, match="bodies\\[1\\] 'b1': no axial stretch .* the bodies bonded to it hold it"):
         sd.deform(sd.load_case(path))
