@@ -25,6 +25,16 @@ if len(SHARED_CASES) < 3 or not SEAL.is_file():  # a missing fixture fails the r
     raise FileNotFoundError(f"test fixtures missing in {DATA}: expected the case files and {SEAL.name}")
 
 
+def load_benchmark(name: str):
+    """The script ``benchmarks/<name>.py`` as a module (the benchmarks are scripts, not part of the package)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(f"bench_{name}", ROOT / "benchmarks" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def data_case_path(name: str) -> Path:
     """The path of a case kept in ``tests/data/cases``; raises if it is absent."""
     path = CASES_DIR / f"{name}.json"

@@ -9,16 +9,13 @@ import math
 
 import pytest
 
-from conftest import ROOT
+from conftest import ROOT, load_benchmark
 
 CASES = ROOT / "tests" / "data" / "cases"
 
 
 def _load_runner():
-    spec = importlib.util.spec_from_file_location("bench_run", ROOT / "benchmarks" / "run.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_benchmark("run")
 
 
 def _positive(value):

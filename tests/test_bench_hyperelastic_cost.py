@@ -3,12 +3,10 @@
 No time limits: the benchmark reports figures, it does not assert them.
 """
 
-import importlib.util
-
 import numpy as np
 import pytest
 
-from conftest import ROOT
+from conftest import ROOT, load_benchmark
 
 pytest.importorskip("skfem")
 
@@ -17,10 +15,7 @@ CASES = ROOT / "tests" / "data" / "cases"
 
 @pytest.fixture(scope="module")
 def cost():
-    spec = importlib.util.spec_from_file_location("hyperelastic_cost", ROOT / "benchmarks" / "hyperelastic_cost.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_benchmark("hyperelastic_cost")
 
 
 @pytest.mark.parametrize("name", ["paper-example.json", "v2/two-layer-strip.json", "v2/sleeve-on-shaft.json"])

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 
 import pytest
@@ -10,7 +9,7 @@ import pytest
 pytest.importorskip("skfem")
 pytest.importorskip("triangle")
 
-from conftest import CASES_DIR  # noqa: E402
+from conftest import CASES_DIR, load_benchmark  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 STRIP = CASES_DIR / "v2" / "two-layer-strip.json"
@@ -18,10 +17,7 @@ STRIP = CASES_DIR / "v2" / "two-layer-strip.json"
 
 @pytest.fixture(scope="module")
 def bench():
-    spec = importlib.util.spec_from_file_location("bench_validation", ROOT / "benchmarks" / "validation.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_benchmark("validation")
 
 
 def cells(row: str) -> list[str]:
