@@ -124,6 +124,14 @@ def test_a_misspelt_option_gets_the_nearest_one(capsys):
     assert len(err) == 1 and "did you mean --area-ratio?" in err[0]
 
 
+def test_another_commands_option_is_named_as_such_not_suggested_as_itself(capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["deform", str(CASES / "paper-example.json"), "-o", "r.json", "--quiet"])
+    assert info.value.code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--quiet is an option of " in err[0] and "sweep" in err[0] and "did you mean" not in err[0]
+
+
 def test_an_output_that_is_a_folder_is_named_as_one(tmp_path, capsys):
     assert main(["deform", str(CASES / "paper-example.json"), "-o", str(tmp_path)]) == 2
     err = capsys.readouterr().err.strip()

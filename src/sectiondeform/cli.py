@@ -34,23 +34,30 @@ class _OneLineParser(argparse.ArgumentParser):
         hint = self._nearest(message)
         self.exit(2, f"{self.prog}: error: {' '.join(message.split())}{hint} (see {self.prog} --help)\n")
 
-    def _options(self) -> set[str]:
-        """Every option string of this parser and of its subcommands."""
-        out = set(self._option_string_actions)
+    def _options(self) -> dict[str, list[str]]:
+        """Every option string of this parser and of its subcommands, each with the subcommands that have it."""
+        out: dict[str, list[str]] = {o: [] for o in self._option_string_actions}
         for action in self._actions:
             if isinstance(action, argparse._SubParsersAction):
-                for sub in action.choices.values():
-                    out |= set(sub._option_string_actions)
+                for name, sub in action.choices.items():
+                    for o in sub._option_string_actions:
+                        out.setdefault(o, []).append(name)
         return out
 
     def _nearest(self, message: str) -> str:
-        """``; did you mean --area-ratio?`` for a misspelt option among unrecognized arguments, else ``""``."""
+        """``; did you mean --area-ratio?`` for a misspelt option among unrecognized arguments, or ``; --quiet is an
+        option of sweep, validate`` for another command's option, else ``""``.
+        """
         if not message.startswith("unrecognized arguments: "):
             return ""
-        known = sorted(o for o in self._options() if o.startswith("--"))
+        options = self._options()
+        known = sorted(o for o in options if o.startswith("--"))
         for word in message.split(": ", 1)[1].split():
             if word.startswith("--"):
-                close = difflib.get_close_matches(word.split("=")[0], known, n=1, cutoff=0.75)
+                name = word.split("=")[0]
+                if options.get(name):  # spelt right: another command's
+                    return f"; {name} is an option of {', '.join(sorted(options[name]))}, not of this command"
+                close = difflib.get_close_matches(name, known, n=1, cutoff=0.75)
                 if close:
                     return f"; did you mean {close[0]}?"
         return ""
