@@ -117,11 +117,18 @@ def offset_normals(ring: np.ndarray, movable: np.ndarray) -> np.ndarray:
     neighbours (outward for a counter-clockwise ring), zero for the other
     points and where the neighbours coincide.
     """
-    tang = np.roll(ring, -1, axis=0) - np.roll(ring, 1, axis=0)
+    if len(ring) < 3:
+        tang = np.roll(ring, -1, axis=0) - np.roll(ring, 1, axis=0)
+    else:  # the same differences by slices (np.roll copies the ring twice: a third of a drag preview's correction)
+        tang = np.empty_like(ring)
+        tang[1:-1] = ring[2:] - ring[:-2]
+        tang[0] = ring[1] - ring[-1]
+        tang[-1] = ring[0] - ring[-2]
     length = np.hypot(tang[:, 0], tang[:, 1])
     ok = movable & (length > 0)
     v = np.zeros_like(ring)
-    v[ok] = np.column_stack((tang[ok, 1], -tang[ok, 0])) / length[ok, None]
+    v[ok, 0] = tang[ok, 1] / length[ok]
+    v[ok, 1] = -tang[ok, 0] / length[ok]
     return v
 
 
