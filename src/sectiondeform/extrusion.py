@@ -100,7 +100,7 @@ def free_axial_stretch(ln_stretch: np.ndarray, force: np.ndarray, solve, growing
             raise ConvergenceError(
                 f"{what}: no axial stretch within a factor 2 of its free one frees the growing extruded body: its "
                 f"axial force is still {force[k] / scale[k]:.3g} x its shear modulus x area at lz {np.exp(ln[k]):.4g} "
-                f"(free: {np.exp(0.5 * (low + high)[np.flatnonzero(held)[0]]):.4g}); the bodies bonded to it hold it",
+                f"(free: {np.exp(ln_stretch[k]):.4g}); the bodies bonded to it hold it",
                 "a milder growth, or bonded bodies less stiff than it by fewer orders of magnitude")
         step = ln[growing] - np.clip(ln[growing] - step, low, high)
         previous = (ln.copy(), force)

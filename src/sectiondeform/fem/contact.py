@@ -602,15 +602,24 @@ class ContactPhysics:
         delta = limit / (TANGENT_PENALTY * b.penalty[idx])
         return np.maximum(delta, floor), delta <= floor
 
+    def _state(self, f) -> tuple:
+        """What an evaluation at the fields ``f`` depends on: ``(f, t, lam, anchor)`` (arrays replaced, never changed in place)."""
+        return (f, self.t, self.lam, self.anchor)
+
+    @staticmethod
+    def _same(a: tuple, b: tuple) -> bool:
+        """Whether two :meth:`_state` keys are the same state: the same objects, the same load fraction."""
+        return a[0] is b[0] and a[2] is b[2] and a[3] is b[3] and a[1] == b[1]
+
     def _contact_of(self, f) -> list:
         """:meth:`evaluate` at the positions of the fields ``f``, once for the residual and the tangent alike.
 
         Kept for the last two fields, with the load fraction, multipliers and
         anchors it was computed under (each replaced, never changed in place).
         """
-        key = (f, self.t, self.lam, self.anchor)
+        key = self._state(f)
         for memo, out in self._memo:
-            if all(a is b for a, b in zip(memo[:1] + memo[2:], key[:1] + key[2:])) and memo[1] == key[1]:
+            if self._same(memo, key):
                 return out
         out = self.evaluate(self._x(f))
         object.__setattr__(self, "_memo", [*self._memo[-1:], (key, out)])
@@ -663,10 +672,9 @@ class ContactPhysics:
         """The bodies' residual with the contact's, ``(2 N + n_pressures,)``; the last one kept (its reactions are
         read again once a solve ends on it).
         """
-        key = (f, self.t, self.lam, self.anchor)
+        key = self._state(f)
         last = self._residual
-        if last is not None and all(a is b for a, b in zip(last[0][:1] + last[0][2:], key[:1] + key[2:])) \
-                and last[0][1] == key[1]:
+        if last is not None and self._same(last[0], key):
             return last[1].copy()
         r = self._inner.residual(f)
         n2 = 2 * self._inner.n_nodes

@@ -56,7 +56,7 @@ CONFORM_ITERATIONS = 40
 SMOOTH_ITERATIONS = 4
 """Laplace smoothing passes of the interior nodes (each kept only while no triangle turns over)."""
 SLIVER = 1e-7
-"""A triangle whose height is under this fraction of its longest edge is a sliver (:func:`_flip_slivers`)."""
+"""A triangle whose height is under this fraction of its longest edge is a sliver (:func:`_mend_slivers`)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -176,7 +176,7 @@ def _chains(points, rings, fixed):
     pairs = [np.column_stack((r, np.roll(r, -1))) for r in rings if len(r)]
     pairs = np.concatenate(pairs).astype(np.int64) if pairs else np.zeros((0, 2), np.int64)
     pairs = pairs[pairs[:, 0] != pairs[:, 1]]
-    keys = np.unique(np.minimum(pairs[:, 0], pairs[:, 1]) * n + np.maximum(pairs[:, 0], pairs[:, 1]))
+    keys = np.unique(_edge_keys(pairs, n))
     lo, hi = keys // n, keys % n
     # Each vertex's neighbours in the order of the sorted edges (u < w): by (min, max) of the edge.
     ends = np.concatenate((lo, hi))
@@ -197,14 +197,13 @@ def _chains(points, rings, fixed):
     in_graph = np.zeros(n, bool)
     in_graph[present] = True
     corner &= in_graph
-    adj = dict(zip(present.tolist(), np.split(others, start[1:]).__iter__()))
-    adj = {v: nb.tolist() for v, nb in adj.items()}
+    adj = {v: nb.tolist() for v, nb in zip(present.tolist(), np.split(others, start[1:]))}
     is_corner = corner.tolist()
     walked = [False] * n  # a vertex inside a chain already walked (each is inside one chain)
-    ends, chains = set(), []  # ends: each walked chain's first and last edges, (min, max)
+    end_edges, chains = set(), []  # each walked chain's first and last edges, (min, max)
     for c in np.flatnonzero(corner).tolist() + present.tolist():  # a loop without corners starts anywhere
         for nxt in adj[c]:
-            if (walked[nxt] and not is_corner[nxt]) or (min(c, nxt), max(c, nxt)) in ends:
+            if (walked[nxt] and not is_corner[nxt]) or (min(c, nxt), max(c, nxt)) in end_edges:
                 continue
             is_corner[c] = True
             path = [c, nxt]
@@ -214,8 +213,8 @@ def _chains(points, rings, fixed):
                 nb = adj[v]
                 prev, v = v, (nb[0] if nb[0] != prev else nb[1])
                 path.append(v)
-            ends.add((min(c, nxt), max(c, nxt)))
-            ends.add((min(prev, v), max(prev, v)))
+            end_edges.add((min(c, nxt), max(c, nxt)))
+            end_edges.add((min(prev, v), max(prev, v)))
             chains.append(path)
     return chains, np.flatnonzero(is_corner).tolist()
 

@@ -81,10 +81,11 @@ def _positive(value, name: str) -> float:
 CONTACT_REFINEMENT = 8
 """With frictionless rigid parts, the bodies' contour along the parts' paths (start to end, grown by two element
 sizes) is split this many times finer, Triangle grading the elements inward: a contact spans few elements of the
-uniform mesh. The lip seal's 0.30 mm contact (`tests/data/cases/v2/lip-seal-on-shaft.json`) was under one of them at the default size, and
-its length came out 0.287 mm, 0.2615 and 0.2634 at 1, 1/2 and 1/4 of it, as if converged; refined 4, 8 and 16 times
-along the shaft's path, 0.2869, 0.2967 and 0.3011 mm, its force within 0.1 % throughout. The public cases' figures
-move by at most 0.07 % (the O-ring's bottom force), their reference time by at most 2.3× (the sleeve's 3.5 → 7.9 s)."""
+uniform mesh. The lip seal's 0.30 mm contact (`tests/data/cases/v2/lip-seal-on-shaft.json`) was under one of them
+at the default size, and its length came out 0.287 mm, 0.2615 and 0.2634 at 1, 1/2 and 1/4 of it, as if converged;
+refined 4, 8 and 16 times along the shaft's path, 0.2869, 0.2967 and 0.3011 mm, its force within 0.1 % throughout.
+The public cases' figures move by at most 0.07 % (the O-ring's bottom force), their reference time by at most 2.3×
+(the sleeve's 3.5 → 7.9 s)."""
 
 
 def check_parameters(mesh_size: float, bulk_to_shear: float | None) -> tuple[float, float]:
